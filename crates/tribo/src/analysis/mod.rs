@@ -1,0 +1,3 @@
+//! Layer 4: pure functions of fields: error measures against reference solutions, ...
+
+pub mod hertz_error;

@@ -1,0 +1,5 @@
+//! Layer 1: closed-form elastic solutions, each a pure function citing its source.
+
+pub mod elliptic;
+pub mod hertz;
+pub mod love;

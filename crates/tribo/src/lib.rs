@@ -1,0 +1,34 @@
+//! # tribo
+//!
+//! Mechanics of tribo-fatigue systems: bodies in frictional contact (rolling, sliding)
+//! while one of them is also bent, stretched or twisted. The methodology is that of the
+//! paper kept in `shared/seed` (equation numbers written "(N)" in these docs are that
+//! paper's); `shared/DESIGN.md` maps it onto this crate.
+//!
+//! Layers, lowest first; a layer never reaches up:
+//!
+//! 1. [`kernels`]: closed-form elastic solutions (Love's rectangle, Hertz), pure functions;
+//! 2. [`operators`]: discretized influence operators on grids (FFT convolution, dense);
+//! 3. [`solvers`]: contact problems; each returns a solution carrying its convergence record;
+//! 4. [`analysis`]: pure functions of fields (error measures against references, ...).
+//!
+//! [`validation`] runs the verification suite whose rows `tribo validate` prints and the
+//! tests assert.
+//!
+//! Conventions (DESIGN.md section 2): SI units (Pa, m, N); half-space surface z = 0 with z
+//! positive into the body; compressive pressure p > 0; stresses tension-positive.
+
+#![deny(missing_docs)]
+
+pub mod analysis;
+pub mod error;
+pub mod grid;
+pub mod kernels;
+pub mod material;
+pub mod operators;
+pub mod solvers;
+pub mod validation;
+
+pub use error::{Error, Result};
+pub use grid::SurfaceGrid;
+pub use material::{ElasticMaterial, composite_modulus};

@@ -1,0 +1,4 @@
+//! Dense influence matrices for small grids.
+
+/// A dense influence matrix.
+pub struct DenseInfluence {}

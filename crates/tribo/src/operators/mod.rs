@@ -1,0 +1,7 @@
+//! Layer 2: discretized influence operators on surface grids.
+
+pub mod convolution;
+pub mod dense;
+
+pub use convolution::{ConvolutionOperator, ConvolutionWorkspace};
+pub use dense::DenseInfluence;

@@ -1,0 +1,8 @@
+//! Layer 3: contact solvers. Each returns a solution that carries its convergence record.
+
+pub mod normal;
+
+pub use normal::{
+    NormalContactParams, NormalContactProblem, NormalContactSolution, NormalLoading,
+    solve_normal_active_set, solve_normal_cg,
+};

@@ -1,0 +1,1 @@
+//! The verification suite: every analytic comparison the tests make, as table rows.
