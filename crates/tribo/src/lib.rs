@@ -22,6 +22,7 @@
 
 pub mod analysis;
 pub mod error;
+pub mod geometry;
 pub mod grid;
 pub mod kernels;
 pub mod material;

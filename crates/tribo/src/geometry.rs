@@ -1,0 +1,610 @@
+//! Surface profiles of contacting bodies and the initial gap between them (the paper's (16)).
+//!
+//! # Convention
+//!
+//! Both bodies share one frame: the common tangent plane at the first point of contact is
+//! z = 0, x is body 1's first principal direction (for a roller: its axis), y the second.
+//! Each body's profile `z_k(x, y)` (m) is the distance of its undeformed surface from the
+//! tangent plane, **measured away from the other body**, so that a convex body has
+//! `z_k >= 0`, a concave one `z_k <= 0`, and the initial separation is
+//!
+//! ```text
+//! h(x, y) = z_1(x, y) + z_2(x, y)
+//! ```
+//!
+//! (the paper's (16) writes `z1 - z2` with both heights measured along one axis; the sum of
+//! distances measured away from the other body is the same quantity). A profile may be
+//! undefined at a point (off the end of a roller, outside a height map): there is no
+//! material there, and [`initial_gap`] gives such elements a separation far larger than any
+//! elastic approach, so that they never come into contact.
+//!
+//! Profiles available:
+//! - [`QuadraticProfile`]: a body with principal radii of curvature (Hertz's assumption);
+//! - [`Roller`]: a cylinder of finite length along x with a crowned profile along its axis,
+//!   circular ([`Crown::Circular`]) or logarithmic ([`LogarithmicCrown`], Lundberg 1939,
+//!   in the three-parameter form of Fujiwara & Kawase 2007 restricted to K1 = K2 = 1, which
+//!   also contains the Johns & Gohar 1981 profile);
+//! - [`HeightMap`]: a measured or designed surface given as heights on a regular grid,
+//!   interpolated bilinearly.
+//!
+//! All lengths are in metres, loads in newtons, moduli in pascals.
+
+use crate::error::{Error, Result};
+use crate::grid::SurfaceGrid;
+use serde::{Deserialize, Serialize};
+
+fn positive_finite(field: &str, value: f64, what: &str) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::invalid(
+            field,
+            value,
+            format!("{what} must be finite and > 0"),
+        ))
+    }
+}
+
+/// A body with quadratic surface: principal radii of curvature `R_1` (along x', at `angle`
+/// from the x axis) and `R_2` (along y'), signed: positive convex, negative concave,
+/// infinite flat. Height `z = x'^2 / (2 R_1) + y'^2 / (2 R_2)` (m), the paraboloid that
+/// Hertz theory assumes (Johnson 1985, *Contact Mechanics*, section 4.1).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct QuadraticProfile {
+    /// Principal curvatures 1/R_1, 1/R_2, 1/m (0 for a flat direction).
+    pub curvatures: [f64; 2],
+    /// Angle from the x axis to the first principal direction, rad.
+    pub angle: f64,
+}
+
+impl QuadraticProfile {
+    /// From signed principal radii (m; `f64::INFINITY` for flat) and the angle (rad) of the
+    /// first principal direction from the x axis. `field` names the radii in errors
+    /// (e.g. `"body2.radii"`).
+    ///
+    /// Errors: a radius of 0 or NaN; a non-finite angle.
+    pub fn from_radii(field: &str, radii: [f64; 2], angle: f64) -> Result<Self> {
+        let mut curvatures = [0.0; 2];
+        for (k, r) in radii.into_iter().enumerate() {
+            if r.is_nan() || r == 0.0 {
+                return Err(Error::invalid(
+                    format!("{field}[{k}]"),
+                    r,
+                    "a radius of curvature must be non-zero (use \"inf\" for a flat direction)",
+                ));
+            }
+            curvatures[k] = if r.is_infinite() { 0.0 } else { 1.0 / r };
+        }
+        if !angle.is_finite() {
+            return Err(Error::invalid(
+                format!("{field}.angle"),
+                angle,
+                "the angle must be finite",
+            ));
+        }
+        Ok(Self { curvatures, angle })
+    }
+
+    /// Height of the surface above the tangent plane at (x, y), m.
+    pub fn height(&self, x: f64, y: f64) -> f64 {
+        let (s, c) = self.angle.sin_cos();
+        let xp = c * x + s * y;
+        let yp = -s * x + c * y;
+        0.5 * (self.curvatures[0] * xp * xp + self.curvatures[1] * yp * yp)
+    }
+}
+
+/// Crown of a roller: the drop of the profile along the roller's axis (x), m.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum Crown {
+    /// A straight (uncrowned) cylinder: drop 0 over the whole length (edge loading).
+    None,
+    /// A circular arc of radius `crown_radius` (m) outside a straight central part of length
+    /// `flat_length` (m): drop `(|x| - flat_length/2)^2 / (2 crown_radius)` for
+    /// `|x| > flat_length / 2`, 0 inside (the arc in its parabolic approximation, as the
+    /// half-space model needs `|x| << crown_radius`).
+    Circular {
+        /// Crown radius, m (> 0).
+        crown_radius: f64,
+        /// Length of the straight central part, m (>= 0, < the roller length).
+        flat_length: f64,
+    },
+    /// The logarithmic profile, see [`LogarithmicCrown`].
+    Logarithmic(LogarithmicCrown),
+}
+
+/// Logarithmic crown of a roller of effective length `l` (m).
+///
+/// Lundberg (1939, "Elastische Berührung zweier Halbräume", *Forschung auf dem Gebiete des
+/// Ingenieurwesens* 10:201-211) showed that the drop
+/// `d(x) = A ln[1 / (1 - (2x/l)^2)]`, `A = 2 Q / (pi l E*)`,
+/// gives an axially uniform pressure under the design load `Q` (N) (E*, Pa, the composite
+/// modulus of the pair, `1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2`); it is infinite at the roller
+/// ends. Johns & Gohar (1981, "Roller bearings under radial and eccentric loads",
+/// *Tribology International* 14:131-136) made it finite there; Fujiwara & Kawase (2007,
+/// "Logarithmic profiles of rollers in roller bearings and optimization of the profiles",
+/// *NTN Technical Review* 75:140-148, eq. (4)) wrote the family with the crown drop `z_m` at
+/// the ends as a parameter:
+///
+/// ```text
+/// d(x) = A K1 ln[ 1 / (1 - (1 - exp(-z_m / (A K1))) (2x / (K2 l))^2) ]
+/// ```
+///
+/// This type implements it with K1 = K2 = 1 (crowning over the whole length): `d(0) = 0`,
+/// `d(+-l/2) = z_m`; `z_m = None` is Lundberg's profile (`z_m -> infinity`). The formula is
+/// transcribed from memory of the cited papers (not re-derived here); the dependence on
+/// `A = 2Q/(pi l E*)` is that of the surface displacement of a uniformly loaded strip
+/// (Johnson 1985, section 2.2, plane strain).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct LogarithmicCrown {
+    /// Design load Q, N.
+    pub design_load: f64,
+    /// Effective (crowned) length l, m.
+    pub length: f64,
+    /// Composite modulus E*, Pa.
+    pub composite_modulus: f64,
+    /// Crown drop at the ends z_m, m; `None` for Lundberg's profile (infinite at the ends).
+    pub end_drop: Option<f64>,
+}
+
+impl LogarithmicCrown {
+    /// A logarithmic crown; `field` prefixes the parameter names in errors.
+    ///
+    /// Errors: every parameter finite and > 0.
+    pub fn new(
+        field: &str,
+        design_load: f64,
+        length: f64,
+        composite_modulus: f64,
+        end_drop: Option<f64>,
+    ) -> Result<Self> {
+        positive_finite(
+            &format!("{field}.design_load"),
+            design_load,
+            "the design load (N)",
+        )?;
+        positive_finite(&format!("{field}.length"), length, "the roller length (m)")?;
+        positive_finite(
+            &format!("{field}.composite_modulus"),
+            composite_modulus,
+            "E* (Pa)",
+        )?;
+        if let Some(z) = end_drop {
+            positive_finite(
+                &format!("{field}.crown_drop"),
+                z,
+                "the crown drop at the ends (m)",
+            )?;
+        }
+        Ok(Self {
+            design_load,
+            length,
+            composite_modulus,
+            end_drop,
+        })
+    }
+
+    /// The scale `A = 2 Q / (pi l E*)`, m.
+    pub fn scale(&self) -> f64 {
+        2.0 * self.design_load / (std::f64::consts::PI * self.length * self.composite_modulus)
+    }
+
+    /// Drop d(x) at axial position x (m), m; `None` at and beyond the ends `|x| >= l/2`
+    /// for Lundberg's profile, beyond them (`|x| > l/2`) for a finite end drop.
+    pub fn drop(&self, x: f64) -> Option<f64> {
+        let a = self.scale();
+        let s = 2.0 * x / self.length;
+        let s2 = s * s;
+        match self.end_drop {
+            None => (s2 < 1.0).then(|| -a * (-s2).ln_1p()),
+            Some(zm) => {
+                if s2 > 1.0 {
+                    return None;
+                }
+                // 1 - exp(-zm/A), written to stay accurate for zm << A.
+                let c = -(-zm / a).exp_m1();
+                Some(-a * (-c * s2).ln_1p())
+            }
+        }
+    }
+}
+
+/// A roller: a cylinder of radius `radius` (m) with its axis along x, of length `length` (m),
+/// centred on the origin, with a crowned profile along the axis. Height
+/// `z(x, y) = y^2 / (2 radius) + crown(x)` for `|x| <= length / 2` (the circular section in
+/// the parabolic approximation of the half-space model), undefined beyond the ends.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Roller {
+    /// Radius of the cylinder, m (> 0).
+    pub radius: f64,
+    /// Length, m (> 0).
+    pub length: f64,
+    /// Crown along the axis.
+    pub crown: Crown,
+}
+
+impl Roller {
+    /// A roller; `field` prefixes the parameter names in errors (e.g. `"body1.surface"`).
+    ///
+    /// Errors: radius, length, crown radius finite and > 0; flat length in [0, length);
+    /// a logarithmic crown's length equal to the roller's.
+    pub fn new(field: &str, radius: f64, length: f64, crown: Crown) -> Result<Self> {
+        positive_finite(&format!("{field}.radius"), radius, "the roller radius (m)")?;
+        positive_finite(&format!("{field}.length"), length, "the roller length (m)")?;
+        match crown {
+            Crown::None => {}
+            Crown::Circular {
+                crown_radius,
+                flat_length,
+            } => {
+                positive_finite(
+                    &format!("{field}.crown_radius"),
+                    crown_radius,
+                    "the crown radius (m)",
+                )?;
+                if !(flat_length.is_finite() && (0.0..length).contains(&flat_length)) {
+                    return Err(Error::invalid(
+                        format!("{field}.flat_length"),
+                        flat_length,
+                        format!("the straight part must be in [0, length = {length}) (m)"),
+                    ));
+                }
+            }
+            Crown::Logarithmic(log) => {
+                if log.length != length {
+                    return Err(Error::invalid(
+                        format!("{field}.length"),
+                        log.length,
+                        format!("the logarithmic crown must span the roller length {length} m"),
+                    ));
+                }
+            }
+        }
+        Ok(Self {
+            radius,
+            length,
+            crown,
+        })
+    }
+
+    /// Height at (x, y), m; `None` beyond the roller's ends (no material).
+    pub fn height(&self, x: f64, y: f64) -> Option<f64> {
+        let half = 0.5 * self.length;
+        if x.abs() > half {
+            return None;
+        }
+        let crown = match self.crown {
+            Crown::None => 0.0,
+            Crown::Circular {
+                crown_radius,
+                flat_length,
+            } => {
+                let d = (x.abs() - 0.5 * flat_length).max(0.0);
+                d * d / (2.0 * crown_radius)
+            }
+            Crown::Logarithmic(log) => log.drop(x)?,
+        };
+        Some(y * y / (2.0 * self.radius) + crown)
+    }
+}
+
+/// Heights on a regular `nx * ny` grid of nodes with spacing `dx`, `dy` (m), centred on the
+/// origin: node `(i, j)` lies at `x_i = (i - (nx-1)/2) dx`, `y_j = (j - (ny-1)/2) dy` and its
+/// height (m) is `heights[j * nx + i]` (x varies fastest, as in [`crate::grid`]). Between
+/// nodes the height is interpolated bilinearly; outside the node rectangle it is undefined.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct HeightMap {
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    dy: f64,
+    heights: Vec<f64>,
+}
+
+impl HeightMap {
+    /// A height map; `field` prefixes the parameter names in errors.
+    ///
+    /// Errors: at least 2 nodes per direction; `heights.len() == nx * ny`; spacings finite
+    /// and > 0; every height finite.
+    pub fn new(
+        field: &str,
+        nx: usize,
+        ny: usize,
+        spacing: [f64; 2],
+        heights: Vec<f64>,
+    ) -> Result<Self> {
+        if nx < 2 || ny < 2 {
+            return Err(Error::invalid(
+                format!("{field}.heights"),
+                format!("{nx} x {ny} nodes"),
+                "a height map needs at least 2 x 2 nodes",
+            ));
+        }
+        if heights.len() != nx * ny {
+            return Err(Error::invalid(
+                format!("{field}.heights"),
+                format!("{} values", heights.len()),
+                format!("expected nx * ny = {nx} * {ny} = {} values", nx * ny),
+            ));
+        }
+        positive_finite(
+            &format!("{field}.spacing[0]"),
+            spacing[0],
+            "the node spacing (m)",
+        )?;
+        positive_finite(
+            &format!("{field}.spacing[1]"),
+            spacing[1],
+            "the node spacing (m)",
+        )?;
+        if let Some(k) = heights.iter().position(|h| !h.is_finite()) {
+            return Err(Error::invalid(
+                format!("{field}.heights[row {}, column {}]", k / nx, k % nx),
+                heights[k],
+                "heights must be finite numbers (m)",
+            ));
+        }
+        Ok(Self {
+            nx,
+            ny,
+            dx: spacing[0],
+            dy: spacing[1],
+            heights,
+        })
+    }
+
+    /// Nodes along x.
+    pub fn nx(&self) -> usize {
+        self.nx
+    }
+    /// Nodes along y.
+    pub fn ny(&self) -> usize {
+        self.ny
+    }
+    /// Node spacing (dx, dy), m.
+    pub fn spacing(&self) -> (f64, f64) {
+        (self.dx, self.dy)
+    }
+    /// Half extents of the node rectangle (x, y), m: the map covers `|x| <= X`, `|y| <= Y`.
+    pub fn half_extents(&self) -> (f64, f64) {
+        (
+            0.5 * (self.nx - 1) as f64 * self.dx,
+            0.5 * (self.ny - 1) as f64 * self.dy,
+        )
+    }
+
+    /// Bilinearly interpolated height at (x, y), m; `None` outside the node rectangle.
+    pub fn height(&self, x: f64, y: f64) -> Option<f64> {
+        let (hx, hy) = self.half_extents();
+        // A relative slack so that points on the border, up to round-off, count as inside.
+        let tol = 1e-12;
+        if !(x.abs() <= hx * (1.0 + tol) && y.abs() <= hy * (1.0 + tol)) {
+            return None;
+        }
+        let fx = ((x + hx) / self.dx).clamp(0.0, (self.nx - 1) as f64);
+        let fy = ((y + hy) / self.dy).clamp(0.0, (self.ny - 1) as f64);
+        let i = (fx.floor() as usize).min(self.nx - 2);
+        let j = (fy.floor() as usize).min(self.ny - 2);
+        let tx = fx - i as f64;
+        let ty = fy - j as f64;
+        let h = |i: usize, j: usize| self.heights[j * self.nx + i];
+        Some(
+            (1.0 - ty) * ((1.0 - tx) * h(i, j) + tx * h(i + 1, j))
+                + ty * ((1.0 - tx) * h(i, j + 1) + tx * h(i + 1, j + 1)),
+        )
+    }
+}
+
+/// The surface profile of one body, in the convention of this module.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum SurfaceProfile {
+    /// Principal radii of curvature.
+    Quadratic(QuadraticProfile),
+    /// A crowned roller with its axis along x.
+    Roller(Roller),
+    /// Heights on a grid.
+    HeightMap(HeightMap),
+}
+
+impl SurfaceProfile {
+    /// Height of the surface at (x, y), m; `None` where the body has no material.
+    pub fn height(&self, x: f64, y: f64) -> Option<f64> {
+        match self {
+            SurfaceProfile::Quadratic(q) => Some(q.height(x, y)),
+            SurfaceProfile::Roller(r) => r.height(x, y),
+            SurfaceProfile::HeightMap(m) => m.height(x, y),
+        }
+    }
+}
+
+/// The initial gap `h = z_1 + z_2` (m) at the element centres of `grid`, in the grid's
+/// layout, shifted so that its minimum over the elements where both bodies have material is
+/// 0 (the undeformed bodies touch there: approaches are measured from that first contact).
+///
+/// Elements where either body has no material get the separation
+/// `max(h) + 2 * (half diagonal of the window)`, far beyond any elastic approach, so that
+/// they never come into contact and no infinity enters the solvers.
+///
+/// Errors: no element where both bodies have material; a non-finite height.
+pub fn initial_gap(
+    grid: &SurfaceGrid,
+    body1: &SurfaceProfile,
+    body2: &SurfaceProfile,
+) -> Result<Vec<f64>> {
+    let raw: Vec<Option<f64>> = (0..grid.ny())
+        .flat_map(|iy| (0..grid.nx()).map(move |ix| (ix, iy)))
+        .map(|(ix, iy)| {
+            let (x, y) = (grid.x(ix), grid.y(iy));
+            Some(body1.height(x, y)? + body2.height(x, y)?)
+        })
+        .collect();
+    let on_body = raw.iter().flatten();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &h in on_body {
+        if !h.is_finite() {
+            return Err(Error::invalid(
+                "initial gap",
+                h,
+                "the surfaces must have finite heights",
+            ));
+        }
+        lo = lo.min(h);
+        hi = hi.max(h);
+    }
+    if lo > hi {
+        return Err(Error::invalid(
+            "grid",
+            format!("{} x {} elements", grid.nx(), grid.ny()),
+            "no element of the window lies on both bodies (check the surfaces and the window)",
+        ));
+    }
+    let (wx, wy) = grid.half_widths();
+    let off_body = (hi - lo) + 2.0 * wx.hypot(wy);
+    Ok(raw
+        .into_iter()
+        .map(|h| h.map_or(off_body, |h| h - lo))
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quadratic_profile_matches_the_papers_gap() {
+        // HALFSPACE.md section 4: body 1 R = (5 mm, 50 mm), body 2 R = (-10 mm, 10 mm):
+        // h = 50 x^2 + 60 y^2 (1/m).
+        let b1 = SurfaceProfile::Quadratic(
+            QuadraticProfile::from_radii("b1", [0.005, 0.05], 0.0).unwrap(),
+        );
+        let b2 = SurfaceProfile::Quadratic(
+            QuadraticProfile::from_radii("b2", [-0.01, 0.01], 0.0).unwrap(),
+        );
+        let (x, y) = (3e-4, -2e-4);
+        let h = b1.height(x, y).unwrap() + b2.height(x, y).unwrap();
+        assert!((h - (50.0 * x * x + 60.0 * y * y)).abs() < 1e-18, "{h}");
+    }
+
+    #[test]
+    fn rotated_quadratic_profile() {
+        let q =
+            QuadraticProfile::from_radii("b", [0.01, f64::INFINITY], std::f64::consts::FRAC_PI_2)
+                .unwrap();
+        // Curved along y after a quarter turn, flat along x.
+        assert!(q.height(1e-3, 0.0).abs() < 1e-20);
+        assert!((q.height(0.0, 1e-3) - 5e-5).abs() < 1e-18);
+    }
+
+    #[test]
+    fn zero_radius_is_named() {
+        let e = QuadraticProfile::from_radii("body1.radii", [0.0, 1.0], 0.0).unwrap_err();
+        assert!(e.to_string().starts_with("body1.radii[0] = 0:"), "{e}");
+    }
+
+    #[test]
+    fn circular_crown() {
+        let r = Roller::new(
+            "r",
+            0.005,
+            0.01,
+            Crown::Circular {
+                crown_radius: 1.0,
+                flat_length: 0.004,
+            },
+        )
+        .unwrap();
+        assert_eq!(r.height(0.001, 0.0), Some(0.0));
+        let z = r.height(0.004, 1e-4).unwrap();
+        assert!(
+            (z - (0.002f64.powi(2) / 2.0 + 1e-8 / 0.01)).abs() < 1e-15,
+            "{z}"
+        );
+        assert_eq!(r.height(0.0051, 0.0), None);
+        assert!(Roller::new(
+            "r",
+            0.005,
+            0.01,
+            Crown::Circular {
+                crown_radius: 1.0,
+                flat_length: 0.01
+            }
+        )
+        .is_err());
+        assert!(Roller::new("r", -0.005, 0.01, Crown::None).is_err());
+    }
+
+    #[test]
+    fn logarithmic_crown_end_drop_and_lundberg_limit() {
+        let (q, l, e) = (2000.0, 0.01, 1.1044e11);
+        let a = 2.0 * q / (std::f64::consts::PI * l * e);
+        let lundberg = LogarithmicCrown::new("c", q, l, e, None).unwrap();
+        assert_eq!(lundberg.drop(0.0), Some(0.0));
+        let x = 0.003;
+        let expect = a * (1.0 / (1.0 - (2.0 * x / l).powi(2))).ln();
+        assert!((lundberg.drop(x).unwrap() / expect - 1.0).abs() < 1e-13);
+        assert_eq!(lundberg.drop(0.005), None);
+        // Finite end drop: d(l/2) = z_m exactly, and a large z_m approaches Lundberg.
+        let jg = LogarithmicCrown::new("c", q, l, e, Some(5e-6)).unwrap();
+        assert!((jg.drop(0.005).unwrap() / 5e-6 - 1.0).abs() < 1e-12);
+        let big = LogarithmicCrown::new("c", q, l, e, Some(50.0 * a)).unwrap();
+        assert!((big.drop(x).unwrap() / expect - 1.0).abs() < 1e-12);
+        assert!(LogarithmicCrown::new("c", q, l, e, Some(-1.0)).is_err());
+        assert!(LogarithmicCrown::new("c", 0.0, l, e, None).is_err());
+    }
+
+    #[test]
+    fn height_map_bilinear_reproduces_bilinear_functions() {
+        // f = 1 + 2x + 3y + 4xy is reproduced exactly by bilinear interpolation.
+        let (nx, ny, dx, dy) = (5, 4, 0.5, 0.25);
+        let f = |x: f64, y: f64| 1.0 + 2.0 * x + 3.0 * y + 4.0 * x * y;
+        let mut h = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                h.push(f((i as f64 - 2.0) * dx, (j as f64 - 1.5) * dy));
+            }
+        }
+        let m = HeightMap::new("m", nx, ny, [dx, dy], h).unwrap();
+        assert_eq!(m.half_extents(), (1.0, 0.375));
+        for (x, y) in [
+            (0.0, 0.0),
+            (0.3, -0.2),
+            (-1.0, 0.375),
+            (1.0, -0.375),
+            (0.77, 0.1),
+        ] {
+            assert!((m.height(x, y).unwrap() - f(x, y)).abs() < 1e-12, "{x} {y}");
+        }
+        assert_eq!(m.height(1.01, 0.0), None);
+    }
+
+    #[test]
+    fn height_map_rejects_bad_data() {
+        assert!(HeightMap::new("m", 2, 2, [1.0, 1.0], vec![0.0; 3]).is_err());
+        assert!(HeightMap::new("m", 1, 2, [1.0, 1.0], vec![0.0; 2]).is_err());
+        assert!(HeightMap::new("m", 2, 2, [0.0, 1.0], vec![0.0; 4]).is_err());
+        let e = HeightMap::new("m", 2, 2, [1.0, 1.0], vec![0.0, 0.0, f64::NAN, 0.0]).unwrap_err();
+        assert!(e.to_string().contains("row 1, column 0"), "{e}");
+    }
+
+    #[test]
+    fn initial_gap_is_shifted_and_off_body_is_far() {
+        let grid = SurfaceGrid::centred(8, 4, 0.008, 0.001).unwrap();
+        let roller = SurfaceProfile::Roller(Roller::new("r", 0.005, 0.01, Crown::None).unwrap());
+        let flat = SurfaceProfile::Quadratic(
+            QuadraticProfile::from_radii("f", [f64::INFINITY; 2], 0.0).unwrap(),
+        );
+        let h = initial_gap(&grid, &roller, &flat).unwrap();
+        assert_eq!(h.len(), 32);
+        let min = h.iter().cloned().fold(f64::INFINITY, f64::min);
+        assert!(min.abs() < 1e-20);
+        // Columns 0 and 7 (|x| = 7 mm) are off the roller (|x| <= 5 mm).
+        assert!(h[0] > 0.01 && h[7] > 0.01 && h[1] < 1e-3);
+        assert!(h.iter().all(|v| v.is_finite()));
+        let tiny = SurfaceGrid::centred(4, 4, 0.1, 0.1).unwrap();
+        let far = SurfaceProfile::Roller(Roller::new("r", 0.005, 0.01, Crown::None).unwrap());
+        let hm = SurfaceProfile::HeightMap(
+            HeightMap::new("m", 2, 2, [0.001, 0.001], vec![0.0; 4]).unwrap(),
+        );
+        assert!(initial_gap(&tiny, &far, &hm).is_err());
+    }
+}
