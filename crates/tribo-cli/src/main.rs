@@ -1,1 +1,229 @@
-fn main() {}
+//! `tribo`: the command line of the tribo suite. Case files in; summaries, fields and plots
+//! out. See README.md and `tribo --help`.
+
+mod case;
+mod error;
+mod examples;
+mod output;
+mod run;
+mod units;
+mod validate;
+
+use clap::{Parser, Subcommand};
+use error::{CliError, CliResult, EXIT_OK, EXIT_VALIDATION_FAILED};
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+const ABOUT: &str =
+    "Contact mechanics of tribo-fatigue systems: normal contact of two elastic bodies \
+with unknown contact area, compared with Hertz theory.";
+
+const LONG_ABOUT: &str = "\
+Contact mechanics of tribo-fatigue systems: normal contact of two elastic bodies with unknown
+contact area (the half-space model), compared with Hertz theory where the gap is Hertzian.
+
+Conventions:
+  * SI units everywhere (Pa, m, N). Case files may also write quantities as strings with a
+    unit: \"201 GPa\", \"48.4 MPa\", \"10 mm\", \"5 um\", \"2 kN\".
+  * Frame: x = body 1's first principal direction (for a roller: its axis), y the second,
+    z normal to the common tangent plane. Compressive pressure p > 0.
+  * Radii of curvature are signed: positive convex, negative concave, \"inf\" flat.
+  * Each body's surface z_k(x, y) is measured from the tangent plane away from the other
+    body; the initial gap is h = z1 + z2.
+  * The composite modulus is 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.
+
+A case file is TOML; `tribo example` lists ready-made ones and `tribo example NAME` prints
+one. Exit codes: 0 ok, 2 bad input, 3 solver did not converge, 1 anything else.";
+
+const AFTER_HELP: &str = "\
+Examples:
+  tribo run                             the paper's roller/shaft case, writes tribo-out/
+  tribo example                         list the example cases
+  tribo example sphere-on-flat > s.toml
+  tribo run s.toml -o out               run a case file, write out/
+  tribo example crowned-roller | tribo run - -o roller --json
+  tribo validate                        the verification table";
+
+#[derive(Debug, Parser)]
+#[command(name = "tribo", version, about = ABOUT, long_about = LONG_ABOUT, after_help = AFTER_HELP)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Solve a case and write summary.json, fields (CSV, VTK) and plots (PNG).
+    #[command(long_about = "\
+Solve the normal contact of a case file (or of the embedded default case, the paper's Sec. 3
+roller on shaft, when CASE is not given; `-` reads the case from stdin) and write into DIR:
+
+  summary.json           loads, approach, max pressure, contact area, iterations, residual,
+                         and (Hertzian gaps) the Hertz solution and the errors (17)
+  pressure.csv, gap.csv  x_m, y_m, value at element centres (pressure_Pa, gap_m)
+  fields.vti             VTK image data for ParaView: cell data pressure_Pa, gap_m,
+                         initial_gap_m (and hertz_pressure_Pa)
+  pressure_map.png       the pressure over the window with the Hertz ellipse
+  pressure_profiles.png  p along x and along y through the centre, against Hertz
+
+A short summary goes to stdout (--json: the summary JSON instead); progress to stderr.
+Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3).")]
+    Run {
+        /// Case file (TOML); `-` reads stdin; default: the embedded `roller-shaft` case.
+        case: Option<PathBuf>,
+        /// Output directory (created if needed).
+        #[arg(
+            short = 'o',
+            long = "out",
+            value_name = "DIR",
+            default_value = "tribo-out"
+        )]
+        out: PathBuf,
+        /// Print the summary as JSON on stdout instead of the human summary.
+        #[arg(long)]
+        json: bool,
+        /// No progress on stderr.
+        #[arg(short, long)]
+        quiet: bool,
+        /// Validate the case and print the grid it would use; solve nothing, write nothing.
+        #[arg(long)]
+        dry_run: bool,
+    },
+    /// List the example cases, or print one (`tribo example NAME > case.toml`).
+    Example {
+        /// Example name; omit to list them.
+        name: Option<String>,
+    },
+    /// Run the verification suite and print its table (exit 1 if a row fails).
+    Validate {
+        /// Print the rows as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run {
+            case,
+            out,
+            json,
+            quiet,
+            dry_run,
+        } => cmd_run(case.as_deref(), &out, json, quiet, dry_run),
+        Command::Example { name } => cmd_example(name.as_deref()),
+        Command::Validate { json } => cmd_validate(json),
+    };
+    match result {
+        Ok(code) => ExitCode::from(code),
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+    }
+}
+
+fn load(case: Option<&Path>) -> CliResult<case::Case> {
+    match case {
+        None => {
+            let ex = examples::find(examples::DEFAULT).ok_or_else(|| CliError::UnknownExample {
+                name: examples::DEFAULT.into(),
+                known: examples::names(),
+            })?;
+            case::parse_case(ex.text, &format!("<embedded {}>", ex.name), Path::new("."))
+        }
+        Some(p) if p.as_os_str() == "-" => {
+            let mut text = String::new();
+            std::io::stdin()
+                .read_to_string(&mut text)
+                .map_err(|source| CliError::Unreadable {
+                    field: "case".into(),
+                    path: p.to_path_buf(),
+                    source,
+                })?;
+            case::parse_case(&text, "<stdin>", Path::new("."))
+        }
+        Some(p) => case::load_case(p),
+    }
+}
+
+fn cmd_run(
+    case: Option<&Path>,
+    out: &Path,
+    json: bool,
+    quiet: bool,
+    dry_run: bool,
+) -> CliResult<u8> {
+    let case = load(case)?;
+    let prepared = run::prepare(&case)?;
+    if dry_run {
+        let g = &prepared.grid;
+        let (hx, hy) = g.half_widths();
+        println!(
+            "{}: valid; {} x {} elements over |x| <= {hx:e} m, |y| <= {hy:e} m; E* = {:e} Pa; solver {}",
+            case.title,
+            g.nx(),
+            g.ny(),
+            prepared.composite_modulus,
+            case.method.name()
+        );
+        return Ok(EXIT_OK);
+    }
+    let outcome = run::solve(&case, prepared, quiet)?;
+    let summary = output::write_all(out, &case, &outcome)?;
+    if json {
+        let text = serde_json::to_string_pretty(&summary).map_err(|e| CliError::Output {
+            what: "summary".into(),
+            detail: e.to_string(),
+        })?;
+        println!("{text}");
+    } else {
+        print!("{}", summary.human(out));
+    }
+    Ok(EXIT_OK)
+}
+
+fn cmd_example(name: Option<&str>) -> CliResult<u8> {
+    match name {
+        None => {
+            let width = examples::EXAMPLES
+                .iter()
+                .map(|e| e.name.len())
+                .max()
+                .unwrap_or(0);
+            println!("Example cases (print one with `tribo example NAME`, run it with `tribo example NAME | tribo run -`):");
+            for e in examples::EXAMPLES {
+                println!("  {:<width$}  {}", e.name, e.description);
+            }
+            Ok(EXIT_OK)
+        }
+        Some(n) => {
+            let ex = examples::find(n).ok_or_else(|| CliError::UnknownExample {
+                name: n.into(),
+                known: examples::names(),
+            })?;
+            print!("{}", ex.text);
+            Ok(EXIT_OK)
+        }
+    }
+}
+
+fn cmd_validate(json: bool) -> CliResult<u8> {
+    let rows = validate::run_suite()?;
+    if json {
+        let text = serde_json::to_string_pretty(&rows).map_err(|e| CliError::Output {
+            what: "validation rows".into(),
+            detail: e.to_string(),
+        })?;
+        println!("{text}");
+    } else {
+        print!("{}", validate::table(&rows));
+    }
+    Ok(if rows.iter().all(|r| r.passed) {
+        EXIT_OK
+    } else {
+        EXIT_VALIDATION_FAILED
+    })
+}

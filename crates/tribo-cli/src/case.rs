@@ -1,0 +1,1188 @@
+//! Case files: TOML in, a validated [`Case`] out, before any computation.
+//!
+//! The schema (every key; README.md "Case files" is the user's reference):
+//!
+//! ```toml
+//! title = "..."                    # optional
+//! [body1]                          # body 1 defines the frame: x = its first principal direction
+//! E = 2.01e11                      # Young's modulus, Pa (or "201 GPa")
+//! nu = 0.3                         # Poisson's ratio, in (-1, 0.5)
+//! radii = [0.005, 0.05]            # principal radii along x and y, m; < 0 concave; "inf" flat
+//! # or, instead of radii, a surface: [body1.surface] kind = "roller" | "height_map"
+//! [body2]
+//! E = 2.01e11
+//! nu = 0.3
+//! radii = [-0.01, 0.01]
+//! angle_deg = 0.0                  # angle from body 1's first principal plane to body 2's, deg
+//! [contact]
+//! load = 2000.0                    # N; or approach = 2.723e-5 (m); exactly one
+//! [grid]                           # optional
+//! n = 21                           # elements per side, or [nx, ny]; default 64
+//! extent = 1.5                     # window half width / Hertz long semi-axis (radii only; default 1.5)
+//! # half_width = 8e-4              # or the window half width in m, scalar or [x, y]
+//! [solver]                         # optional
+//! method = "cg"                    # "cg" (Polonsky-Keer) or "active_set" (dense, small grids)
+//! tolerance = 1e-10
+//! max_iterations = 10000
+//! ```
+
+use crate::error::{CliError, CliResult};
+use crate::units::{count, number, pair, quantity, show, Dim};
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+use toml::Value;
+use tribo::geometry::{
+    Crown, HeightMap, LogarithmicCrown, QuadraticProfile, Roller, SurfaceProfile,
+};
+use tribo::grid::MAX_ELEMENTS_PER_SIDE;
+use tribo::solvers::{NormalContactParams, NormalLoading};
+use tribo::ElasticMaterial;
+
+/// Largest grid (elements) accepted for the dense active-set solver: its influence matrix
+/// needs (nx ny)^2 doubles, 128 MiB at this size.
+pub const MAX_ACTIVE_SET_ELEMENTS: usize = 64 * 64;
+
+/// Default number of elements per side when `[grid] n` is not given.
+pub const DEFAULT_N: usize = 64;
+/// Default window half width in units of the Hertz long semi-axis.
+pub const DEFAULT_EXTENT: f64 = 1.5;
+
+// ---------------------------------------------------------------- raw (serde) layer
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCase {
+    title: Option<String>,
+    body1: RawBody,
+    body2: RawBody,
+    contact: RawContact,
+    grid: Option<RawGrid>,
+    solver: Option<RawSolver>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBody {
+    #[serde(rename = "E")]
+    e: Value,
+    nu: Value,
+    radii: Option<Value>,
+    angle_deg: Option<Value>,
+    surface: Option<RawSurface>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+enum RawSurface {
+    Roller {
+        radius: Value,
+        length: Value,
+        crown: Option<String>,
+        crown_radius: Option<Value>,
+        flat_length: Option<Value>,
+        design_load: Option<Value>,
+        crown_drop: Option<Value>,
+    },
+    HeightMap {
+        file: Option<String>,
+        heights: Option<Vec<Vec<Value>>>,
+        spacing: Value,
+        scale: Option<Value>,
+    },
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawContact {
+    load: Option<Value>,
+    approach: Option<Value>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawGrid {
+    n: Option<Value>,
+    extent: Option<Value>,
+    half_width: Option<Value>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSolver {
+    method: Option<Method>,
+    tolerance: Option<Value>,
+    max_iterations: Option<Value>,
+}
+
+// ---------------------------------------------------------------- validated layer
+
+/// The normal contact solver to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// Constrained conjugate gradients (Polonsky & Keer 1999) with FFT convolution.
+    Cg,
+    /// The paper's "matrix inversion": active set with a dense factorization (small grids).
+    ActiveSet,
+}
+
+impl Method {
+    /// The name used in case files and summaries.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Cg => "cg",
+            Method::ActiveSet => "active_set",
+        }
+    }
+}
+
+/// One body's shape.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// Principal radii (m, signed; infinite = flat) and the angle (rad) of the first principal
+    /// direction from the x axis.
+    Radii {
+        /// R along x' and y', m.
+        radii: [f64; 2],
+        /// Angle of x' from x, rad.
+        angle: f64,
+    },
+    /// A general surface (roller, height map).
+    Surface(SurfaceProfile),
+}
+
+/// One validated body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// Elastic constants.
+    pub material: ElasticMaterial,
+    /// Shape of the surface.
+    pub shape: Shape,
+}
+
+impl Body {
+    /// The body's surface profile in the common frame (see [`tribo::geometry`]).
+    pub fn profile(&self, field: &str) -> tribo::Result<SurfaceProfile> {
+        match &self.shape {
+            Shape::Radii { radii, angle } => Ok(SurfaceProfile::Quadratic(
+                QuadraticProfile::from_radii(&format!("{field}.radii"), *radii, *angle)?,
+            )),
+            Shape::Surface(s) => Ok(s.clone()),
+        }
+    }
+}
+
+/// How the computational window is sized.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Window {
+    /// Half width = extent * (Hertz long semi-axis), square; Hertzian gaps only.
+    Extent(f64),
+    /// Half widths (x, y), m.
+    HalfWidth([f64; 2]),
+}
+
+/// A validated case, ready to run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Case {
+    /// Title (the file name where none is given).
+    pub title: String,
+    /// Where the case came from (a path, or `<embedded NAME>`).
+    pub source: String,
+    /// Body 1 (defines the frame).
+    pub body1: Body,
+    /// Body 2.
+    pub body2: Body,
+    /// Force or approach control.
+    pub loading: NormalLoading,
+    /// Elements along x and y.
+    pub n: [usize; 2],
+    /// Window size.
+    pub window: Window,
+    /// Solver.
+    pub method: Method,
+    /// Solver parameters.
+    pub params: NormalContactParams,
+    /// The case as written (TOML converted to JSON), echoed in `summary.json`.
+    pub echo: serde_json::Value,
+}
+
+impl Case {
+    /// Whether both bodies are given by radii, so that the gap is Hertzian.
+    pub fn is_hertzian(&self) -> bool {
+        matches!(self.body1.shape, Shape::Radii { .. })
+            && matches!(self.body2.shape, Shape::Radii { .. })
+    }
+
+    /// Composite modulus E*, Pa.
+    pub fn composite_modulus(&self) -> f64 {
+        tribo::composite_modulus(&self.body1.material, &self.body2.material)
+    }
+}
+
+/// Parse and validate a case file's text. `source` names it in errors; `base_dir` resolves
+/// relative file paths (height maps).
+pub fn parse_case(text: &str, source: &str, base_dir: &Path) -> CliResult<Case> {
+    let raw: RawCase = toml::from_str(text).map_err(|e| CliError::Parse {
+        path: source.to_string(),
+        message: e.to_string().trim_end().to_string(),
+    })?;
+    let table: toml::Table = toml::from_str(text).map_err(|e| CliError::Parse {
+        path: source.to_string(),
+        message: e.to_string(),
+    })?;
+    let echo = serde_json::to_value(&table).map_err(|e| CliError::Parse {
+        path: source.to_string(),
+        message: e.to_string(),
+    })?;
+    validate(raw, source, base_dir, echo)
+}
+
+/// Read and validate a case file.
+pub fn load_case(path: &Path) -> CliResult<Case> {
+    let text = std::fs::read_to_string(path).map_err(|source| CliError::Unreadable {
+        field: "case".into(),
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    parse_case(&text, &path.display().to_string(), &base)
+}
+
+fn validate(
+    raw: RawCase,
+    source: &str,
+    base_dir: &Path,
+    echo: serde_json::Value,
+) -> CliResult<Case> {
+    let m1 = material("body1", &raw.body1)?;
+    let m2 = material("body2", &raw.body2)?;
+    let e_star = tribo::composite_modulus(&m1, &m2);
+
+    let loading = loading(&raw.contact)?;
+
+    if let Some(a) = &raw.body1.angle_deg {
+        return Err(CliError::field(
+            "body1.angle_deg",
+            show(a),
+            "not allowed: body 1's first principal direction defines the x axis; \
+             give the angle between the bodies as body2.angle_deg",
+        ));
+    }
+    let ctx = ShapeContext {
+        e_star,
+        loading,
+        base_dir,
+    };
+    let shape1 = shape("body1", raw.body1, &ctx)?;
+    let shape2 = shape("body2", raw.body2, &ctx)?;
+    let hertzian = matches!(shape1, Shape::Radii { .. }) && matches!(shape2, Shape::Radii { .. });
+    if let (Shape::Radii { radii: r1, .. }, Shape::Radii { radii: r2, angle }) = (&shape1, &shape2)
+    {
+        check_convex(*r1, *r2, *angle)?;
+    }
+
+    let grid = raw.grid.unwrap_or(RawGrid {
+        n: None,
+        extent: None,
+        half_width: None,
+    });
+    let n = match &grid.n {
+        None => [DEFAULT_N; 2],
+        Some(v) => pair("grid.n", v, count)?,
+    };
+    for (k, nk) in n.iter().enumerate() {
+        let f = if matches!(grid.n, Some(Value::Array(_))) {
+            format!("grid.n[{k}]")
+        } else {
+            "grid.n".to_string()
+        };
+        if *nk < 4 {
+            return Err(CliError::field(
+                f,
+                nk,
+                "at least 4 elements per side are needed",
+            ));
+        }
+        if *nk > MAX_ELEMENTS_PER_SIDE {
+            return Err(CliError::field(
+                f,
+                nk,
+                format!("at most {MAX_ELEMENTS_PER_SIDE} elements per side (memory)"),
+            ));
+        }
+    }
+    let window = match (&grid.extent, &grid.half_width) {
+        (Some(e), Some(_)) => {
+            return Err(CliError::field(
+                "grid.extent",
+                show(e),
+                "give either grid.extent or grid.half_width, not both",
+            ))
+        }
+        (Some(e), None) => {
+            let x = number("grid.extent", e)?;
+            if !hertzian {
+                return Err(CliError::field(
+                    "grid.extent",
+                    show(e),
+                    "extent is in units of the Hertz semi-axis, defined only where both bodies \
+                     are given by radii; give grid.half_width (m) for a surface",
+                ));
+            }
+            if !(x.is_finite() && x > 1.0) {
+                return Err(CliError::field(
+                    "grid.extent",
+                    show(e),
+                    "must be a finite number > 1 (the window must contain the Hertz contact)",
+                ));
+            }
+            Window::Extent(x)
+        }
+        (None, Some(h)) => {
+            let hw = pair("grid.half_width", h, |f, v| quantity(f, v, Dim::Length))?;
+            for (k, w) in hw.iter().enumerate() {
+                if !(w.is_finite() && *w > 0.0) {
+                    return Err(CliError::field(
+                        format!("grid.half_width[{k}]"),
+                        w,
+                        "the window half width must be finite and > 0 (m)",
+                    ));
+                }
+            }
+            Window::HalfWidth(hw)
+        }
+        (None, None) => {
+            if !hertzian {
+                return Err(CliError::field(
+                    "grid.half_width",
+                    "(missing)",
+                    "required where a body is given by a surface (the window cannot be sized \
+                     from Hertz theory): give the window half width in m, scalar or [x, y]",
+                ));
+            }
+            Window::Extent(DEFAULT_EXTENT)
+        }
+    };
+    if let Window::HalfWidth(hw) = window {
+        for (name, s) in [("body1", &shape1), ("body2", &shape2)] {
+            if let Shape::Surface(SurfaceProfile::HeightMap(m)) = s {
+                let (mx, my) = m.half_extents();
+                if hw[0] > mx * (1.0 + 1e-12) || hw[1] > my * (1.0 + 1e-12) {
+                    return Err(CliError::field(
+                        "grid.half_width",
+                        format!("[{}, {}]", hw[0], hw[1]),
+                        format!(
+                            "the window must lie within the height map of {name}, which covers \
+                             |x| <= {mx:e} m, |y| <= {my:e} m"
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+
+    let (method, params) = solver(raw.solver, n)?;
+
+    let title = raw.title.unwrap_or_else(|| source.to_string());
+    Ok(Case {
+        title,
+        source: source.to_string(),
+        body1: Body {
+            material: m1,
+            shape: shape1,
+        },
+        body2: Body {
+            material: m2,
+            shape: shape2,
+        },
+        loading,
+        n,
+        window,
+        method,
+        params,
+        echo,
+    })
+}
+
+fn material(name: &str, b: &RawBody) -> CliResult<ElasticMaterial> {
+    let e = quantity(&format!("{name}.E"), &b.e, Dim::Pressure)?;
+    let nu = number(&format!("{name}.nu"), &b.nu)?;
+    Ok(ElasticMaterial::named(name, e, nu)?)
+}
+
+fn positive(field: &str, value: &Value, dim: Dim, what: &str) -> CliResult<f64> {
+    let x = quantity(field, value, dim)?;
+    if x.is_finite() && x > 0.0 {
+        Ok(x)
+    } else {
+        Err(CliError::field(
+            field,
+            show(value),
+            format!("{what} must be finite and > 0"),
+        ))
+    }
+}
+
+fn loading(c: &RawContact) -> CliResult<NormalLoading> {
+    match (&c.load, &c.approach) {
+        (Some(l), None) => Ok(NormalLoading::Force(positive(
+            "contact.load",
+            l,
+            Dim::Force,
+            "the normal load (N)",
+        )?)),
+        (None, Some(a)) => Ok(NormalLoading::Approach(positive(
+            "contact.approach",
+            a,
+            Dim::Length,
+            "the approach (m)",
+        )?)),
+        (Some(l), Some(_)) => Err(CliError::field(
+            "contact.load",
+            show(l),
+            "give exactly one of contact.load (N) and contact.approach (m), not both",
+        )),
+        (None, None) => Err(CliError::field(
+            "contact",
+            "(neither load nor approach)",
+            "give exactly one of contact.load (N) and contact.approach (m)",
+        )),
+    }
+}
+
+struct ShapeContext<'a> {
+    e_star: f64,
+    loading: NormalLoading,
+    base_dir: &'a Path,
+}
+
+fn radius(field: &str, v: &Value) -> CliResult<f64> {
+    if let Value::String(s) = v {
+        let t = s.trim();
+        if t.eq_ignore_ascii_case("inf") || t.eq_ignore_ascii_case("infinity") {
+            return Ok(f64::INFINITY);
+        }
+    }
+    let r = quantity(field, v, Dim::Length).map_err(|_| {
+        CliError::field(
+            field,
+            show(v),
+            "a radius must be a number in m (< 0 concave), a string like \"10 mm\", or \"inf\" (flat)",
+        )
+    })?;
+    if r == 0.0 {
+        return Err(CliError::field(
+            field,
+            show(v),
+            "a radius of curvature must be non-zero (use \"inf\" for a flat direction)",
+        ));
+    }
+    if r.is_nan() {
+        return Err(CliError::field(field, show(v), "a radius must be a number"));
+    }
+    Ok(r)
+}
+
+fn shape(name: &str, b: RawBody, ctx: &ShapeContext<'_>) -> CliResult<Shape> {
+    match (b.radii, b.surface) {
+        (Some(_), Some(_)) => Err(CliError::field(
+            format!("{name}.radii"),
+            "(and a surface)",
+            format!("give exactly one of {name}.radii and [{name}.surface]"),
+        )),
+        (None, None) => Err(CliError::field(
+            format!("{name}.radii"),
+            "(missing)",
+            format!("give the body's shape: {name}.radii = [Rx, Ry] or a [{name}.surface] table"),
+        )),
+        (Some(r), None) => {
+            let radii = match &r {
+                Value::Array(a) if a.len() == 2 => [
+                    radius(&format!("{name}.radii[0]"), &a[0])?,
+                    radius(&format!("{name}.radii[1]"), &a[1])?,
+                ],
+                other => {
+                    return Err(CliError::field(
+                        format!("{name}.radii"),
+                        show(other),
+                        "must be an array of two principal radii [Rx, Ry] (m, or \"inf\")",
+                    ))
+                }
+            };
+            let angle = match &b.angle_deg {
+                None => 0.0,
+                Some(v) => {
+                    let deg = number(&format!("{name}.angle_deg"), v)?;
+                    if !deg.is_finite() {
+                        return Err(CliError::field(
+                            format!("{name}.angle_deg"),
+                            show(v),
+                            "must be finite",
+                        ));
+                    }
+                    deg.to_radians()
+                }
+            };
+            Ok(Shape::Radii { radii, angle })
+        }
+        (None, Some(s)) => {
+            if let Some(a) = &b.angle_deg {
+                return Err(CliError::field(
+                    format!("{name}.angle_deg"),
+                    show(a),
+                    "applies to radii only; a surface is given in the common frame",
+                ));
+            }
+            Ok(Shape::Surface(surface(&format!("{name}.surface"), s, ctx)?))
+        }
+    }
+}
+
+fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CliResult<SurfaceProfile> {
+    match s {
+        RawSurface::Roller {
+            radius,
+            length,
+            crown,
+            crown_radius,
+            flat_length,
+            design_load,
+            crown_drop,
+        } => {
+            let r = positive(
+                &format!("{field}.radius"),
+                &radius,
+                Dim::Length,
+                "the roller radius (m)",
+            )?;
+            let l = positive(
+                &format!("{field}.length"),
+                &length,
+                Dim::Length,
+                "the roller length (m)",
+            )?;
+            let kind = crown.as_deref().unwrap_or("none");
+            let unused = |key: &str, v: &Option<Value>| -> CliResult<()> {
+                match v {
+                    Some(v) => Err(CliError::field(
+                        format!("{field}.{key}"),
+                        show(v),
+                        format!("does not apply to crown = {kind:?}"),
+                    )),
+                    None => Ok(()),
+                }
+            };
+            let c = match kind {
+                "none" => {
+                    unused("crown_radius", &crown_radius)?;
+                    unused("flat_length", &flat_length)?;
+                    unused("design_load", &design_load)?;
+                    unused("crown_drop", &crown_drop)?;
+                    Crown::None
+                }
+                "circular" => {
+                    unused("design_load", &design_load)?;
+                    unused("crown_drop", &crown_drop)?;
+                    let cr = crown_radius.as_ref().ok_or_else(|| {
+                        CliError::field(
+                            format!("{field}.crown_radius"),
+                            "(missing)",
+                            "a circular crown needs its radius (m)",
+                        )
+                    })?;
+                    let crown_radius = positive(
+                        &format!("{field}.crown_radius"),
+                        cr,
+                        Dim::Length,
+                        "the crown radius (m)",
+                    )?;
+                    let flat_length = match &flat_length {
+                        None => 0.0,
+                        Some(v) => quantity(&format!("{field}.flat_length"), v, Dim::Length)?,
+                    };
+                    Crown::Circular {
+                        crown_radius,
+                        flat_length,
+                    }
+                }
+                "logarithmic" => {
+                    unused("crown_radius", &crown_radius)?;
+                    unused("flat_length", &flat_length)?;
+                    let q = match (&design_load, ctx.loading) {
+                        (Some(v), _) => positive(
+                            &format!("{field}.design_load"),
+                            v,
+                            Dim::Force,
+                            "the design load (N)",
+                        )?,
+                        (None, NormalLoading::Force(f)) => f,
+                        (None, NormalLoading::Approach(_)) => return Err(CliError::field(
+                            format!("{field}.design_load"),
+                            "(missing)",
+                            "a logarithmic crown under approach control needs its design load (N)",
+                        )),
+                    };
+                    let zm = match &crown_drop {
+                        None => None,
+                        Some(v) => Some(positive(
+                            &format!("{field}.crown_drop"),
+                            v,
+                            Dim::Length,
+                            "the crown drop at the roller ends (m)",
+                        )?),
+                    };
+                    Crown::Logarithmic(LogarithmicCrown::new(field, q, l, ctx.e_star, zm)?)
+                }
+                other => {
+                    return Err(CliError::field(
+                        format!("{field}.crown"),
+                        format!("{other:?}"),
+                        "must be \"none\", \"circular\" or \"logarithmic\"",
+                    ))
+                }
+            };
+            Ok(SurfaceProfile::Roller(Roller::new(field, r, l, c)?))
+        }
+        RawSurface::HeightMap {
+            file,
+            heights,
+            spacing,
+            scale,
+        } => {
+            let sp = pair(&format!("{field}.spacing"), &spacing, |f, v| {
+                quantity(f, v, Dim::Length)
+            })?;
+            let scale = match &scale {
+                None => 1.0,
+                Some(v) => {
+                    let s = number(&format!("{field}.scale"), v)?;
+                    if !(s.is_finite() && s > 0.0) {
+                        return Err(CliError::field(
+                            format!("{field}.scale"),
+                            show(v),
+                            "must be finite and > 0",
+                        ));
+                    }
+                    s
+                }
+            };
+            let (nx, ny, mut values) = match (file, heights) {
+                (Some(f), None) => {
+                    let path = ctx.base_dir.join(&f);
+                    read_height_csv(&format!("{field}.file"), &path)?
+                }
+                (None, Some(rows)) => inline_heights(&format!("{field}.heights"), &rows)?,
+                (Some(f), Some(_)) => {
+                    return Err(CliError::field(
+                        format!("{field}.file"),
+                        format!("{f:?}"),
+                        "give either file or heights, not both",
+                    ))
+                }
+                (None, None) => {
+                    return Err(CliError::field(
+                        format!("{field}.file"),
+                        "(missing)",
+                        "a height map needs file = \"map.csv\" or heights = [[...], ...]",
+                    ))
+                }
+            };
+            values.iter_mut().for_each(|h| *h *= scale);
+            Ok(SurfaceProfile::HeightMap(HeightMap::new(
+                field, nx, ny, sp, values,
+            )?))
+        }
+    }
+}
+
+fn inline_heights(field: &str, rows: &[Vec<Value>]) -> CliResult<(usize, usize, Vec<f64>)> {
+    let ny = rows.len();
+    let nx = rows.first().map_or(0, Vec::len);
+    let mut out = Vec::with_capacity(nx * ny);
+    for (j, row) in rows.iter().enumerate() {
+        if row.len() != nx {
+            return Err(CliError::field(
+                format!("{field}[{j}]"),
+                format!("{} values", row.len()),
+                format!("ragged: every row must have as many values as the first ({nx})"),
+            ));
+        }
+        for (i, v) in row.iter().enumerate() {
+            let h = number(&format!("{field}[{j}][{i}]"), v)?;
+            if !h.is_finite() {
+                return Err(CliError::field(
+                    format!("{field}[{j}][{i}]"),
+                    h,
+                    "heights must be finite",
+                ));
+            }
+            out.push(h);
+        }
+    }
+    if nx < 2 || ny < 2 {
+        return Err(CliError::field(
+            field,
+            format!("{ny} x {nx}"),
+            "a height map needs at least 2 x 2 values",
+        ));
+    }
+    Ok((nx, ny, out))
+}
+
+/// Read a height map CSV: one row of the grid per line, values separated by commas, row `j`
+/// (the j-th data line) at `y_j`, column `i` at `x_i` (both increasing; see
+/// [`tribo::geometry::HeightMap`]); blank lines and lines starting with `#` are skipped.
+pub fn read_height_csv(field: &str, path: &Path) -> CliResult<(usize, usize, Vec<f64>)> {
+    let text = std::fs::read_to_string(path).map_err(|source| CliError::Unreadable {
+        field: field.to_string(),
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let bad = |line: usize, rule: String| CliError::DataFile {
+        field: field.to_string(),
+        path: PathBuf::from(path),
+        line,
+        rule,
+    };
+    let mut nx = 0;
+    let mut ny = 0;
+    let mut values = Vec::new();
+    for (k, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if t.is_empty() || t.starts_with('#') {
+            continue;
+        }
+        let mut count = 0;
+        for (i, cell) in t.split(',').enumerate() {
+            let c = cell.trim();
+            let v: f64 = c
+                .parse()
+                .map_err(|_| bad(k + 1, format!("column {}: {c:?} is not a number", i + 1)))?;
+            if !v.is_finite() {
+                return Err(bad(
+                    k + 1,
+                    format!("column {}: {c:?} is not a finite number", i + 1),
+                ));
+            }
+            values.push(v);
+            count += 1;
+        }
+        if ny == 0 {
+            nx = count;
+        } else if count != nx {
+            return Err(bad(
+                k + 1,
+                format!("ragged: {count} values where the first row has {nx}"),
+            ));
+        }
+        ny += 1;
+    }
+    if nx < 2 || ny < 2 {
+        return Err(bad(
+            text.lines().count().max(1),
+            format!("a height map needs at least 2 rows of 2 values (found {ny} rows of {nx})"),
+        ));
+    }
+    Ok((nx, ny, values))
+}
+
+/// Refuse radii whose gap h = A x'^2 + B y'^2 is not positive definite (HALFSPACE.md 3.1,
+/// Johnson 1985 section 4.2): no bounded contact (both flat, or too conforming).
+fn check_convex(r1: [f64; 2], r2: [f64; 2], angle: f64) -> CliResult<()> {
+    let k = |r: f64| if r.is_infinite() { 0.0 } else { 1.0 / r };
+    let (k11, k12, k21, k22) = (k(r1[0]), k(r1[1]), k(r2[0]), k(r2[1]));
+    let sum = 0.5 * (k11 + k12 + k21 + k22);
+    let (d1, d2) = (k11 - k12, k21 - k22);
+    let diff = 0.5
+        * (d1 * d1 + d2 * d2 + 2.0 * d1 * d2 * (2.0 * angle).cos())
+            .max(0.0)
+            .sqrt();
+    let (a, b) = (sum - diff, sum + diff);
+    // Relative threshold: a curvature below 1e-9 of the largest is zero up to round-off.
+    let scale = [k11, k12, k21, k22]
+        .iter()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    if !(a > 1e-9 * scale && b > 0.0) {
+        return Err(CliError::field(
+            "body1.radii, body2.radii",
+            format!("[{}, {}], [{}, {}]", r1[0], r1[1], r2[0], r2[1]),
+            format!(
+                "the gap h = A x'^2 + B y'^2 must be convex (A, B > 0) for a bounded contact, \
+                 here A = {a:.4e}, B = {b:.4e} 1/m (both bodies flat, or a concave body tighter \
+                 than the convex one); use a [bodyN.surface] for line contacts"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn solver(raw: Option<RawSolver>, n: [usize; 2]) -> CliResult<(Method, NormalContactParams)> {
+    let mut params = NormalContactParams::default();
+    let Some(s) = raw else {
+        return Ok((Method::Cg, params));
+    };
+    let method = s.method.unwrap_or(Method::Cg);
+    if let Some(t) = &s.tolerance {
+        let x = number("solver.tolerance", t)?;
+        if !(x.is_finite() && x > 0.0 && x < 1.0) {
+            return Err(CliError::field(
+                "solver.tolerance",
+                show(t),
+                "must be in (0, 1)",
+            ));
+        }
+        params.tolerance = x;
+    }
+    if let Some(m) = &s.max_iterations {
+        let x = count("solver.max_iterations", m)?;
+        if x == 0 {
+            return Err(CliError::field(
+                "solver.max_iterations",
+                x,
+                "must be at least 1",
+            ));
+        }
+        params.max_iterations = x;
+    }
+    if method == Method::ActiveSet && n[0] * n[1] > MAX_ACTIVE_SET_ELEMENTS {
+        return Err(CliError::field(
+            "solver.method",
+            "\"active_set\"",
+            format!(
+                "the dense active-set solver is for small grids (nx * ny <= {MAX_ACTIVE_SET_ELEMENTS}, \
+                 here {}); use method = \"cg\"",
+                n[0] * n[1]
+            ),
+        ));
+    }
+    Ok((method, params))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const PAPER: &str = r#"
+title = "Roller on shaft, paper Sec. 3"
+[body1]
+E = 2.01e11
+nu = 0.3
+radii = [0.005, 0.05]
+[body2]
+E = 2.01e11
+nu = 0.3
+radii = [-0.01, 0.01]
+[contact]
+load = 2000.0
+[grid]
+n = 21
+extent = 1.5
+"#;
+
+    fn parse(text: &str) -> CliResult<Case> {
+        parse_case(text, "test.toml", Path::new("."))
+    }
+
+    fn err(text: &str) -> String {
+        parse(text).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn the_papers_case_parses() {
+        let c = parse(PAPER).unwrap();
+        assert_eq!(c.title, "Roller on shaft, paper Sec. 3");
+        assert_eq!(c.n, [21, 21]);
+        assert_eq!(c.window, Window::Extent(1.5));
+        assert_eq!(c.loading, NormalLoading::Force(2000.0));
+        assert!(c.is_hertzian());
+        assert_eq!(
+            c.body2.shape,
+            Shape::Radii {
+                radii: [-0.01, 0.01],
+                angle: 0.0
+            }
+        );
+        assert!((c.composite_modulus() / 1.10440e11 - 1.0).abs() < 5e-6);
+        assert_eq!(c.echo["body1"]["radii"][1], serde_json::json!(0.05));
+        assert_eq!(c.method, Method::Cg);
+    }
+
+    #[test]
+    fn units_inf_and_pairs() {
+        let t = PAPER
+            .replace(
+                "E = 2.01e11\nnu = 0.3\nradii = [0.005, 0.05]",
+                "E = \"201 GPa\"\nnu = 0.3\nradii = [\"5 mm\", \"inf\"]",
+            )
+            .replace(
+                "n = 21\nextent = 1.5",
+                "n = [32, 16]\nhalf_width = [\"1 mm\", 5e-4]",
+            )
+            .replace("load = 2000.0", "approach = \"27.23 um\"");
+        let c = parse(&t).unwrap();
+        assert_eq!(c.body1.material.youngs_modulus(), 201e9);
+        assert!(
+            matches!(c.body1.shape, Shape::Radii { radii, .. } if radii[0] == 0.005 && radii[1].is_infinite())
+        );
+        assert_eq!(c.n, [32, 16]);
+        assert_eq!(c.window, Window::HalfWidth([0.001, 5e-4]));
+        assert!(matches!(c.loading, NormalLoading::Approach(a) if (a - 2.723e-5).abs() < 1e-15));
+    }
+
+    #[test]
+    fn bad_materials() {
+        let e = err(&PAPER.replacen("nu = 0.3", "nu = 0.55", 1));
+        assert_eq!(e, "body1.nu = 0.55: Poisson's ratio must be in (-1, 0.5)");
+        assert!(err(&PAPER.replacen("E = 2.01e11", "E = -1.0", 2)).starts_with("body1.E"));
+        let t = PAPER.replacen("E = 2.01e11", "E = 2.01e11", 1);
+        let t = t.replacen("[body2]\nE = 2.01e11", "[body2]\nE = nan", 1);
+        assert!(err(&t).starts_with("body2.E = NaN"), "{}", err(&t));
+        assert!(err(&PAPER.replacen("nu = 0.3", "nu = -1.0", 1)).starts_with("body1.nu"));
+    }
+
+    #[test]
+    fn bad_radii() {
+        assert!(
+            err(&PAPER.replace("[0.005, 0.05]", "[0.0, 0.05]")).starts_with("body1.radii[0] = 0")
+        );
+        assert!(err(&PAPER.replace("[0.005, 0.05]", "[0.005]")).starts_with("body1.radii"));
+        let flat = PAPER
+            .replace("[0.005, 0.05]", "[\"inf\", \"inf\"]")
+            .replace("[-0.01, 0.01]", "[\"inf\", \"inf\"]");
+        let e = err(&flat);
+        assert!(e.contains("radii") && e.contains("convex"), "{e}");
+        // A concave body tighter than the convex one.
+        let e = err(&PAPER.replace("[-0.01, 0.01]", "[-0.004, 0.01]"));
+        assert!(e.contains("convex"), "{e}");
+        let e = err(&PAPER.replace("[0.005, 0.05]", "[\"big\", 0.05]"));
+        assert!(e.starts_with("body1.radii[0] = \"big\""), "{e}");
+    }
+
+    #[test]
+    fn load_and_approach() {
+        let both = PAPER.replace("load = 2000.0", "load = 2000.0\napproach = 1e-5");
+        assert!(err(&both).contains("exactly one"));
+        let neither = PAPER.replace("load = 2000.0", "");
+        assert!(err(&neither).starts_with("contact"));
+        assert!(err(&PAPER.replace("load = 2000.0", "load = 0")).starts_with("contact.load = 0"));
+        assert!(err(&PAPER.replace("load = 2000.0", "load = -5.0")).starts_with("contact.load"));
+        assert!(err(&PAPER.replace("load = 2000.0", "approach = -1e-6"))
+            .starts_with("contact.approach"));
+        assert!(
+            err(&PAPER.replace("load = 2000.0", "approach = 0.0")).starts_with("contact.approach")
+        );
+    }
+
+    #[test]
+    fn bad_grids() {
+        assert!(err(&PAPER.replace("n = 21", "n = 3")).starts_with("grid.n = 3"));
+        assert!(err(&PAPER.replace("n = 21", "n = 100000000")).starts_with("grid.n = 100000000"));
+        assert!(err(&PAPER.replace("n = 21", "n = [21, 2]")).starts_with("grid.n[1] = 2"));
+        assert!(err(&PAPER.replace("n = 21", "n = -4")).starts_with("grid.n"));
+        assert!(err(&PAPER.replace("extent = 1.5", "extent = 0.9")).starts_with("grid.extent"));
+        assert!(
+            err(&PAPER.replace("extent = 1.5", "extent = 1.5\nhalf_width = 1e-3"))
+                .contains("not both")
+        );
+        assert!(err(&PAPER.replace("extent = 1.5", "half_width = -1e-3"))
+            .starts_with("grid.half_width"));
+        // No [grid] at all: defaults.
+        let c = parse(&PAPER.replace("[grid]\nn = 21\nextent = 1.5", "")).unwrap();
+        assert_eq!(
+            (c.n, c.window),
+            ([DEFAULT_N; 2], Window::Extent(DEFAULT_EXTENT))
+        );
+    }
+
+    #[test]
+    fn unknown_keys_are_errors() {
+        let e = err(&PAPER.replace("nu = 0.3", "nu = 0.3\nnuu = 0.3"));
+        assert!(e.contains("nuu"), "{e}");
+        let e = err(&PAPER.replace("[grid]", "[gird]"));
+        assert!(e.contains("gird"), "{e}");
+        let e = err(&PAPER.replace("load = 2000.0", "lod = 2000.0"));
+        assert!(e.contains("lod"), "{e}");
+        let e = err(&(PAPER.to_string() + "[solver]\nmethod = \"newton\"\n"));
+        assert!(e.contains("newton"), "{e}");
+        assert!(err("title = ").starts_with("test.toml"));
+    }
+
+    #[test]
+    fn angle_and_solver() {
+        let t = PAPER.replace(
+            "radii = [-0.01, 0.01]",
+            "radii = [-0.01, 0.01]\nangle_deg = 30",
+        );
+        let c = parse(
+            &(t + "[solver]\nmethod = \"active_set\"\ntolerance = 1e-8\nmax_iterations = 50\n"),
+        )
+        .unwrap();
+        assert!(
+            matches!(c.body2.shape, Shape::Radii { angle, .. } if (angle - 30f64.to_radians()).abs() < 1e-15)
+        );
+        assert_eq!(c.method, Method::ActiveSet);
+        assert_eq!((c.params.tolerance, c.params.max_iterations), (1e-8, 50));
+        let t = PAPER.replace(
+            "radii = [0.005, 0.05]",
+            "radii = [0.005, 0.05]\nangle_deg = 30",
+        );
+        assert!(err(&t).starts_with("body1.angle_deg"));
+        let big = PAPER.replace("n = 21", "n = 128") + "[solver]\nmethod = \"active_set\"\n";
+        assert!(err(&big).starts_with("solver.method"));
+        assert!(
+            err(&(PAPER.to_string() + "[solver]\ntolerance = 0\n")).starts_with("solver.tolerance")
+        );
+    }
+
+    const ROLLER: &str = r#"
+[body1]
+E = 2.01e11
+nu = 0.3
+[body1.surface]
+kind = "roller"
+radius = 0.005
+length = 0.01
+crown = "logarithmic"
+crown_drop = 1e-5
+[body2]
+E = 2.01e11
+nu = 0.3
+radii = ["inf", 0.02]
+[contact]
+load = 2000.0
+[grid]
+n = [64, 16]
+half_width = [0.0056, 0.0003]
+"#;
+
+    #[test]
+    fn roller_surfaces() {
+        let c = parse(ROLLER).unwrap();
+        assert!(!c.is_hertzian());
+        match &c.body1.shape {
+            Shape::Surface(SurfaceProfile::Roller(r)) => match r.crown {
+                Crown::Logarithmic(l) => {
+                    assert_eq!((l.design_load, l.end_drop), (2000.0, Some(1e-5)));
+                }
+                _ => panic!(),
+            },
+            _ => panic!(),
+        }
+        // extent is not defined for surfaces; half_width is required.
+        let e = err(&ROLLER.replace("half_width = [0.0056, 0.0003]", "extent = 1.5"));
+        assert!(e.starts_with("grid.extent"), "{e}");
+        let e = err(&ROLLER.replace("half_width = [0.0056, 0.0003]", ""));
+        assert!(
+            e.starts_with("grid.half_width") && e.contains("required"),
+            "{e}"
+        );
+        let e = err(&ROLLER.replace("crown = \"logarithmic\"", "crown = \"parabolic\""));
+        assert!(e.starts_with("body1.surface.crown"), "{e}");
+        let e = err(&ROLLER.replace("crown = \"logarithmic\"", "crown = \"circular\""));
+        assert!(e.starts_with("body1.surface.crown_drop"), "{e}");
+        let circ = ROLLER.replace(
+            "crown = \"logarithmic\"\ncrown_drop = 1e-5",
+            "crown = \"circular\"\ncrown_radius = 0.5",
+        );
+        assert!(parse(&circ).is_ok());
+        let e = err(&ROLLER.replace("kind = \"roller\"", "kind = \"roller\"\ncolour = 1"));
+        assert!(e.contains("colour"), "{e}");
+        let e = err(&ROLLER.replace("kind = \"roller\"", "kind = \"cone\""));
+        assert!(e.contains("cone"), "{e}");
+        let e = err(&ROLLER.replace(
+            "radii = [\"inf\", 0.02]",
+            "radii = [\"inf\", 0.02]\n[body2.surface]\nkind = \"roller\"\nradius = 1\nlength = 1",
+        ));
+        assert!(e.contains("exactly one of body2.radii"), "{e}");
+        let e = err(&ROLLER.replace("radius = 0.005", "radius = 0"));
+        assert!(e.starts_with("body1.surface.radius"), "{e}");
+        let approach = ROLLER.replace("load = 2000.0", "approach = 1e-5");
+        assert!(err(&approach).starts_with("body1.surface.design_load"));
+    }
+
+    const MAP: &str = r#"
+[body1]
+E = 2.01e11
+nu = 0.3
+[body1.surface]
+kind = "height_map"
+spacing = [1e-4, 1e-4]
+heights = [[2, 1, 2], [1, 0, 1], [2, 1, 2]]
+scale = 1e-6
+[body2]
+E = 2.01e11
+nu = 0.3
+radii = ["inf", "inf"]
+[contact]
+load = 10.0
+[grid]
+n = 8
+half_width = 1e-4
+"#;
+
+    #[test]
+    fn inline_height_maps() {
+        let c = parse(MAP).unwrap();
+        match &c.body1.shape {
+            Shape::Surface(SurfaceProfile::HeightMap(m)) => {
+                assert_eq!((m.nx(), m.ny()), (3, 3));
+                assert!((m.height(0.0, 0.0).unwrap()).abs() < 1e-20);
+                assert!((m.height(1e-4, 0.0).unwrap() - 1e-6).abs() < 1e-18);
+            }
+            _ => panic!(),
+        }
+        let e = err(&MAP.replace("[1, 0, 1]", "[1, 0]"));
+        assert!(
+            e.starts_with("body1.surface.heights[1]") && e.contains("ragged"),
+            "{e}"
+        );
+        let e = err(&MAP.replace("[1, 0, 1]", "[1, \"x\", 1]"));
+        assert!(e.starts_with("body1.surface.heights[1][1]"), "{e}");
+        let e = err(&MAP.replace("[1, 0, 1]", "[1, nan, 1]"));
+        assert!(e.starts_with("body1.surface.heights[1][1]"), "{e}");
+        let e = err(&MAP.replace("half_width = 1e-4", "half_width = 2e-4"));
+        assert!(
+            e.starts_with("grid.half_width") && e.contains("height map"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn csv_height_maps() {
+        let dir = tempfile::tempdir().unwrap();
+        let write = |name: &str, text: &str| std::fs::write(dir.path().join(name), text).unwrap();
+        write("ok.csv", "# heights in um\n2, 1, 2\n1,0,1\n\n2,1,2\n");
+        write("ragged.csv", "2,1,2\n1,0\n2,1,2\n");
+        write("text.csv", "2,1,2\n1,zero,1\n2,1,2\n");
+        write("nan.csv", "2,1,2\n1,NaN,1\n2,1,2\n");
+        let case = |file: &str| {
+            let t = MAP.replace(
+                "heights = [[2, 1, 2], [1, 0, 1], [2, 1, 2]]",
+                &format!("file = \"{file}\""),
+            );
+            parse_case(&t, "t.toml", dir.path())
+        };
+        let c = case("ok.csv").unwrap();
+        assert!(
+            matches!(&c.body1.shape, Shape::Surface(SurfaceProfile::HeightMap(m)) if m.nx() == 3 && m.ny() == 3)
+        );
+        let e = case("ragged.csv").unwrap_err().to_string();
+        assert!(
+            e.contains("ragged.csv, line 2") && e.contains("ragged"),
+            "{e}"
+        );
+        let e = case("text.csv").unwrap_err().to_string();
+        assert!(
+            e.contains("text.csv, line 2") && e.contains("not a number"),
+            "{e}"
+        );
+        let e = case("nan.csv").unwrap_err().to_string();
+        assert!(e.contains("nan.csv, line 2") && e.contains("finite"), "{e}");
+        let e = case("missing.csv").unwrap_err();
+        assert!(
+            e.to_string().starts_with("body1.surface.file: cannot read"),
+            "{e}"
+        );
+        assert_eq!(e.exit_code(), crate::error::EXIT_BAD_INPUT);
+    }
+}

@@ -1,0 +1,94 @@
+//! Example case files embedded in the binary (`tribo example`).
+
+/// An embedded example case.
+#[derive(Debug, Clone, Copy)]
+pub struct Example {
+    /// Name used on the command line.
+    pub name: &'static str,
+    /// One-line description.
+    pub description: &'static str,
+    /// The TOML text.
+    pub text: &'static str,
+}
+
+/// The default case of `tribo run` without a case file.
+pub const DEFAULT: &str = "roller-shaft";
+
+/// All examples, the default first.
+pub const EXAMPLES: &[Example] = &[
+    Example {
+        name: "roller-shaft",
+        description: "the paper's Sec. 3 roller on shaft, F_N = 2000 N, 21 x 21 (default case)",
+        text: include_str!("../examples/cases/roller-shaft.toml"),
+    },
+    Example {
+        name: "roller-shaft-approach",
+        description: "the same under approach control, delta = 2.723e-5 m",
+        text: include_str!("../examples/cases/roller-shaft-approach.toml"),
+    },
+    Example {
+        name: "sphere-on-flat",
+        description: "steel ball (R = 10 mm) on a flat, 100 N: circular Hertz contact",
+        text: include_str!("../examples/cases/sphere-on-flat.toml"),
+    },
+    Example {
+        name: "steel-on-cast-iron",
+        description: "dissimilar materials, crossed axes at 30 degrees, units in strings",
+        text: include_str!("../examples/cases/steel-on-cast-iron.toml"),
+    },
+    Example {
+        name: "crowned-roller",
+        description: "logarithmically crowned roller on a shaft (a non-Hertzian surface)",
+        text: include_str!("../examples/cases/crowned-roller.toml"),
+    },
+    Example {
+        name: "height-map",
+        description: "a surface given as a grid of heights (inline; CSV files work the same)",
+        text: include_str!("../examples/cases/height-map.toml"),
+    },
+];
+
+/// Find an example by name.
+pub fn find(name: &str) -> Option<&'static Example> {
+    EXAMPLES.iter().find(|e| e.name == name)
+}
+
+/// Comma separated names of all examples.
+pub fn names() -> String {
+    EXAMPLES
+        .iter()
+        .map(|e| e.name)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::parse_case;
+    use std::path::Path;
+
+    #[test]
+    fn every_example_parses_and_validates() {
+        for e in EXAMPLES {
+            let c = parse_case(e.text, e.name, Path::new("."));
+            assert!(c.is_ok(), "{}: {}", e.name, c.unwrap_err());
+        }
+        assert_eq!(EXAMPLES[0].name, DEFAULT);
+    }
+
+    #[test]
+    fn the_default_is_the_papers_case() {
+        let c = parse_case(find(DEFAULT).unwrap().text, DEFAULT, Path::new(".")).unwrap();
+        assert_eq!(c.n, [21, 21]);
+        assert_eq!(c.window, crate::case::Window::Extent(1.5));
+        assert_eq!(c.loading, tribo::solvers::NormalLoading::Force(2000.0));
+        assert_eq!(
+            c.body2.shape,
+            crate::case::Shape::Radii {
+                radii: [-0.01, 0.01],
+                angle: 0.0
+            }
+        );
+    }
+}

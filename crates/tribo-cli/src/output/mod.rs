@@ -1,0 +1,176 @@
+//! Writers of the files of `tribo run`: `summary.json`, `pressure.csv`, `gap.csv`,
+//! `fields.vti`, `pressure_map.png`, `pressure_profiles.png`.
+//!
+//! Every file is written whole or not at all: its content goes to a temporary file in the
+//! output directory, which is then renamed over the final name. Every number is checked
+//! finite before anything is written.
+
+pub mod fields;
+pub mod plot;
+pub mod summary;
+
+use crate::case::Case;
+use crate::error::{CliError, CliResult};
+use crate::run::Outcome;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use summary::Summary;
+
+/// Names of the files a run writes, in order.
+pub const FILES: [&str; 6] = [
+    "summary.json",
+    "pressure.csv",
+    "gap.csv",
+    "fields.vti",
+    "pressure_map.png",
+    "pressure_profiles.png",
+];
+
+fn check_finite(what: &str, values: &[f64]) -> CliResult<()> {
+    match values.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(k) => Err(CliError::Output {
+            what: what.to_string(),
+            detail: format!(
+                "value {k} is {} (refusing to write a non-finite result)",
+                values[k]
+            ),
+        }),
+    }
+}
+
+fn temp_path(dir: &Path, name: &str) -> PathBuf {
+    // Keep the extension last: plotters picks the image format from it.
+    dir.join(format!(".tmp-{}-{name}", std::process::id()))
+}
+
+fn commit(tmp: &Path, dir: &Path, name: &str) -> CliResult<()> {
+    let target = dir.join(name);
+    std::fs::rename(tmp, &target).map_err(|source| {
+        let _ = std::fs::remove_file(tmp);
+        CliError::Write {
+            path: target,
+            source,
+        }
+    })
+}
+
+/// Write `bytes` to `dir/name` atomically (temporary file + rename).
+pub fn write_atomic(dir: &Path, name: &str, bytes: &[u8]) -> CliResult<()> {
+    let tmp = temp_path(dir, name);
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()
+    })();
+    if let Err(source) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(CliError::Write {
+            path: dir.join(name),
+            source,
+        });
+    }
+    commit(&tmp, dir, name)
+}
+
+fn plot_atomic(
+    dir: &Path,
+    name: &str,
+    draw: impl FnOnce(&Path) -> Result<(), String>,
+) -> CliResult<()> {
+    let tmp = temp_path(dir, name);
+    if let Err(detail) = draw(&tmp) {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(CliError::Output {
+            what: name.to_string(),
+            detail,
+        });
+    }
+    commit(&tmp, dir, name)
+}
+
+/// The summary of a solved case, checked finite.
+pub fn summary(case: &Case, out: &Outcome) -> CliResult<Summary> {
+    let s = Summary::new(case, out, FILES.iter().map(|f| f.to_string()).collect());
+    let c = &s.contact;
+    let mut scalars = vec![
+        c.normal_load,
+        c.approach,
+        c.max_pressure,
+        c.contact_area,
+        c.residual,
+        s.materials.composite_modulus,
+        s.solver.time_s,
+    ];
+    if let Some(h) = &c.hertz {
+        scalars.extend([
+            h.a,
+            h.b,
+            h.p0,
+            h.approach,
+            h.normal_load,
+            h.contact_area,
+            h.angle,
+        ]);
+    }
+    if let Some(e) = &c.error_vs_hertz {
+        scalars.extend([e.eps_max, e.eps_avg, e.eps_max_inside]);
+    }
+    check_finite("summary.json", &scalars)?;
+    Ok(s)
+}
+
+/// Write all files of a run into `dir` (created if needed) and return the summary.
+pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
+    let grid = &out.prepared.grid;
+    let sol = &out.solution;
+    check_finite("pressure", &sol.pressure)?;
+    check_finite("gap", &sol.gap)?;
+    check_finite("initial gap", &out.prepared.initial_gap)?;
+    if let Some(ph) = &out.hertz_pressure {
+        check_finite("hertz pressure", ph)?;
+    }
+    let n = grid.len();
+    for (what, len) in [("pressure", sol.pressure.len()), ("gap", sol.gap.len())] {
+        if len != n {
+            return Err(CliError::Output {
+                what: what.into(),
+                detail: format!("{len} values for {n} elements"),
+            });
+        }
+    }
+    let summary = summary(case, out)?;
+    let json = serde_json::to_string_pretty(&summary).map_err(|e| CliError::Output {
+        what: "summary.json".into(),
+        detail: e.to_string(),
+    })?;
+    let pressure_csv = fields::csv(grid, "pressure_Pa", &sol.pressure);
+    let gap_csv = fields::csv(grid, "gap_m", &sol.gap);
+    let mut arrays: Vec<(&str, &[f64])> = vec![
+        ("pressure_Pa", &sol.pressure),
+        ("gap_m", &sol.gap),
+        ("initial_gap_m", &out.prepared.initial_gap),
+    ];
+    if let Some(ph) = &out.hertz_pressure {
+        arrays.push(("hertz_pressure_Pa", ph));
+    }
+    let vti = fields::vti(grid, &arrays);
+
+    std::fs::create_dir_all(dir).map_err(|source| CliError::Write {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    write_atomic(dir, FILES[1], pressure_csv.as_bytes())?;
+    write_atomic(dir, FILES[2], gap_csv.as_bytes())?;
+    write_atomic(dir, FILES[3], vti.as_bytes())?;
+    let hertz = out.prepared.hertz.as_ref().map(|h| &h.contact);
+    plot_atomic(dir, FILES[4], |p| {
+        plot::pressure_map(p, grid, &sol.pressure, hertz, &case.title)
+    })?;
+    plot_atomic(dir, FILES[5], |p| {
+        plot::pressure_profiles(p, grid, &sol.pressure, hertz, &case.title)
+    })?;
+    // Last: a summary.json in the directory means the whole run was written.
+    write_atomic(dir, FILES[0], json.as_bytes())?;
+    Ok(summary)
+}

@@ -1,0 +1,291 @@
+//! PNG plots with plotters, rendered with the DejaVu Sans font shipped in `assets/` (no
+//! system fonts needed).
+
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+use std::path::Path;
+use std::sync::OnceLock;
+use tribo::kernels::hertz::HertzContact;
+use tribo::SurfaceGrid;
+
+/// DejaVu Sans (Bitstream Vera licence, see `assets/LICENSE-DejaVu.txt`).
+static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+
+/// The font family name the plots use.
+const FAMILY: &str = "sans-serif";
+
+/// Register the shipped font as `sans-serif` (once per process).
+pub fn register_font() -> Result<(), String> {
+    static DONE: OnceLock<Result<(), String>> = OnceLock::new();
+    DONE.get_or_init(|| {
+        plotters::style::register_font(FAMILY, FontStyle::Normal, FONT)
+            .map_err(|_| "the shipped font DejaVuSans.ttf could not be loaded".to_string())
+    })
+    .clone()
+}
+
+fn e<E: std::fmt::Display>(err: E) -> String {
+    err.to_string()
+}
+
+/// Viridis colour map (matplotlib's, 9 anchors, linear in between), `t` in [0, 1].
+pub fn viridis(t: f64) -> RGBColor {
+    const C: [(u8, u8, u8); 9] = [
+        (68, 1, 84),
+        (71, 44, 122),
+        (59, 81, 139),
+        (44, 113, 142),
+        (33, 144, 141),
+        (39, 173, 129),
+        (92, 200, 99),
+        (170, 220, 50),
+        (253, 231, 37),
+    ];
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let f = t * (C.len() - 1) as f64;
+    let i = (f.floor() as usize).min(C.len() - 2);
+    let s = f - i as f64;
+    let lerp = |a: u8, b: u8| (a as f64 + s * (b as f64 - a as f64)).round() as u8;
+    RGBColor(
+        lerp(C[i].0, C[i + 1].0),
+        lerp(C[i].1, C[i + 1].1),
+        lerp(C[i].2, C[i + 1].2),
+    )
+}
+
+fn ellipse_mm(h: &HertzContact) -> Vec<(f64, f64)> {
+    let (s, c) = h.angle.sin_cos();
+    (0..=360)
+        .map(|k| {
+            let t = (k as f64).to_radians();
+            let (xp, yp) = (h.semi_major * t.cos(), h.semi_minor * t.sin());
+            (1e3 * (c * xp - s * yp), 1e3 * (s * xp + c * yp))
+        })
+        .collect()
+}
+
+/// Colour map of the pressure over the window (axes in mm, colour bar in GPa), with the Hertz
+/// contact ellipse drawn over it where given.
+pub fn pressure_map(
+    path: &Path,
+    grid: &SurfaceGrid,
+    pressure: &[f64],
+    hertz: Option<&HertzContact>,
+    title: &str,
+) -> Result<(), String> {
+    register_font()?;
+    let root = BitMapBackend::new(path, (1000, 800)).into_drawing_area();
+    root.fill(&WHITE).map_err(e)?;
+    let (main, bar) = root.split_horizontally(860);
+    let (hx, hy) = grid.half_widths();
+    let (hx, hy) = (1e3 * hx, 1e3 * hy);
+    let pmax = pressure.iter().cloned().fold(0.0, f64::max);
+    let pmax_gpa = if pmax > 0.0 { pmax / 1e9 } else { 1.0 };
+    let mut chart = ChartBuilder::on(&main)
+        .caption(format!("Contact pressure: {title}"), (FAMILY, 20))
+        .margin(15)
+        .x_label_area_size(50)
+        .y_label_area_size(70)
+        .build_cartesian_2d(-hx..hx, -hy..hy)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x, mm")
+        .y_desc("y, mm")
+        .label_style((FAMILY, 15))
+        .axis_desc_style((FAMILY, 17))
+        .draw()
+        .map_err(e)?;
+    let (dx, dy) = (1e3 * grid.dx(), 1e3 * grid.dy());
+    chart
+        .draw_series((0..grid.ny()).flat_map(|iy| {
+            (0..grid.nx()).map(move |ix| {
+                let (x, y) = (1e3 * grid.x(ix), 1e3 * grid.y(iy));
+                let p = pressure[grid.index(ix, iy)] / 1e9;
+                Rectangle::new(
+                    [(x - 0.5 * dx, y - 0.5 * dy), (x + 0.5 * dx, y + 0.5 * dy)],
+                    viridis(p / pmax_gpa).filled(),
+                )
+            })
+        }))
+        .map_err(e)?;
+    if let Some(h) = hertz {
+        chart
+            .draw_series(LineSeries::new(ellipse_mm(h), RED.stroke_width(2)))
+            .map_err(e)?
+            .label("Hertz contact ellipse")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(2)));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font((FAMILY, 15))
+            .draw()
+            .map_err(e)?;
+    }
+    let mut cb = ChartBuilder::on(&bar)
+        .margin_top(50)
+        .margin_bottom(65)
+        .margin_left(10)
+        .right_y_label_area_size(80)
+        .build_cartesian_2d(0.0..1.0, 0.0..pmax_gpa)
+        .map_err(e)?;
+    cb.configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_desc("p, GPa")
+        .label_style((FAMILY, 15))
+        .axis_desc_style((FAMILY, 17))
+        .draw()
+        .map_err(e)?;
+    let levels = 256;
+    cb.draw_series((0..levels).map(|k| {
+        let (v0, v1) = (k as f64 / levels as f64, (k + 1) as f64 / levels as f64);
+        Rectangle::new(
+            [(0.0, v0 * pmax_gpa), (1.0, v1 * pmax_gpa)],
+            viridis(0.5 * (v0 + v1)).filled(),
+        )
+    }))
+    .map_err(e)?;
+    root.present().map_err(e)?;
+    Ok(())
+}
+
+/// Pressure along x through the row nearest y = 0 and along y through the column nearest
+/// x = 0: numerical values at element centres (markers) against Hertz on the same line
+/// (curve), where given.
+pub fn pressure_profiles(
+    path: &Path,
+    grid: &SurfaceGrid,
+    pressure: &[f64],
+    hertz: Option<&HertzContact>,
+    title: &str,
+) -> Result<(), String> {
+    register_font()?;
+    let root = BitMapBackend::new(path, (1200, 560)).into_drawing_area();
+    root.fill(&WHITE).map_err(e)?;
+    let root = root
+        .titled(&format!("Pressure profiles: {title}"), (FAMILY, 20))
+        .map_err(e)?;
+    let panels = root.split_evenly((1, 2));
+    let nearest = |n: usize, c: &dyn Fn(usize) -> f64| {
+        (0..n)
+            .min_by(|&a, &b| c(a).abs().total_cmp(&c(b).abs()))
+            .unwrap_or(0)
+    };
+    let iy0 = nearest(grid.ny(), &|i| grid.y(i));
+    let ix0 = nearest(grid.nx(), &|i| grid.x(i));
+    let pmax = pressure.iter().cloned().fold(0.0, f64::max);
+    let p0 = hertz.map_or(0.0, |h| h.max_pressure);
+    let ptop = 1.1 * pmax.max(p0).max(f64::MIN_POSITIVE) / 1e9;
+    for (k, panel) in panels.iter().enumerate() {
+        let along_x = k == 0;
+        let (n, half, fixed) = if along_x {
+            (grid.nx(), grid.half_widths().0, grid.y(iy0))
+        } else {
+            (grid.ny(), grid.half_widths().1, grid.x(ix0))
+        };
+        let half_mm = 1e3 * half;
+        let (axis, other) = if along_x { ("x", "y") } else { ("y", "x") };
+        let mut chart = ChartBuilder::on(panel)
+            .caption(
+                format!("along {axis} at {other} = {:.4} mm", 1e3 * fixed),
+                (FAMILY, 17),
+            )
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(60)
+            .build_cartesian_2d(-half_mm..half_mm, 0.0..ptop)
+            .map_err(e)?;
+        chart
+            .configure_mesh()
+            .x_desc(format!("{axis}, mm"))
+            .y_desc("p, GPa")
+            .label_style((FAMILY, 14))
+            .axis_desc_style((FAMILY, 16))
+            .light_line_style(WHITE.mix(0.0))
+            .draw()
+            .map_err(e)?;
+        if let Some(h) = hertz {
+            let samples = 600;
+            let curve = (0..=samples).map(|s| {
+                let t = -half + 2.0 * half * s as f64 / samples as f64;
+                let p = if along_x {
+                    h.pressure(t, fixed)
+                } else {
+                    h.pressure(fixed, t)
+                };
+                (1e3 * t, p / 1e9)
+            });
+            chart
+                .draw_series(LineSeries::new(curve, BLUE.stroke_width(2)))
+                .map_err(e)?
+                .label("Hertz")
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+        }
+        let points: Vec<(f64, f64)> = (0..n)
+            .map(|i| {
+                let (t, idx) = if along_x {
+                    (grid.x(i), grid.index(i, iy0))
+                } else {
+                    (grid.y(i), grid.index(ix0, i))
+                };
+                (1e3 * t, pressure[idx] / 1e9)
+            })
+            .collect();
+        chart
+            .draw_series(
+                points
+                    .iter()
+                    .map(|&(x, p)| Circle::new((x, p), 4, RED.filled())),
+            )
+            .map_err(e)?
+            .label("tribo (element centres)")
+            .legend(|(x, y)| Circle::new((x + 10, y), 4, RED.filled()));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font((FAMILY, 14))
+            .draw()
+            .map_err(e)?;
+    }
+    root.present().map_err(e)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn font_registers_and_colours_are_bounded() {
+        register_font().unwrap();
+        assert_eq!(viridis(0.0), RGBColor(68, 1, 84));
+        assert_eq!(viridis(1.0), RGBColor(253, 231, 37));
+        assert_eq!(viridis(f64::NAN), RGBColor(68, 1, 84));
+        assert_eq!(viridis(7.0), RGBColor(253, 231, 37));
+    }
+
+    #[test]
+    fn plots_render_without_system_fonts() {
+        let dir = tempfile::tempdir().unwrap();
+        let g = SurfaceGrid::centred(16, 12, 1e-3, 8e-4).unwrap();
+        let p = g.sample(|x, y| (1e9 * (1.0 - (x / 8e-4).powi(2) - (y / 6e-4).powi(2))).max(0.0));
+        let map = dir.path().join("m.png");
+        pressure_map(&map, &g, &p, None, "test").unwrap();
+        let prof = dir.path().join("p.png");
+        pressure_profiles(&prof, &g, &p, None, "test").unwrap();
+        for f in [map, prof] {
+            let bytes = std::fs::read(f).unwrap();
+            assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+        }
+    }
+}
