@@ -934,8 +934,7 @@ extent = 1.5
         let e = err(&PAPER.replacen("nu = 0.3", "nu = 0.55", 1));
         assert_eq!(e, "body1.nu = 0.55: Poisson's ratio must be in (-1, 0.5)");
         assert!(err(&PAPER.replacen("E = 2.01e11", "E = -1.0", 2)).starts_with("body1.E"));
-        let t = PAPER.replacen("E = 2.01e11", "E = 2.01e11", 1);
-        let t = t.replacen("[body2]\nE = 2.01e11", "[body2]\nE = nan", 1);
+        let t = PAPER.replacen("[body2]\nE = 2.01e11", "[body2]\nE = nan", 1);
         assert!(err(&t).starts_with("body2.E = NaN"), "{}", err(&t));
         assert!(err(&PAPER.replacen("nu = 0.3", "nu = -1.0", 1)).starts_with("body1.nu"));
     }

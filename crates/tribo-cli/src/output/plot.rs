@@ -28,6 +28,16 @@ fn e<E: std::fmt::Display>(err: E) -> String {
     err.to_string()
 }
 
+/// Axis tick labels: rounded to 1e-6 of the unit, without a "-0".
+fn tick(v: &f64) -> String {
+    let r = (v * 1e6).round() / 1e6;
+    if r == 0.0 {
+        "0".into()
+    } else {
+        format!("{r}")
+    }
+}
+
 /// Viridis colour map (matplotlib's, 9 anchors, linear in between), `t` in [0, 1].
 pub fn viridis(t: f64) -> RGBColor {
     const C: [(u8, u8, u8); 9] = [
@@ -78,7 +88,7 @@ pub fn pressure_map(
     title: &str,
 ) -> Result<(), String> {
     register_font()?;
-    let root = BitMapBackend::new(path, (1000, 800)).into_drawing_area();
+    let root = BitMapBackend::new(path, (1040, 800)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
     let (main, bar) = root.split_horizontally(860);
     let (hx, hy) = grid.half_widths();
@@ -97,6 +107,8 @@ pub fn pressure_map(
         .disable_mesh()
         .x_desc("x, mm")
         .y_desc("y, mm")
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
         .label_style((FAMILY, 15))
         .axis_desc_style((FAMILY, 17))
         .draw()
@@ -133,6 +145,7 @@ pub fn pressure_map(
         .margin_top(50)
         .margin_bottom(65)
         .margin_left(10)
+        .margin_right(25)
         .right_y_label_area_size(80)
         .build_cartesian_2d(0.0..1.0, 0.0..pmax_gpa)
         .map_err(e)?;
@@ -140,6 +153,7 @@ pub fn pressure_map(
         .disable_mesh()
         .disable_x_axis()
         .y_desc("p, GPa")
+        .y_label_formatter(&tick)
         .label_style((FAMILY, 15))
         .axis_desc_style((FAMILY, 17))
         .draw()
@@ -207,6 +221,8 @@ pub fn pressure_profiles(
             .configure_mesh()
             .x_desc(format!("{axis}, mm"))
             .y_desc("p, GPa")
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .label_style((FAMILY, 14))
             .axis_desc_style((FAMILY, 16))
             .light_line_style(WHITE.mix(0.0))

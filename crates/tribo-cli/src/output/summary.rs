@@ -157,7 +157,7 @@ impl Summary {
             approach: h.contact.approach,
             normal_load: h.contact.normal_load,
             contact_area: h.contact.contact_area(),
-            angle: h.contact.angle,
+            angle: h.contact.angle + 0.0, // no -0 in the JSON
         });
         let (hx, hy) = p.grid.half_widths();
         Summary {
@@ -179,7 +179,7 @@ impl Summary {
                 coefficients: p
                     .hertz
                     .map(|h| [h.curvature.a_coefficient, h.curvature.b_coefficient]),
-                angle: p.hertz.map(|h| h.curvature.angle),
+                angle: p.hertz.map(|h| h.curvature.angle + 0.0),
             },
             grid: GridInfo {
                 nx: p.grid.nx(),

@@ -1,0 +1,481 @@
+//! End-to-end tests of the `tribo` binary: exit codes, error messages, files written.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+const PAPER: &str = r#"
+title = "Roller on shaft, paper Sec. 3"
+[body1]
+E = 2.01e11
+nu = 0.3
+radii = [0.005, 0.05]
+[body2]
+E = 2.01e11
+nu = 0.3
+radii = [-0.01, 0.01]
+[contact]
+load = 2000.0
+[grid]
+n = 21
+extent = 1.5
+"#;
+
+const MAP: &str = r#"
+[body1]
+E = 2.01e11
+nu = 0.3
+[body1.surface]
+kind = "height_map"
+file = "map.csv"
+spacing = [1e-4, 1e-4]
+scale = 1e-6
+[body2]
+E = 2.01e11
+nu = 0.3
+radii = ["inf", "inf"]
+[contact]
+load = 10.0
+[grid]
+n = 8
+half_width = 1e-4
+"#;
+
+fn tribo(args: &[&str], stdin: Option<&str>) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_tribo"));
+    cmd.args(args).stdout(Stdio::piped()).stderr(Stdio::piped());
+    cmd.stdin(if stdin.is_some() {
+        Stdio::piped()
+    } else {
+        Stdio::null()
+    });
+    let mut child = cmd.spawn().expect("spawn tribo");
+    if let Some(text) = stdin {
+        use std::io::Write;
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(text.as_bytes())
+            .unwrap();
+    }
+    child.wait_with_output().expect("wait for tribo")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// Run `tribo run CASE -o OUT` on `text` (written as case.toml in a fresh directory, with
+/// extra files), return the output and the output directory.
+fn run_case(
+    text: &str,
+    files: &[(&str, &str)],
+    extra: &[&str],
+) -> (Output, PathBuf, tempfile::TempDir) {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case.toml");
+    std::fs::write(&case, text).unwrap();
+    for (name, content) in files {
+        std::fs::write(dir.path().join(name), content).unwrap();
+    }
+    let out = dir.path().join("out");
+    let mut args = vec![
+        "run",
+        case.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    args.extend_from_slice(extra);
+    let o = tribo(&args, None);
+    (o, out, dir)
+}
+
+fn assert_bad_input(text: &str, files: &[(&str, &str)], field: &str) {
+    let (o, out, _dir) = run_case(text, files, &[]);
+    let err = stderr(&o);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "expected exit 2 for {field}; stderr: {err}"
+    );
+    assert!(err.contains(field), "stderr does not name {field:?}: {err}");
+    assert!(
+        !out.exists(),
+        "bad input for {field} wrote {}",
+        out.display()
+    );
+}
+
+#[test]
+fn every_bad_input_rule_exits_2_names_the_field_and_writes_nothing() {
+    let cases: Vec<(String, &str)> = vec![
+        (PAPER.replacen("E = 2.01e11", "E = 0.0", 1), "body1.E"),
+        (PAPER.replacen("E = 2.01e11", "E = -2.01e11", 1), "body1.E"),
+        (PAPER.replacen("E = 2.01e11", "E = inf", 1), "body1.E"),
+        (PAPER.replacen("E = 2.01e11", "E = nan", 1), "body1.E"),
+        (
+            PAPER.replacen("nu = 0.3", "nu = 0.55", 1),
+            "body1.nu = 0.55: Poisson's ratio must be in (-1, 0.5)",
+        ),
+        (PAPER.replacen("nu = 0.3", "nu = -1.2", 1), "body1.nu"),
+        (
+            PAPER.replace("[-0.01, 0.01]", "[-0.01, 0.0]"),
+            "body2.radii[1]",
+        ),
+        (
+            PAPER.replace("load = 2000.0", "load = 2000.0\napproach = 2.7e-5"),
+            "contact.load",
+        ),
+        (PAPER.replace("load = 2000.0", ""), "contact"),
+        (PAPER.replace("load = 2000.0", "load = 0.0"), "contact.load"),
+        (
+            PAPER.replace("load = 2000.0", "load = -10.0"),
+            "contact.load",
+        ),
+        (
+            PAPER.replace("load = 2000.0", "approach = 0.0"),
+            "contact.approach",
+        ),
+        (
+            PAPER.replace("load = 2000.0", "approach = -1e-6"),
+            "contact.approach",
+        ),
+        (PAPER.replace("n = 21", "n = 3"), "grid.n"),
+        (PAPER.replace("n = 21", "n = 1000000"), "grid.n"),
+        (PAPER.replace("n = 21", "n = [21, 2]"), "grid.n[1]"),
+        (
+            PAPER
+                .replace("[0.005, 0.05]", "[\"inf\", \"inf\"]")
+                .replace("[-0.01, 0.01]", "[\"inf\", \"inf\"]"),
+            "radii",
+        ),
+        (PAPER.replace("nu = 0.3", "nu = 0.3\nnuu = 0.3"), "nuu"),
+        (PAPER.replace("[grid]", "[gird]"), "gird"),
+        (PAPER.replace("extent = 1.5", "extnt = 1.5"), "extnt"),
+        (PAPER.replace("extent = 1.5", "extent = 0.5"), "grid.extent"),
+        (
+            PAPER.to_string() + "[solver]\nmethod = \"newton\"\n",
+            "newton",
+        ),
+        (PAPER.replace("title = ", "title = = "), "case.toml"),
+    ];
+    for (text, field) in &cases {
+        assert_bad_input(text, &[], field);
+    }
+}
+
+#[test]
+fn bad_height_maps_exit_2() {
+    let ok = "0,1,0\n1,0,1\n0,1,0\n";
+    let (o, out, _d) = run_case(MAP, &[("map.csv", ok)], &["--dry-run"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(!out.exists());
+    assert_bad_input(MAP, &[], "body1.surface.file");
+    assert_bad_input(
+        MAP,
+        &[("map.csv", "0,1,0\n1,0\n0,1,0\n")],
+        "map.csv, line 2",
+    );
+    assert_bad_input(
+        MAP,
+        &[("map.csv", "0,1,0\n1,x,1\n0,1,0\n")],
+        "map.csv, line 2",
+    );
+    assert_bad_input(
+        MAP,
+        &[("map.csv", "# h\n0,1,0\n1,0,1\nnan,1,0\n")],
+        "map.csv, line 4",
+    );
+    assert_bad_input(MAP, &[("map.csv", "")], "map.csv");
+    // A surface needs grid.half_width (extent is defined only for Hertzian gaps).
+    let t = MAP.replace("half_width = 1e-4", "extent = 1.5");
+    assert_bad_input(&t, &[("map.csv", ok)], "grid.extent");
+}
+
+#[test]
+fn missing_case_file_exits_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = tribo(
+        &["run", "/nonexistent/case.toml", "-o", out.to_str().unwrap()],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("/nonexistent/case.toml"));
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_solver_that_stops_early_exits_3_with_its_residual() {
+    let text = PAPER.to_string() + "[solver]\nmax_iterations = 2\n";
+    let (o, out, _d) = run_case(&text, &[], &[]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(3), "{err}");
+    assert!(err.contains("residual"), "{err}");
+    assert!(!out.exists());
+}
+
+fn read_json(path: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(path).unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
+/// A minimal XML well-formedness check: balanced, properly nested tags with quoted
+/// attributes; returns the text content of each `DataArray`, by its Name.
+fn check_xml(text: &str) -> Vec<(String, String)> {
+    let mut stack: Vec<String> = Vec::new();
+    let mut arrays = Vec::new();
+    let mut rest = text.trim_start();
+    assert!(rest.starts_with("<?xml"), "no XML declaration");
+    rest = &rest[rest.find("?>").unwrap() + 2..];
+    let mut current: Option<(String, usize)> = None;
+    let mut pos = text.len() - rest.len();
+    while let Some(open) = text[pos..].find('<') {
+        let start = pos + open;
+        let close = start + text[start..].find('>').expect("unclosed tag");
+        let tag = &text[start + 1..close];
+        if let Some(name) = tag.strip_prefix('/') {
+            let top = stack.pop().expect("closing tag without opening");
+            assert_eq!(top, name.trim(), "mismatched tags");
+            if name.trim() == "DataArray" {
+                let (n, from) = current.take().unwrap();
+                arrays.push((n, text[from..start].to_string()));
+            }
+        } else {
+            let self_closing = tag.ends_with('/');
+            let body = tag.trim_end_matches('/');
+            let name = body.split_whitespace().next().unwrap().to_string();
+            assert_eq!(
+                body.matches('"').count() % 2,
+                0,
+                "unbalanced quotes in <{body}>"
+            );
+            if name == "DataArray" {
+                let n = body
+                    .split("Name=\"")
+                    .nth(1)
+                    .unwrap()
+                    .split('"')
+                    .next()
+                    .unwrap();
+                current = Some((n.to_string(), close + 1));
+            }
+            if !self_closing {
+                stack.push(name);
+            }
+        }
+        pos = close + 1;
+    }
+    assert!(stack.is_empty(), "unclosed elements: {stack:?}");
+    arrays
+}
+
+#[test]
+fn the_default_run_writes_everything() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = tribo(&["run", "-o", out.to_str().unwrap(), "--quiet"], None);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(
+        text.contains("Roller on shaft") && text.contains("eps_avg"),
+        "{text}"
+    );
+    for f in [
+        "summary.json",
+        "pressure.csv",
+        "gap.csv",
+        "fields.vti",
+        "pressure_map.png",
+        "pressure_profiles.png",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    // No temporary files left behind.
+    let names: Vec<_> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names.len(), 6, "{names:?}");
+
+    let s = read_json(&out.join("summary.json"));
+    let c = &s["contact"];
+    for key in [
+        "normal_load",
+        "approach",
+        "max_pressure",
+        "contact_area",
+        "iterations",
+        "residual",
+    ] {
+        assert!(c[key].is_number(), "contact.{key}: {}", c[key]);
+    }
+    for key in ["a", "b", "p0", "approach"] {
+        assert!(c["hertz"][key].is_number(), "contact.hertz.{key}");
+    }
+    for key in ["eps_max", "eps_avg", "eps_max_inside"] {
+        assert!(
+            c["error_vs_hertz"][key].is_number(),
+            "contact.error_vs_hertz.{key}"
+        );
+    }
+    assert!(s["tribo_version"].is_string() && s["title"].is_string());
+    assert!(s["materials"]["composite_modulus"].is_number());
+    assert_eq!(s["grid"]["nx"], 21);
+    assert_eq!(s["solver"]["method"], "cg");
+    assert_eq!(s["case"]["grid"]["extent"], 1.5);
+    // The paper's numbers (HALFSPACE.md section 4).
+    let f = |v: &serde_json::Value| v.as_f64().unwrap();
+    assert!((f(&c["hertz"]["a"]) / 5.2964e-4 - 1.0).abs() < 1e-4);
+    assert!((f(&c["hertz"]["b"]) / 4.6903e-4 - 1.0).abs() < 1e-4);
+    assert!((f(&c["hertz"]["p0"]) / 3.844e9 - 1.0).abs() < 1e-3);
+    assert!((f(&c["hertz"]["approach"]) / 2.7225e-5 - 1.0).abs() < 1e-4);
+    assert!((f(&c["normal_load"]) / 2000.0 - 1.0).abs() < 1e-6);
+    assert!(
+        f(&c["error_vs_hertz"]["eps_avg"]) <= 4e-3,
+        "{}",
+        c["error_vs_hertz"]
+    );
+
+    // CSV: header with units, 441 finite rows.
+    for (file, col) in [("pressure.csv", "pressure_Pa"), ("gap.csv", "gap_m")] {
+        let t = std::fs::read_to_string(out.join(file)).unwrap();
+        let mut lines = t.lines();
+        assert_eq!(lines.next().unwrap(), format!("x_m,y_m,{col}"));
+        let rows: Vec<Vec<f64>> = lines
+            .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+            .collect();
+        assert_eq!(rows.len(), 441);
+        assert!(rows
+            .iter()
+            .all(|r| r.len() == 3 && r.iter().all(|v| v.is_finite())));
+    }
+
+    // VTK: well-formed, every cell array has nx * ny finite values.
+    let vti = std::fs::read_to_string(out.join("fields.vti")).unwrap();
+    assert!(vti.contains("WholeExtent=\"0 21 0 21 0 0\""));
+    let arrays = check_xml(&vti);
+    let names: Vec<&str> = arrays.iter().map(|a| a.0.as_str()).collect();
+    assert_eq!(
+        names,
+        ["pressure_Pa", "gap_m", "initial_gap_m", "hertz_pressure_Pa"]
+    );
+    for (name, body) in &arrays {
+        let v: Vec<f64> = body
+            .split_whitespace()
+            .map(|t| t.parse().unwrap())
+            .collect();
+        assert_eq!(v.len(), 441, "{name}");
+        assert!(v.iter().all(|x| x.is_finite()), "{name}");
+    }
+
+    for png in ["pressure_map.png", "pressure_profiles.png"] {
+        let bytes = std::fs::read(out.join(png)).unwrap();
+        assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{png}");
+    }
+}
+
+#[test]
+fn json_flag_prints_the_summary() {
+    let (o, out, _d) = run_case(PAPER, &[], &["--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let printed: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("stdout is JSON");
+    assert!(printed["contact"]["max_pressure"].is_number());
+    let written = read_json(&out.join("summary.json"));
+    assert_eq!(
+        printed["contact"]["normal_load"],
+        written["contact"]["normal_load"]
+    );
+}
+
+#[test]
+fn approach_control_reproduces_the_load() {
+    let text = PAPER.replace("load = 2000.0", "approach = 2.723e-5");
+    let (o, out, _d) = run_case(&text, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let f = s["contact"]["normal_load"].as_f64().unwrap();
+    assert!((f / 2000.0 - 1.0).abs() < 5e-3, "F_N = {f}");
+    assert_eq!(s["contact"]["control"], "approach");
+}
+
+#[test]
+fn examples_list_print_and_validate() {
+    let o = tribo(&["example"], None);
+    assert_eq!(o.status.code(), Some(0));
+    let list = stdout(&o);
+    let names: Vec<String> = list
+        .lines()
+        .skip(1)
+        .filter_map(|l| l.split_whitespace().next().map(String::from))
+        .collect();
+    for expected in [
+        "roller-shaft",
+        "roller-shaft-approach",
+        "sphere-on-flat",
+        "steel-on-cast-iron",
+        "crowned-roller",
+        "height-map",
+    ] {
+        assert!(
+            names.iter().any(|n| n == expected),
+            "{expected} not listed: {list}"
+        );
+    }
+    for name in &names {
+        let o = tribo(&["example", name], None);
+        assert_eq!(o.status.code(), Some(0), "{name}");
+        let text = stdout(&o);
+        let v = tribo(&["run", "-", "--dry-run"], Some(&text));
+        assert_eq!(v.status.code(), Some(0), "{name}: {}", stderr(&v));
+    }
+    let o = tribo(&["example", "no-such-case"], None);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("roller-shaft"));
+}
+
+#[test]
+fn every_example_solves() {
+    for name in [
+        "sphere-on-flat",
+        "steel-on-cast-iron",
+        "crowned-roller",
+        "height-map",
+    ] {
+        let text = stdout(&tribo(&["example", name], None));
+        let (o, out, _d) = run_case(&text, &[], &["--json"]);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+        let s = read_json(&out.join("summary.json"));
+        let hertzian = s["gap"]["kind"] == "hertzian";
+        assert_eq!(s["contact"]["hertz"].is_object(), hertzian, "{name}");
+        if hertzian {
+            let eps = s["contact"]["error_vs_hertz"]["eps_avg"].as_f64().unwrap();
+            assert!(eps < 4e-3, "{name}: eps_avg {eps}");
+        }
+        let load = s["contact"]["normal_load"].as_f64().unwrap();
+        let asked = s["case"]["contact"]["load"].as_f64();
+        if let Some(asked) = asked {
+            assert!(
+                (load / asked - 1.0).abs() < 1e-6,
+                "{name}: {load} vs {asked}"
+            );
+        }
+    }
+}
+
+#[test]
+fn help_teaches() {
+    let o = tribo(&["--help"], None);
+    let h = stdout(&o);
+    assert!(
+        h.contains("SI units") && h.contains("tribo example") && h.contains("Exit codes"),
+        "{h}"
+    );
+    let o = tribo(&["run", "--help"], None);
+    assert!(stdout(&o).contains("summary.json"));
+}
