@@ -114,15 +114,18 @@ impl ConvolutionOperator {
             }
         };
         let mut kernel_rows = vec![0.0; padded_y * padded_x];
-        kernel_rows.par_chunks_mut(padded_x).enumerate().for_each(|(ky, row)| {
-            if let Some(dj) = offset(ky, ny) {
-                for (kx, value) in row.iter_mut().enumerate() {
-                    if let Some(di) = offset(kx, nx) {
-                        *value = kernel(di, dj);
+        kernel_rows
+            .par_chunks_mut(padded_x)
+            .enumerate()
+            .for_each(|(ky, row)| {
+                if let Some(dj) = offset(ky, ny) {
+                    for (kx, value) in row.iter_mut().enumerate() {
+                        if let Some(di) = offset(kx, nx) {
+                            *value = kernel(di, dj);
+                        }
                     }
                 }
-            }
-        });
+            });
         let mut rows_spectrum = vec![Complex::new(0.0, 0.0); padded_y * bins_x];
         operator.rows_forward(&mut kernel_rows, &mut rows_spectrum, padded_y);
         let mut columns = vec![Complex::new(0.0, 0.0); bins_x * padded_y];
@@ -163,7 +166,9 @@ impl ConvolutionOperator {
             .max(self.row_inverse.get_scratch_len())
             .max(self.column_forward.get_inplace_scratch_len())
             .max(self.column_inverse.get_inplace_scratch_len());
-        let n_scratch = ny.div_ceil(rows_per_chunk).max(self.bins_x.div_ceil(columns_per_chunk));
+        let n_scratch = ny
+            .div_ceil(rows_per_chunk)
+            .max(self.bins_x.div_ceil(columns_per_chunk));
         ConvolutionWorkspace {
             rows_real: vec![0.0; ny * self.padded_x],
             rows_spectrum: vec![Complex::new(0.0, 0.0); ny * self.bins_x],
@@ -179,11 +184,20 @@ impl ConvolutionOperator {
     /// # Panics
     /// If `input` or `output` is not of the grid's length, or the workspace was made for
     /// another operator (programming errors, not user input).
-    pub fn apply_into(&self, input: &[f64], output: &mut [f64], workspace: &mut ConvolutionWorkspace) {
+    pub fn apply_into(
+        &self,
+        input: &[f64],
+        output: &mut [f64],
+        workspace: &mut ConvolutionWorkspace,
+    ) {
         let (nx, ny) = (self.grid.nx(), self.grid.ny());
         assert_eq!(input.len(), nx * ny, "input length must be nx * ny");
         assert_eq!(output.len(), nx * ny, "output length must be nx * ny");
-        assert_eq!(workspace.rows_real.len(), ny * self.padded_x, "workspace of another operator");
+        assert_eq!(
+            workspace.rows_real.len(),
+            ny * self.padded_x,
+            "workspace of another operator"
+        );
         let padded_x = self.padded_x;
         let padded_y = self.padded_y;
         let bins_x = self.bins_x;
@@ -227,7 +241,10 @@ impl ConvolutionOperator {
             .zip(self.kernel_spectrum.par_chunks(column_chunk))
             .zip(scratch.par_iter_mut())
             .for_each(|((block, kernel_block), scratch)| {
-                for (column, kernel) in block.chunks_mut(padded_y).zip(kernel_block.chunks(padded_y)) {
+                for (column, kernel) in block
+                    .chunks_mut(padded_y)
+                    .zip(kernel_block.chunks(padded_y))
+                {
                     self.column_forward.process_with_scratch(column, scratch);
                     for (value, k) in column.iter_mut().zip(kernel) {
                         *value *= *k;
@@ -341,21 +358,28 @@ fn transpose_columns_to_rows(
 
 /// The direct O(N^2) sum `out[i] = sum_j kernel(ix_i - ix_j, iy_i - iy_j) input[j]`: the
 /// obviously-correct reference for the FFT path (tests, tiny grids).
-pub fn convolve_direct(grid: &SurfaceGrid, kernel: impl Fn(isize, isize) -> f64 + Sync, input: &[f64]) -> Vec<f64> {
+pub fn convolve_direct(
+    grid: &SurfaceGrid,
+    kernel: impl Fn(isize, isize) -> f64 + Sync,
+    input: &[f64],
+) -> Vec<f64> {
     let (nx, ny) = (grid.nx(), grid.ny());
     let mut output = vec![0.0; nx * ny];
-    output.par_chunks_mut(nx).enumerate().for_each(|(iy, out_row)| {
-        for (ix, out) in out_row.iter_mut().enumerate() {
-            let mut sum = 0.0;
-            for jy in 0..ny {
-                for jx in 0..nx {
-                    let k = kernel(ix as isize - jx as isize, iy as isize - jy as isize);
-                    sum += k * input[jy * nx + jx];
+    output
+        .par_chunks_mut(nx)
+        .enumerate()
+        .for_each(|(iy, out_row)| {
+            for (ix, out) in out_row.iter_mut().enumerate() {
+                let mut sum = 0.0;
+                for jy in 0..ny {
+                    for jx in 0..nx {
+                        let k = kernel(ix as isize - jx as isize, iy as isize - jy as isize);
+                        sum += k * input[jy * nx + jx];
+                    }
                 }
+                *out = sum;
             }
-            *out = sum;
-        }
-    });
+        });
     output
 }
 
@@ -374,7 +398,9 @@ mod tests {
         let mut state = seed;
         (0..n)
             .map(|_| {
-                state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
                 ((state >> 11) as f64 / (1u64 << 53) as f64) - 0.3
             })
             .collect()
@@ -392,8 +418,14 @@ mod tests {
             let fast = operator.apply(&input);
             let slow = convolve_direct(&grid, asymmetric_kernel, &input);
             let scale = slow.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let worst = fast.iter().zip(&slow).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-            assert!(worst <= 1e-12 * scale, "{nx}x{ny}: max error {worst:e} vs scale {scale:e}");
+            let worst = fast
+                .iter()
+                .zip(&slow)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            assert!(
+                worst <= 1e-12 * scale,
+                "{nx}x{ny}: max error {worst:e} vs scale {scale:e}"
+            );
         }
     }
 

@@ -3,6 +3,6 @@
 pub mod normal;
 
 pub use normal::{
-    NormalContactParams, NormalContactProblem, NormalContactSolution, NormalLoading,
-    solve_normal_active_set, solve_normal_cg,
+    solve_normal_active_set, solve_normal_cg, NormalContactParams, NormalContactProblem,
+    NormalContactSolution, NormalLoading,
 };
