@@ -85,9 +85,6 @@ pub enum CliError {
         /// Known names, comma separated.
         known: String,
     },
-    /// The verification suite is not available in this build.
-    #[error("{0}")]
-    Unavailable(String),
 }
 
 impl CliError {
@@ -119,9 +116,7 @@ impl CliError {
                 tribo::Error::NotConverged { .. } => EXIT_NOT_CONVERGED,
                 _ => EXIT_OTHER,
             },
-            CliError::Write { .. } | CliError::Output { .. } | CliError::Unavailable(_) => {
-                EXIT_OTHER
-            }
+            CliError::Write { .. } | CliError::Output { .. } => EXIT_OTHER,
         }
     }
 }

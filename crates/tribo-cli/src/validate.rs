@@ -1,32 +1,11 @@
 //! `tribo validate`: the verification suite's table.
 
-use crate::error::{CliError, CliResult};
-use serde::Serialize;
+use crate::error::CliResult;
+pub use tribo::validation::ValidationRow;
 
-/// One row of the verification table (mirrors `tribo::validation::ValidationRow`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ValidationRow {
-    /// Verification case.
-    pub case: String,
-    /// Quantity compared.
-    pub quantity: String,
-    /// Reference value.
-    pub reference: f64,
-    /// Computed value.
-    pub computed: f64,
-    /// Error measure (as the library defines it for the row).
-    pub error: f64,
-    /// Tolerance on the error.
-    pub tolerance: f64,
-    /// Whether the row passes.
-    pub passed: bool,
-}
-
-/// Run the library's verification suite.
+/// Run the library's verification suite (`tribo::validation::run_all`).
 pub fn run_suite() -> CliResult<Vec<ValidationRow>> {
-    Err(CliError::Unavailable(
-        "the verification suite (tribo::validation::run_all) is not in this build yet".into(),
-    ))
+    Ok(tribo::validation::run_all()?)
 }
 
 fn num(x: f64) -> String {
@@ -123,6 +102,8 @@ mod tests {
                 computed: 5.2964e-4,
                 error: 1e-9,
                 tolerance: 1e-6,
+                measure: tribo::validation::ErrorMeasure::Relative,
+                source: "test".into(),
                 passed: true,
             },
             ValidationRow {
@@ -132,6 +113,8 @@ mod tests {
                 computed: 0.0037,
                 error: 0.3,
                 tolerance: 0.1,
+                measure: tribo::validation::ErrorMeasure::Relative,
+                source: "test".into(),
                 passed: false,
             },
         ];

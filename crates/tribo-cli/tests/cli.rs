@@ -479,3 +479,28 @@ fn help_teaches() {
     let o = tribo(&["run", "--help"], None);
     assert!(stdout(&o).contains("summary.json"));
 }
+
+#[test]
+fn validate_prints_the_table_and_passes() {
+    let o = tribo(&["validate"], None);
+    let text = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{text}{}", stderr(&o));
+    let header = text.lines().next().unwrap();
+    for col in [
+        "case",
+        "quantity",
+        "reference",
+        "computed",
+        "error",
+        "tolerance",
+        "pass",
+    ] {
+        assert!(header.contains(col), "{header}");
+    }
+    assert!(text.contains("eps_avg"), "{text}");
+    let o = tribo(&["validate", "--json"], None);
+    let rows: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert!(rows
+        .as_array()
+        .is_some_and(|r| !r.is_empty() && r.iter().all(|r| r["passed"] == true)));
+}

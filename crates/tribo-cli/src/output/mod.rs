@@ -114,7 +114,12 @@ pub fn summary(case: &Case, out: &Outcome) -> CliResult<Summary> {
         ]);
     }
     if let Some(e) = &c.error_vs_hertz {
-        scalars.extend([e.eps_max, e.eps_avg, e.eps_max_inside]);
+        scalars.extend([
+            e.eps_max,
+            e.eps_avg,
+            e.eps_max_inside,
+            e.eps_max_element_averaged,
+        ]);
     }
     check_finite("summary.json", &scalars)?;
     Ok(s)

@@ -1,8 +1,9 @@
 //! `summary.json`: the result of a run, SI units throughout.
 
 use crate::case::{Case, Window};
-use crate::run::{HertzError, Outcome};
+use crate::run::Outcome;
 use serde::Serialize;
+use tribo::analysis::hertz_error::PressureErrors;
 use tribo::solvers::NormalLoading;
 
 /// The summary written to `summary.json` and printed by `--json`.
@@ -138,7 +139,7 @@ pub struct Contact {
     pub hertz: Option<HertzInfo>,
     /// Errors against Hertz, the paper's (17) (Hertzian gaps only).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub error_vs_hertz: Option<HertzError>,
+    pub error_vs_hertz: Option<PressureErrors>,
 }
 
 impl Summary {
@@ -271,8 +272,9 @@ impl Summary {
         if let Some(e) = &c.error_vs_hertz {
             let _ = writeln!(
                 o,
-                "  vs Hertz (17) eps_max {:.3e} (inside the ellipse {:.3e}), eps_avg {:.3e}",
-                e.eps_max, e.eps_max_inside, e.eps_avg
+                "  vs Hertz (17) eps_max {:.3e} (inside the ellipse {:.3e}, vs element-averaged \
+                 Hertz {:.3e}), eps_avg {:.3e}",
+                e.eps_max, e.eps_max_inside, e.eps_max_element_averaged, e.eps_avg
             );
         }
         let _ = writeln!(
