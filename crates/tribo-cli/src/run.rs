@@ -77,8 +77,13 @@ pub fn prepare(case: &Case) -> CliResult<Prepared> {
     let half_widths = match (case.window, &hertz) {
         (Window::HalfWidth(hw), _) => hw,
         (Window::Extent(e), Some(h)) => [e * h.contact.semi_major; 2],
-        (Window::Extent(_), None) => {
-            unreachable!("validation allows extent only for Hertzian gaps")
+        (Window::Extent(e), None) => {
+            // Validation allows extent only for Hertzian gaps; kept as an error, not a panic.
+            return Err(crate::error::CliError::field(
+                "grid.extent",
+                e,
+                "extent needs a Hertzian gap (both bodies given by radii); give grid.half_width",
+            ));
         }
     };
     let grid = SurfaceGrid::centred(case.n[0], case.n[1], half_widths[0], half_widths[1])?;
