@@ -11,11 +11,13 @@ use serde::{Deserialize, Serialize};
 use crate::analysis::hertz_error::pressure_errors;
 use crate::error::Result;
 use crate::grid::SurfaceGrid;
+use crate::kernels::bulk::BulkLoad;
 use crate::kernels::hertz::{GapCurvature, HertzContact};
 use crate::kernels::{elliptic, love};
 use crate::material::{composite_modulus, ElasticMaterial};
 use crate::operators::convolution::convolve_direct;
 use crate::operators::ConvolutionOperator;
+use crate::solvers::back_effect::{back_effect_curve, BackEffectPoint};
 use crate::solvers::normal::{
     normal_compliance_kernel, solve_normal_active_set, solve_normal_cg, NormalContactParams,
     NormalContactProblem, NormalContactSolution, NormalLoading,
@@ -558,6 +560,83 @@ pub fn hertz_family_rows() -> Result<Vec<ValidationRow>> {
     Ok(rows)
 }
 
+/// The curve of the paper's Fig. 2a: F_N / F_N(0) at the fixed approach 2.723e-5 m
+/// against sigma_a / sigma_a,max (sigma_a,max = 6.4e8 Pa) for tension-compression and
+/// bending, on the paper's case (shaft radius R2 = 0.01 m), 41 x 41 elements over 1.5 a.
+pub fn back_effect_points(stress_ratios: &[f64]) -> Result<Vec<BackEffectPoint>> {
+    let (curvature, e_star) = paper_case_curvature()?;
+    let steel = ElasticMaterial::new(2.01e11, 0.3)?;
+    let hertz = HertzContact::from_load(&curvature, e_star, 2000.0)?;
+    let half = 1.5 * hertz.semi_major;
+    let grid = SurfaceGrid::centred(41, 41, half, half)?;
+    let gap = grid.sample(|x, y| curvature.gap(x, y));
+    let sigma_max = 6.4e8;
+    let mut loads = Vec::new();
+    for &r in stress_ratios {
+        loads.push(BulkLoad::TensionCompression {
+            stress: r * sigma_max,
+        });
+    }
+    for &r in stress_ratios {
+        loads.push(BulkLoad::Bending {
+            surface_stress: r * sigma_max,
+        });
+    }
+    back_effect_curve(
+        &grid,
+        &gap,
+        e_star,
+        &steel,
+        0.01,
+        2.723e-5,
+        &loads,
+        &NormalContactParams::default(),
+    )
+}
+
+/// Rows of the back effect (Fig. 2a): numerical against Hertz, and against the paper.
+pub fn back_effect_rows() -> Result<Vec<ValidationRow>> {
+    let points = back_effect_points(&[-1.0, 1.0])?;
+    let mut rows = Vec::new();
+    for p in &points {
+        let kind = match p.load {
+            BulkLoad::TensionCompression { .. } => "tension-compression",
+            BulkLoad::Bending { .. } => "bending",
+        };
+        let case = format!("Fig. 2a, {kind}, sigma = {:+.1e} Pa, 41x41", p.stress);
+        // Issue 3: the numerical curve within 0.5 percentage points of Hertz.
+        rows.push(ValidationRow::new(
+            &case,
+            "F/F0 numerical vs Hertz (1 + u_z/delta0)^1.5",
+            p.force_ratio_hertz,
+            p.force_ratio,
+            ErrorMeasure::Absolute,
+            5e-3,
+            "Hertz scaling F ~ delta^1.5 with (18)",
+        ));
+        // The paper's figure: +60 % / -50 % (tension-compression), +27 % / -25 % (bending),
+        // read off a plot. Bending is reproduced to its rounding (1 point); tension-
+        // compression differs by ~3 points at both ends, which the 3/2-power law cannot
+        // remove with R2 = 10 mm (it would need R2 ~ 10.5 mm): HALFSPACE.md section 5.
+        let (paper, tol) = match (kind, p.stress > 0.0) {
+            ("bending", true) => (0.75, 0.01),
+            ("bending", false) => (1.27, 0.01),
+            (_, true) => (0.50, 0.035),
+            (_, false) => (1.60, 0.035),
+        };
+        rows.push(ValidationRow::new(
+            &case,
+            "F/F0 numerical vs the paper's Fig. 2a",
+            paper,
+            p.force_ratio,
+            ErrorMeasure::Absolute,
+            tol,
+            "paper Sec. 3, Fig. 2a (read off the figure, rounded)",
+        ));
+    }
+    Ok(rows)
+}
+
 /// The whole suite, in table order.
 pub fn run_all() -> Result<Vec<ValidationRow>> {
     let mut rows = kernel_rows()?;
@@ -565,5 +644,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(paper_case_rows()?);
     rows.extend(convergence_rows()?);
     rows.extend(hertz_family_rows()?);
+    rows.extend(back_effect_rows()?);
     Ok(rows)
 }

@@ -218,3 +218,21 @@ fn curvature_from_radii_refuses_flat_pairs() {
     assert!(GapCurvature::from_radii([f64::INFINITY; 2], [f64::INFINITY; 2], 0.0).is_err());
     assert!(GapCurvature::from_radii([0.0, 0.01], [0.01, 0.01], 0.0).is_err());
 }
+
+#[test]
+fn back_effect_rows_pass() {
+    assert_rows(&validation::back_effect_rows().unwrap());
+}
+
+#[test]
+fn back_effect_curve_is_monotone_and_passes_through_one() {
+    // Compression raises the force, tension lowers it, monotonically; sigma = 0 gives 1.
+    let ratios = [-1.0, -0.5, 0.0, 0.5, 1.0];
+    let points = validation::back_effect_points(&ratios).unwrap();
+    for kind in points.chunks(ratios.len()) {
+        assert!((kind[2].force_ratio - 1.0).abs() < 1e-12);
+        for pair in kind.windows(2) {
+            assert!(pair[1].force_ratio < pair[0].force_ratio, "{pair:?}");
+        }
+    }
+}

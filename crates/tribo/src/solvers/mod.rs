@@ -1,5 +1,6 @@
 //! Layer 3: contact solvers. Each returns a solution that carries its convergence record.
 
+pub mod back_effect;
 pub mod normal;
 
 pub use normal::{

@@ -356,6 +356,9 @@ pub fn solve_normal_cg_with(
     // linear then), halving the FFTs per iteration. A full recomputation every
     // `REFRESH_INTERVAL` steps and before accepting convergence bounds the drift.
     const REFRESH_INTERVAL: usize = 32;
+    // A sparse correction costs one O(N) pass; beyond a few, one FFT product is cheaper.
+    const MAX_SPARSE_CORRECTIONS: usize = 6;
+    let mut corrections: Vec<(usize, f64)> = Vec::with_capacity(MAX_SPARSE_CORRECTIONS + 1);
     let mut fresh = false;
     let mut since_refresh = 0usize;
 
@@ -451,20 +454,27 @@ pub fn solve_normal_cg_with(
         let step = num / den;
 
         // Step, projection onto p >= 0, re-entry of overlapping points.
+        // `corrections` records where the new pressure departs from the linear step
+        // p - step t (projection and re-entry), for the incremental displacement update.
         let mut overlap = false;
-        let mut clipped = false;
+        corrections.clear();
         for i in 0..n {
             if pressure[i] > 0.0 {
                 let p = pressure[i] - step * direction[i];
                 if p < 0.0 {
-                    clipped = true;
                     pressure[i] = 0.0;
+                    if corrections.len() <= MAX_SPARSE_CORRECTIONS {
+                        corrections.push((i, -p));
+                    }
                 } else {
                     pressure[i] = p;
                 }
             } else if gap[i] < 0.0 {
                 pressure[i] = -step * gap[i];
                 overlap = true;
+                if corrections.len() <= MAX_SPARSE_CORRECTIONS {
+                    corrections.push((i, pressure[i]));
+                }
             }
         }
         conjugate = !overlap;
@@ -483,12 +493,19 @@ pub fn solve_normal_cg_with(
                 *p *= scale;
             }
         }
-        if overlap || clipped || since_refresh + 1 >= REFRESH_INTERVAL {
+        if corrections.len() > MAX_SPARSE_CORRECTIONS || since_refresh + 1 >= REFRESH_INTERVAL {
             fresh = false;
         } else {
-            // p_new = scale (p - step t) exactly, so K p_new = scale (K p - step K t).
+            // p_new = scale (p - step t + c) with c sparse, so
+            // K p_new = scale (K p - step K t + K c), K c by direct sums over few sources.
             for (u, r) in displacement.iter_mut().zip(&response) {
-                *u = scale * (*u - step * r);
+                *u -= step * r;
+            }
+            for &(i, c) in &corrections {
+                operator.add_source(i, c, &mut displacement);
+            }
+            for u in displacement.iter_mut() {
+                *u *= scale;
             }
             since_refresh += 1;
         }
