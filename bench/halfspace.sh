@@ -39,6 +39,7 @@ py="$venv/bin/python"
 (cd "$root" && cargo build --release --quiet -p tribo-bench)
 bench_bin="${CARGO_TARGET_DIR:-$root/target}/release/tribo-bench"
 
+load_start="$(cut -d' ' -f1-3 /proc/loadavg)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 jsonl="$work/results.jsonl"
@@ -83,9 +84,12 @@ tamaas_version="$("$py" -c 'import tamaas; print(tamaas.__version__)' 2>/dev/nul
     echo "force control, window |x|,|y| <= 1.5a, N x N elements. tribo commit $commit, tamaas $tamaas_version;"
     echo "tolerance $tolerance for both (own definitions; see bench/README.md). Machine: $(nproc) cores, $cpu."
     echo "tribo: rayon on all cores; tamaas: PyPI wheel, sequential backend (one core), OMP_NUM_THREADS=${OMP_NUM_THREADS:-2}."
-    echo "Times: wall seconds of the solve alone (tribo's includes building the FFT operator); ratio = tribo s / tamaas s."
-    echo "Residual = sum p (g - min_contact g) / (sum p std h), tamaas's stopping measure; \"tamaas measure\""
-    echo "recomputes it for tribo's pressure with tamaas's operator."
+    echo "Load average (1, 5, 15 min) at the start: $load_start; at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
+    echo "(other work on the machine inflates the times: compare within one run)."
+    echo "Times: wall seconds of the solve alone (tribo's operator construction is apart, \"tribo operator s\"); ratio = tribo s / tamaas s."
+    echo "Residuals, each code's answer under both stopping measures: min-map = max |min(p/p_max, g/u_max)|"
+    echo "(tribo's); tamaas res. = sum p (g - min_contact g) / (sum p std h) (tamaas's), for tribo's pressure"
+    echo "computed with tamaas's operator. eps_avg: paper's eq. 17 against exact Hertz (same p_H in both)."
     echo
     "$py" "$here/table.py" "$jsonl"
     echo

@@ -19,17 +19,21 @@ Setup (checked against tamaas 2.9.0):
   second call PolonskyKeerRey silently solves the periodic problem.
 - Modulus: tamaas indents an elastic half-space (E, nu) with a rigid surface; its contact
   modulus is E_star = E / (1 - nu^2). We set nu = 0 and E = E* = 1.10440e11 Pa, so
-  model.E_star = E* of the two steel bodies. (In 2.9.0 the dcfft operator applied to a unit
+  model.E_star = E* of the two steel bodies (computed, not the rounded 1.10440e11: the window
+  is 1.5a, and a depends on E*, so both codes must use the same E* to have the same grid). (In 2.9.0 the dcfft operator applied to a unit
   pressure on one element gives exactly Love's centre value 8 c ln(1 + sqrt 2) / (pi E*) for a
   square of side 2c, and the point-load value far away: checked in `--check-operator`.)
 - Gap: tamaas takes the rigid surface's height (apex highest); its gap is u - surface + shift.
   We pass surface = -h with h = 50 x^2 + 60 y^2, i.e. the same initial separation as tribo.
 - Force control: `solve(mean_pressure)` with mean pressure F / L^2 (sum p dA = F checked).
+- Hertz: exact elliptic-integral solution (AGM), a = 5.29641e-4, b = 4.69031e-4 m,
+  p0 = 3.84404e9 Pa, as tribo's `HertzContact`: the same window and p_H in both codes.
 - Tolerance: tamaas stops when  sum_i p_i g_i / (sum_i p_i * std(h)) < tol, g the gap shifted
   so that its minimum over the contact set is 0 (read off `computeError()`); the returned
   value is the error at the last check, one update before the final pressure. `residual`
   below recomputes that measure on the final pressure with an exact gap, so that tribo-bench
-  can print the same number for tribo.
+  can print the same number for tribo. `minmap_residual` is tribo's stopping measure,
+  max_i |min(p_i / p_max, g_i / u_max)|, on the same pressure.
 - `--evaluate FILE` reads N*N little-endian f64 pressures in tribo's layout (x fastest) and
   prints the same accuracy and residual measures for them, computed with tamaas's operator:
   an independent check of another solver's answer.
@@ -53,10 +57,49 @@ import numpy as np
 import tamaas as tm
 
 # The paper's case (HALFSPACE.md sections 3.1 and 4).
-E_STAR = 1.10440e11  # Pa: E = 2.01e11, nu = 0.3 on both bodies
+E_STAR = 1.0 / (2.0 * (1.0 - 0.3**2) / 2.01e11)  # Pa: E = 2.01e11, nu = 0.3 on both bodies (1.10440e11)
 A_COEF, B_COEF = 50.0, 60.0  # h = A x^2 + B y^2, 1/m
 LOAD = 2000.0  # N
-HERTZ_A, HERTZ_B, HERTZ_P0 = 5.2964e-4, 4.6903e-4, 3.8440e9  # m, m, Pa
+HERTZ_A_REF, HERTZ_B_REF, HERTZ_P0_REF = 5.2964e-4, 4.6903e-4, 3.8440e9  # m, m, Pa (rounded)
+
+
+def elliptic_ke(m: float) -> tuple[float, float]:
+    """Complete elliptic integrals K(m), E(m) of parameter m = e^2, by the AGM."""
+    a, b, c = 1.0, math.sqrt(1.0 - m), math.sqrt(m)
+    total, power = 0.5 * c * c, 0.5
+    for _ in range(40):  # quadratic convergence: ~6 steps to round-off
+        if abs(c) <= 1e-16 * a:
+            break
+        a, b, c = 0.5 * (a + b), math.sqrt(a * b), 0.5 * (a - b)
+        power *= 2.0
+        total += power * c * c
+    k = math.pi / (2.0 * a)
+    return k, k * (1.0 - total)
+
+
+def hertz_exact(coef_a: float, coef_b: float, e_star: float, load: float) -> tuple[float, float, float, float]:
+    """Exact elliptical Hertz contact for h = A x^2 + B y^2, A < B (HALFSPACE.md 3.1):
+    long semi-axis a (along x), short b, p0, approach."""
+    ratio = coef_b / coef_a
+
+    def f(m: float) -> float:
+        k, e = elliptic_ke(m)
+        return (e / (1.0 - m) - k) / (k - e) - ratio
+
+    lo, hi = 1e-12, 1.0 - 1e-12  # f increases with m
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if f(mid) < 0.0 else (lo, mid)
+    m = 0.5 * (lo + hi)
+    k, e = elliptic_ke(m)
+    a = (3.0 * load * (k - e) / (2.0 * math.pi * e_star * m * coef_a)) ** (1.0 / 3.0)
+    b = a * math.sqrt(1.0 - m)
+    return a, b, 3.0 * load / (2.0 * math.pi * a * b), 3.0 * load * k / (2.0 * math.pi * a * e_star)
+
+
+HERTZ_A, HERTZ_B, HERTZ_P0, HERTZ_APPROACH = hertz_exact(A_COEF, B_COEF, E_STAR, LOAD)
+assert abs(HERTZ_A / HERTZ_A_REF - 1) < 1e-4 and abs(HERTZ_B / HERTZ_B_REF - 1) < 1e-4
+assert abs(HERTZ_P0 / HERTZ_P0_REF - 1) < 1e-4
 HALF_WIDTH = 1.5 * HERTZ_A  # m
 
 
@@ -116,8 +159,11 @@ def measures(model, p: np.ndarray, h: np.ndarray, xx: np.ndarray, yy: np.ndarray
     gap = u + h - approach
     shifted = gap - gap[contact].min() if contact.any() else gap
     p_h = hertz_pressure(xx, yy)
+    # tribo's stopping measure: max |min(p / p_max, g / u_max)| (min-map residual).
+    minmap = np.abs(np.minimum(p / p.max(), gap / np.abs(u).max())).max()
     return {
         "residual": float(np.sum(p * shifted) / (np.sum(p) * np.std(h))),
+        "minmap_residual": float(minmap),
         "eps_avg": float(np.mean(np.abs(p_h - p)) / HERTZ_P0),
         "eps_max": float(np.max(np.abs(p_h - p)) / HERTZ_P0),
         "max_pressure": float(p.max()),
@@ -178,6 +224,7 @@ def run(n: int, tolerance: float, max_iter: int) -> dict:
     return {
         "code": "tamaas",
         "version": tm.__version__,
+        "hertz": {"a": HERTZ_A, "b": HERTZ_B, "p0": HERTZ_P0, "approach": HERTZ_APPROACH},
         "n": n,
         "tolerance": tolerance,
         "seconds": seconds,

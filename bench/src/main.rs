@@ -3,7 +3,8 @@
 //! Solves the paper's half-space case (HALFSPACE.md section 4) once with tribo's
 //! Polonsky-Keer solver and prints one line of JSON. `seconds` is the iteration
 //! (`solve_normal_cg_with`), `operator_seconds` the FFT operator's construction, which
-//! `solve_normal_cg` does first; `--one-call` times `solve_normal_cg` as one piece instead.
+//! `solve_normal_cg` does first; `--one-call` times `solve_normal_cg` as one piece instead. `apply_seconds`: one FFT
+//! operator application (mean of 5, after the solve).
 //! `--pressure-out FILE` writes the pressure (f64 little-endian, x fastest) for
 //! `tamaas_case.py --evaluate`. One process per N, so that
 //! the peak memory (`VmHWM`) belongs to that N alone. `bench/halfspace.sh` runs it beside
@@ -178,10 +179,10 @@ fn run(args: &Args) -> Result<Value, String> {
 
     // `solve_normal_cg` = build the FFT operator (kernel spectrum) + `solve_normal_cg_with`.
     // The two are timed apart here; `--one-call` times `solve_normal_cg` itself.
-    let (operator_seconds, seconds, solved) = if args.one_call {
+    let (operator_seconds, apply_seconds, seconds, solved) = if args.one_call {
         let t = Instant::now();
         let solved = solve_normal_cg(&problem, &params);
-        (None, t.elapsed().as_secs_f64(), solved)
+        (None, None, t.elapsed().as_secs_f64(), solved)
     } else {
         let t = Instant::now();
         let operator = normal_compliance_operator(&grid, e_star);
@@ -196,7 +197,16 @@ fn run(args: &Args) -> Result<Value, String> {
             &params,
             &mut |_, _| {},
         );
-        (Some(operator_seconds), t.elapsed().as_secs_f64(), solved)
+        let seconds = t.elapsed().as_secs_f64();
+        // One operator application (the FFT convolution), mean of a few, after the solve.
+        let reps = 5;
+        let mut out = vec![0.0; grid.len()];
+        let t = Instant::now();
+        for _ in 0..reps {
+            operator.apply_into(&gap, &mut out, &mut workspace);
+        }
+        let apply_seconds = t.elapsed().as_secs_f64() / reps as f64;
+        (Some(operator_seconds), Some(apply_seconds), seconds, solved)
     };
     let sol = solved.map_err(|e| format!("solve_normal_cg failed after {seconds:.3} s: {e}"))?;
 
@@ -255,6 +265,7 @@ fn run(args: &Args) -> Result<Value, String> {
         "tolerance": params.tolerance,
         "seconds": seconds,
         "operator_seconds": operator_seconds,
+        "apply_seconds": apply_seconds,
         "setup_seconds": setup_seconds,
         "total_seconds": setup_seconds + operator_seconds.unwrap_or(0.0) + seconds,
         "threads": rayon_threads(),
