@@ -31,7 +31,11 @@ impl SurfaceGrid {
     pub fn centred(nx: usize, ny: usize, half_width_x: f64, half_width_y: f64) -> Result<Self> {
         for (field, n) in [("grid.nx", nx), ("grid.ny", ny)] {
             if n < 4 {
-                return Err(Error::invalid(field, n, "at least 4 elements per side are needed"));
+                return Err(Error::invalid(
+                    field,
+                    n,
+                    "at least 4 elements per side are needed",
+                ));
             }
             if n > MAX_ELEMENTS_PER_SIDE {
                 return Err(Error::invalid(
@@ -41,9 +45,16 @@ impl SurfaceGrid {
                 ));
             }
         }
-        for (field, w) in [("grid.half_width_x", half_width_x), ("grid.half_width_y", half_width_y)] {
+        for (field, w) in [
+            ("grid.half_width_x", half_width_x),
+            ("grid.half_width_y", half_width_y),
+        ] {
             if !(w.is_finite() && w > 0.0) {
-                return Err(Error::invalid(field, w, "the half width must be finite and > 0 (m)"));
+                return Err(Error::invalid(
+                    field,
+                    w,
+                    "the half width must be finite and > 0 (m)",
+                ));
             }
         }
         Ok(Self {

@@ -31,4 +31,4 @@ pub mod validation;
 
 pub use error::{Error, Result};
 pub use grid::SurfaceGrid;
-pub use material::{ElasticMaterial, composite_modulus};
+pub use material::{composite_modulus, ElasticMaterial};

@@ -35,7 +35,10 @@ impl ElasticMaterial {
                 "Poisson's ratio must be in (-1, 0.5)",
             ));
         }
-        Ok(Self { youngs_modulus, poisson_ratio })
+        Ok(Self {
+            youngs_modulus,
+            poisson_ratio,
+        })
     }
 
     /// Young's modulus E, Pa.
@@ -86,7 +89,10 @@ mod tests {
     #[test]
     fn bad_material_is_named() {
         let err = ElasticMaterial::named("body1", 2e11, 0.55).unwrap_err();
-        assert_eq!(err.to_string(), "body1.nu = 0.55: Poisson's ratio must be in (-1, 0.5)");
+        assert_eq!(
+            err.to_string(),
+            "body1.nu = 0.55: Poisson's ratio must be in (-1, 0.5)"
+        );
         assert!(ElasticMaterial::new(0.0, 0.3).is_err());
         assert!(ElasticMaterial::new(f64::NAN, 0.3).is_err());
         assert!(ElasticMaterial::new(1.0, -1.0).is_err());

@@ -1,1 +1,649 @@
-//! The verification suite: every analytic comparison the tests make, as table rows.
+//! The verification suite: every analytic comparison of the half-space contact path, as
+//! table rows (case, quantity, reference, computed, error, tolerance, pass).
+//!
+//! `tribo validate` prints these rows; the tests assert that every row passes, so the table
+//! and the test suite cannot drift apart. Each row states where its reference comes from
+//! and why its tolerance is what it is (see the `source` and the comments at each row).
+//! The suite runs in well under a second on two cores.
+
+use serde::{Deserialize, Serialize};
+
+use crate::analysis::hertz_error::pressure_errors;
+use crate::error::Result;
+use crate::grid::SurfaceGrid;
+use crate::kernels::bulk::BulkLoad;
+use crate::kernels::hertz::{GapCurvature, HertzContact};
+use crate::kernels::{elliptic, love};
+use crate::material::{composite_modulus, ElasticMaterial};
+use crate::operators::convolution::convolve_direct;
+use crate::operators::ConvolutionOperator;
+use crate::solvers::back_effect::{back_effect_curve, BackEffectPoint};
+use crate::solvers::normal::{
+    normal_compliance_kernel, solve_normal_active_set, solve_normal_cg, NormalContactParams,
+    NormalContactProblem, NormalContactSolution, NormalLoading,
+};
+
+/// How a row's error is measured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum ErrorMeasure {
+    /// |computed - reference| / |reference|.
+    Relative,
+    /// |computed - reference|.
+    Absolute,
+    /// The computed value is itself an error measure (reference 0); it must not exceed the
+    /// tolerance.
+    Bound,
+    /// The computed value is an observed convergence order; error = |computed - reference|.
+    Order,
+}
+
+/// One row of the verification table.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ValidationRow {
+    /// The case, e.g. "paper Sec. 3, 21x21, force control".
+    pub case: String,
+    /// The quantity compared, with its unit.
+    pub quantity: String,
+    /// Reference value.
+    pub reference: f64,
+    /// Computed value.
+    pub computed: f64,
+    /// Error by `measure`.
+    pub error: f64,
+    /// Tolerance on the error.
+    pub tolerance: f64,
+    /// How the error is measured.
+    pub measure: ErrorMeasure,
+    /// Where the reference comes from.
+    pub source: String,
+    /// Whether error <= tolerance (and everything is finite).
+    pub passed: bool,
+}
+
+impl ValidationRow {
+    fn new(
+        case: &str,
+        quantity: &str,
+        reference: f64,
+        computed: f64,
+        measure: ErrorMeasure,
+        tolerance: f64,
+        source: &str,
+    ) -> Self {
+        let error = match measure {
+            ErrorMeasure::Relative => ((computed - reference) / reference).abs(),
+            ErrorMeasure::Absolute | ErrorMeasure::Order => (computed - reference).abs(),
+            ErrorMeasure::Bound => computed.abs(),
+        };
+        Self {
+            case: case.to_string(),
+            quantity: quantity.to_string(),
+            reference,
+            computed,
+            error,
+            tolerance,
+            measure,
+            source: source.to_string(),
+            passed: error.is_finite() && error <= tolerance,
+        }
+    }
+}
+
+/// The paper's Sec. 3 roller/shaft data: E1 = E2 = 2.01e11 Pa, nu = 0.3; radii body 1
+/// (0.005, 0.05) m, body 2 (-0.01, 0.01) m (concave in the plane of R11: HALFSPACE.md 4).
+pub fn paper_case_curvature() -> Result<(GapCurvature, f64)> {
+    let steel = ElasticMaterial::new(2.01e11, 0.3)?;
+    let curvature = GapCurvature::from_radii([0.005, 0.05], [-0.01, 0.01], 0.0)?;
+    Ok((curvature, composite_modulus(&steel, &steel)))
+}
+
+/// Solve a Hertzian case on an `n x n` grid over `extent` long semi-axes.
+fn solve_hertzian(
+    curvature: &GapCurvature,
+    e_star: f64,
+    hertz: &HertzContact,
+    n: usize,
+    extent: f64,
+    loading: NormalLoading,
+    dense: bool,
+) -> Result<(SurfaceGrid, NormalContactSolution)> {
+    let half = extent * hertz.semi_major;
+    let grid = SurfaceGrid::centred(n, n, half, half)?;
+    let gap = grid.sample(|x, y| curvature.gap(x, y));
+    let problem = NormalContactProblem {
+        grid: &grid,
+        initial_gap: &gap,
+        composite_modulus: e_star,
+        loading,
+    };
+    let params = NormalContactParams::default();
+    let solution = if dense {
+        solve_normal_active_set(&problem, &params)?
+    } else {
+        solve_normal_cg(&problem, &params)?
+    };
+    Ok((grid, solution))
+}
+
+/// Rows of the influence-coefficient and Hertz kernels.
+pub fn kernel_rows() -> Result<Vec<ValidationRow>> {
+    let mut rows = Vec::new();
+    let src = "HALFSPACE.md 1.1 (quadrature of Boussinesq, 7 digits)";
+    // 7 printed digits: half a unit in the last place relative to the smallest entry used.
+    let tol = 1e-6;
+    let f_centre = love::rectangle_inverse_distance_integral(0.0, 0.0, 0.5, 0.5);
+    rows.push(ValidationRow::new(
+        "Love rectangle, unit square",
+        "F(0,0) = int dA/rho, m",
+        3.5254943,
+        f_centre,
+        ErrorMeasure::Relative,
+        tol,
+        src,
+    ));
+    for &(x, y, uz) in &[
+        (1.3, 0.4, 0.0838090),
+        (2.0, -1.1, 0.0492167),
+        (0.7, 0.9, 0.1017639),
+    ] {
+        let computed = love::pressure_displacement(x, y, 0.5, 0.5, 1.0, 0.3)[2];
+        rows.push(ValidationRow::new(
+            "Love rectangle, unit square, G = 1, nu = 0.3",
+            &format!("u_z at ({x}, {y}) per unit p"),
+            uz,
+            computed,
+            ErrorMeasure::Relative,
+            tol,
+            src,
+        ));
+    }
+    rows.push(ValidationRow::new(
+        "elliptic integrals",
+        "K(0.5)",
+        1.854_074_677_301_372,
+        elliptic::complete_first_kind(0.5),
+        ErrorMeasure::Relative,
+        1e-14,
+        "Abramowitz & Stegun table 17.1 (16 digits)",
+    ));
+    rows.push(ValidationRow::new(
+        "elliptic integrals",
+        "E(0.5)",
+        1.350_643_881_047_675_5,
+        elliptic::complete_second_kind(0.5),
+        ErrorMeasure::Relative,
+        1e-14,
+        "Abramowitz & Stegun table 17.1 (16 digits)",
+    ));
+
+    let (curvature, e_star) = paper_case_curvature()?;
+    let hertz = HertzContact::from_load(&curvature, e_star, 2000.0)?;
+    let case = "Hertz, paper Sec. 3 (A = 50, B = 60 1/m, F = 2000 N)";
+    let src = "HALFSPACE.md 4 (exact elliptic solution, 5 digits)";
+    for (quantity, reference, computed) in [
+        ("long semi-axis a, m", 5.2964e-4, hertz.semi_major),
+        ("short semi-axis b, m", 4.6903e-4, hertz.semi_minor),
+        ("max pressure p0, Pa", 3.8440e9, hertz.max_pressure),
+        ("approach delta, m", 2.7225e-5, hertz.approach),
+    ] {
+        // 5 significant digits quoted: 1e-4 relative.
+        rows.push(ValidationRow::new(
+            case,
+            quantity,
+            reference,
+            computed,
+            ErrorMeasure::Relative,
+            1e-4,
+            src,
+        ));
+    }
+    Ok(rows)
+}
+
+/// Row: the FFT operator against the direct O(N^2) sum with the Love kernel.
+pub fn operator_rows() -> Result<Vec<ValidationRow>> {
+    let mut rows = Vec::new();
+    for &(nx, ny) in &[(21usize, 21usize), (24, 17)] {
+        let grid = SurfaceGrid::centred(nx, ny, 1e-3, 0.8e-3)?;
+        let kernel = normal_compliance_kernel(&grid, 1.1e11);
+        let operator = ConvolutionOperator::new(&grid, &kernel);
+        let input: Vec<f64> = (0..grid.len())
+            .map(|i| 1e9 * (1.0 + ((i * 7919) % 97) as f64 / 97.0))
+            .collect();
+        let fast = operator.apply(&input);
+        let slow = convolve_direct(&grid, &kernel, &input);
+        let scale = slow.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let worst = fast
+            .iter()
+            .zip(&slow)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        rows.push(ValidationRow::new(
+            &format!("FFT operator {nx}x{ny} vs direct sum"),
+            "max |u_fft - u_direct| / max |u|",
+            0.0,
+            worst / scale,
+            ErrorMeasure::Bound,
+            // Round-off of the padded FFT: ~eps log2(N); 1e-12 leaves two orders of margin.
+            1e-12,
+            "direct O(N^2) sum of the same Love coefficients",
+        ));
+    }
+    Ok(rows)
+}
+
+/// Rows of the paper's Sec. 3 case: 21 x 21, force and approach control, both solvers.
+pub fn paper_case_rows() -> Result<Vec<ValidationRow>> {
+    let mut rows = Vec::new();
+    let (curvature, e_star) = paper_case_curvature()?;
+    let hertz = HertzContact::from_load(&curvature, e_star, 2000.0)?;
+    let (grid, cg) = solve_hertzian(
+        &curvature,
+        e_star,
+        &hertz,
+        21,
+        1.5,
+        NormalLoading::Force(2000.0),
+        false,
+    )?;
+    let (_, dense) = solve_hertzian(
+        &curvature,
+        e_star,
+        &hertz,
+        21,
+        1.5,
+        NormalLoading::Force(2000.0),
+        true,
+    )?;
+    let case = "paper Sec. 3, 21x21, F = 2000 N (CG)";
+    let errors = pressure_errors(&grid, &cg.pressure, &hertz);
+    rows.push(ValidationRow::new(
+        case,
+        "eps_avg (17)",
+        0.0,
+        errors.eps_avg,
+        ErrorMeasure::Bound,
+        4e-3,
+        "paper: eps_avg = 4e-3 at 21x21",
+    ));
+    rows.push(ValidationRow::new(
+        case,
+        "eps_max (17), all elements",
+        0.0,
+        errors.eps_max,
+        ErrorMeasure::Bound,
+        // The element centred on the contact edge carries ~0.1 p0 where Hertz gives 0
+        // (HALFSPACE.md 4: 9.9e-2); the paper's 5.9e-2 is not reachable with centre
+        // collocation, see analysis::hertz_error.
+        0.1,
+        "HALFSPACE.md 4: 9.9e-2 (independent active-set code)",
+    ));
+    rows.push(ValidationRow::new(
+        case,
+        "eps_max (17), centres inside the ellipse",
+        0.0,
+        errors.eps_max_inside,
+        ErrorMeasure::Bound,
+        // The paper's eps_max = 5.9e-2 (definition unstated); inside the ellipse 4.3e-2.
+        5.9e-2,
+        "paper: eps_max = 5.9e-2; HALFSPACE.md 4: 4.3e-2",
+    ));
+    // Discretization error of the approach at 21x21: -0.08 % (HALFSPACE.md 4); 2e-3 bounds it
+    // and fails for a wrong operator scale (a 1 % error in E* moves it by 1 %).
+    rows.push(ValidationRow::new(
+        case,
+        "approach delta, m",
+        hertz.approach,
+        cg.approach,
+        ErrorMeasure::Relative,
+        2e-3,
+        "exact Hertz",
+    ));
+    rows.push(ValidationRow::new(
+        case,
+        "max pressure, Pa",
+        hertz.max_pressure,
+        cg.max_pressure(),
+        ErrorMeasure::Relative,
+        // +0.12 % at 21x21 (HALFSPACE.md 4).
+        3e-3,
+        "exact Hertz",
+    ));
+    let diff = cg
+        .pressure
+        .iter()
+        .zip(&dense.pressure)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    rows.push(ValidationRow::new(
+        "paper Sec. 3, 21x21: CG vs active set (matrix inversion)",
+        "max |p_cg - p_dense| / p0",
+        0.0,
+        diff / hertz.max_pressure,
+        ErrorMeasure::Bound,
+        // Both stop at complementarity residual <= 1e-10; their pressures then differ by
+        // about that amount times the conditioning (~10 at 21x21).
+        1e-8,
+        "independent solver on the same discretization",
+    ));
+
+    let approach = 2.723e-5;
+    for (dense, name) in [(false, "CG"), (true, "active set")] {
+        let (_, s) = solve_hertzian(
+            &curvature,
+            e_star,
+            &hertz,
+            21,
+            1.5,
+            NormalLoading::Approach(approach),
+            dense,
+        )?;
+        rows.push(ValidationRow::new(
+            &format!("paper Sec. 3, 21x21, delta = 2.723e-5 m ({name})"),
+            "normal load F_N, N",
+            2000.0,
+            s.normal_load,
+            ErrorMeasure::Relative,
+            // Issue 2: within 0.5 % of 2000 N.
+            5e-3,
+            "paper: delta = 2.723e-5 m corresponds to 2000 N by Hertz",
+        ));
+    }
+    Ok(rows)
+}
+
+/// Errors of one refinement level of the paper's case.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ConvergenceLevel {
+    /// Elements per side.
+    pub n: usize,
+    /// Element size, m.
+    pub element_size: f64,
+    /// eps_avg (17).
+    pub eps_avg: f64,
+    /// |delta - delta_H| / delta_H.
+    pub approach_error: f64,
+    /// |A_c - pi a b| / (pi a b), with A_c the area of the elements in contact.
+    pub area_error: f64,
+    /// CG iterations.
+    pub iterations: usize,
+}
+
+/// The paper's case on refining grids (same window).
+pub fn paper_case_convergence(sizes: &[usize]) -> Result<Vec<ConvergenceLevel>> {
+    let (curvature, e_star) = paper_case_curvature()?;
+    let hertz = HertzContact::from_load(&curvature, e_star, 2000.0)?;
+    sizes
+        .iter()
+        .map(|&n| {
+            let (grid, s) = solve_hertzian(
+                &curvature,
+                e_star,
+                &hertz,
+                n,
+                1.5,
+                NormalLoading::Force(2000.0),
+                false,
+            )?;
+            let errors = pressure_errors(&grid, &s.pressure, &hertz);
+            Ok(ConvergenceLevel {
+                n,
+                element_size: grid.dx(),
+                eps_avg: errors.eps_avg,
+                approach_error: ((s.approach - hertz.approach) / hertz.approach).abs(),
+                area_error: ((s.contact_area - hertz.contact_area()) / hertz.contact_area()).abs(),
+                iterations: s.iterations,
+            })
+        })
+        .collect()
+}
+
+/// Observed order of convergence between two levels: ln(e1/e2) / ln(h1/h2).
+pub fn observed_order(e1: f64, e2: f64, h1: f64, h2: f64) -> f64 {
+    (e1 / e2).ln() / (h1 / h2).ln()
+}
+
+/// Rows of the convergence study 21 -> 41 -> 81 -> 161.
+pub fn convergence_rows() -> Result<Vec<ValidationRow>> {
+    let levels = paper_case_convergence(&[21, 41, 81, 161])?;
+    let mut rows = Vec::new();
+    let (first, last) = (levels[0], levels[levels.len() - 1]);
+    let case = "paper Sec. 3, refinement 21 -> 161";
+    // eps_avg: the edge elements (a fraction ~h of the contact) carry errors ~sqrt(h), so
+    // eps_avg = O(h^1.5); +-0.3 allows for the lattice effects of where centres fall.
+    rows.push(ValidationRow::new(
+        case,
+        "observed order of eps_avg",
+        1.5,
+        observed_order(
+            first.eps_avg,
+            last.eps_avg,
+            first.element_size,
+            last.element_size,
+        ),
+        ErrorMeasure::Order,
+        0.3,
+        "edge-singularity argument (analysis::hertz_error)",
+    ));
+    // The approach converges at second order (the load error of a piecewise-constant
+    // square-root pressure is O(h^2) in the interior, O(h^1.5) from the edge band).
+    rows.push(ValidationRow::new(
+        case,
+        "observed order of the approach error",
+        2.0,
+        observed_order(
+            first.approach_error,
+            last.approach_error,
+            first.element_size,
+            last.element_size,
+        ),
+        ErrorMeasure::Order,
+        0.5,
+        "exact Hertz approach",
+    ));
+    // The contact area of whole elements converges at first order (the boundary band).
+    rows.push(ValidationRow::new(
+        case,
+        "observed order of the contact-area error",
+        1.0,
+        observed_order(
+            first.area_error,
+            last.area_error,
+            first.element_size,
+            last.element_size,
+        ),
+        ErrorMeasure::Order,
+        0.5,
+        "exact Hertz area pi a b",
+    ));
+    Ok(rows)
+}
+
+/// Other Hertzian cases: circle, slender ellipses, dissimilar materials.
+pub fn hertz_family_rows() -> Result<Vec<ValidationRow>> {
+    let mut rows = Vec::new();
+    let steel = ElasticMaterial::new(2.1e11, 0.3)?;
+    // Grey/ductile cast iron and aluminium alloy: typical handbook values (e.g. ASM
+    // Handbook vol. 1 and 2): E = 1.2e11 Pa, nu = 0.26; E = 7.0e10 Pa, nu = 0.33.
+    let cast_iron = ElasticMaterial::new(1.2e11, 0.26)?;
+    let aluminium = ElasticMaterial::new(7.0e10, 0.33)?;
+    let cases: Vec<(String, GapCurvature, f64)> = vec![
+        (
+            "sphere R = 10 mm on flat, steel".into(),
+            GapCurvature::from_radii([0.01, 0.01], [f64::INFINITY; 2], 0.0)?,
+            composite_modulus(&steel, &steel),
+        ),
+        (
+            "ellipse b/a ~ 0.5, steel".into(),
+            GapCurvature::from_radii([0.01, 0.00356], [f64::INFINITY; 2], 0.0)?,
+            composite_modulus(&steel, &steel),
+        ),
+        (
+            "ellipse b/a ~ 0.2, steel".into(),
+            GapCurvature::from_radii([0.05, 0.0047], [f64::INFINITY; 2], 0.0)?,
+            composite_modulus(&steel, &steel),
+        ),
+        (
+            "paper radii, steel on cast iron".into(),
+            GapCurvature::from_radii([0.005, 0.05], [-0.01, 0.01], 0.0)?,
+            composite_modulus(&steel, &cast_iron),
+        ),
+        (
+            "paper radii, steel on aluminium".into(),
+            GapCurvature::from_radii([0.005, 0.05], [-0.01, 0.01], 0.0)?,
+            composite_modulus(&steel, &aluminium),
+        ),
+        (
+            "crossed cylinders at 30 deg, steel".into(),
+            GapCurvature::from_radii(
+                [0.01, f64::INFINITY],
+                [0.02, f64::INFINITY],
+                30f64.to_radians(),
+            )?,
+            composite_modulus(&steel, &steel),
+        ),
+    ];
+    let n = 81;
+    for (name, curvature, e_star) in cases {
+        let hertz = HertzContact::from_load(&curvature, e_star, 1000.0)?;
+        let extent = 1.3;
+        let (grid, s) = solve_hertzian(
+            &curvature,
+            e_star,
+            &hertz,
+            n,
+            extent,
+            NormalLoading::Force(1000.0),
+            false,
+        )?;
+        let errors = pressure_errors(&grid, &s.pressure, &hertz);
+        let (a, b) = (hertz.semi_major, hertz.semi_minor);
+        let case = format!("{name}, {n}x{n}, b/a = {:.3}", b / a);
+        // Tolerances scale with the discretization. `across` = elements across the short
+        // axis: the peak pressure and the approach are smooth functionals of the pressure,
+        // with errors ~ c / across^2 (c = 0.06 - 0.2 observed over b/a = 0.17 - 1); the
+        // bound 0.5 / across^2 (0.4 for the approach) fails for a 1 % modelling error.
+        let across = 2.0 * b / grid.dx();
+        rows.push(ValidationRow::new(
+            &case,
+            "max pressure, Pa",
+            hertz.max_pressure,
+            s.max_pressure(),
+            ErrorMeasure::Relative,
+            0.5 / (across * across),
+            "exact Hertz",
+        ));
+        rows.push(ValidationRow::new(
+            &case,
+            "approach, m",
+            hertz.approach,
+            s.approach,
+            ErrorMeasure::Relative,
+            0.4 / (across * across),
+            "exact Hertz",
+        ));
+        // eps_avg comes from the band of edge elements: (perimeter / dx) elements with errors
+        // ~ c sqrt(dx / b) p0, averaged over the window's (window area / dx^2) elements:
+        // eps_avg ~ c perimeter dx sqrt(dx / b) / window area, c ~ 0.08 observed; bound 0.2.
+        let perimeter =
+            std::f64::consts::PI * (3.0 * (a + b) - ((3.0 * a + b) * (a + 3.0 * b)).sqrt()); // Ramanujan
+        let window = 4.0 * (extent * a) * (extent * a);
+        let dx = grid.dx();
+        rows.push(ValidationRow::new(
+            &case,
+            "eps_avg (17)",
+            0.0,
+            errors.eps_avg,
+            ErrorMeasure::Bound,
+            0.2 * perimeter * dx * (dx / b).sqrt() / window,
+            "exact Hertz",
+        ));
+    }
+    Ok(rows)
+}
+
+/// The curve of the paper's Fig. 2a: F_N / F_N(0) at the fixed approach 2.723e-5 m
+/// against sigma_a / sigma_a,max (sigma_a,max = 6.4e8 Pa) for tension-compression and
+/// bending, on the paper's case (shaft radius R2 = 0.01 m), 41 x 41 elements over 1.5 a.
+pub fn back_effect_points(stress_ratios: &[f64]) -> Result<Vec<BackEffectPoint>> {
+    let (curvature, e_star) = paper_case_curvature()?;
+    let steel = ElasticMaterial::new(2.01e11, 0.3)?;
+    let hertz = HertzContact::from_load(&curvature, e_star, 2000.0)?;
+    let half = 1.5 * hertz.semi_major;
+    let grid = SurfaceGrid::centred(41, 41, half, half)?;
+    let gap = grid.sample(|x, y| curvature.gap(x, y));
+    let sigma_max = 6.4e8;
+    let mut loads = Vec::new();
+    for &r in stress_ratios {
+        loads.push(BulkLoad::TensionCompression {
+            stress: r * sigma_max,
+        });
+    }
+    for &r in stress_ratios {
+        loads.push(BulkLoad::Bending {
+            surface_stress: r * sigma_max,
+        });
+    }
+    back_effect_curve(
+        &grid,
+        &gap,
+        e_star,
+        &steel,
+        0.01,
+        2.723e-5,
+        &loads,
+        &NormalContactParams::default(),
+    )
+}
+
+/// Rows of the back effect (Fig. 2a): numerical against Hertz, and against the paper.
+pub fn back_effect_rows() -> Result<Vec<ValidationRow>> {
+    let points = back_effect_points(&[-1.0, 1.0])?;
+    let mut rows = Vec::new();
+    for p in &points {
+        let kind = match p.load {
+            BulkLoad::TensionCompression { .. } => "tension-compression",
+            BulkLoad::Bending { .. } => "bending",
+        };
+        let case = format!("Fig. 2a, {kind}, sigma = {:+.1e} Pa, 41x41", p.stress);
+        // Issue 3: the numerical curve within 0.5 percentage points of Hertz.
+        rows.push(ValidationRow::new(
+            &case,
+            "F/F0 numerical vs Hertz (1 + u_z/delta0)^1.5",
+            p.force_ratio_hertz,
+            p.force_ratio,
+            ErrorMeasure::Absolute,
+            5e-3,
+            "Hertz scaling F ~ delta^1.5 with (18)",
+        ));
+        // The paper's figure: +60 % / -50 % (tension-compression), +27 % / -25 % (bending),
+        // read off a plot. Bending is reproduced to its rounding (1 point); tension-
+        // compression differs by ~3 points at both ends, which the 3/2-power law cannot
+        // remove with R2 = 10 mm (it would need R2 ~ 10.5 mm): HALFSPACE.md section 5.
+        let (paper, tol) = match (kind, p.stress > 0.0) {
+            ("bending", true) => (0.75, 0.01),
+            ("bending", false) => (1.27, 0.01),
+            (_, true) => (0.50, 0.035),
+            (_, false) => (1.60, 0.035),
+        };
+        rows.push(ValidationRow::new(
+            &case,
+            "F/F0 numerical vs the paper's Fig. 2a",
+            paper,
+            p.force_ratio,
+            ErrorMeasure::Absolute,
+            tol,
+            "paper Sec. 3, Fig. 2a (read off the figure, rounded)",
+        ));
+    }
+    Ok(rows)
+}
+
+/// The whole suite, in table order.
+pub fn run_all() -> Result<Vec<ValidationRow>> {
+    let mut rows = kernel_rows()?;
+    rows.extend(operator_rows()?);
+    rows.extend(paper_case_rows()?);
+    rows.extend(convergence_rows()?);
+    rows.extend(hertz_family_rows()?);
+    rows.extend(back_effect_rows()?);
+    Ok(rows)
+}

@@ -36,7 +36,10 @@ impl DenseInfluence {
             let (jx, jy) = ((j % nx) as isize, (j / nx) as isize);
             kernel(ix - jx, iy - jy)
         });
-        Ok(Self { grid: *grid, matrix })
+        Ok(Self {
+            grid: *grid,
+            matrix,
+        })
     }
 
     /// The grid.

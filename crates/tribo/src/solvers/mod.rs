@@ -1,8 +1,9 @@
 //! Layer 3: contact solvers. Each returns a solution that carries its convergence record.
 
+pub mod back_effect;
 pub mod normal;
 
 pub use normal::{
-    NormalContactParams, NormalContactProblem, NormalContactSolution, NormalLoading,
-    solve_normal_active_set, solve_normal_cg,
+    solve_normal_active_set, solve_normal_cg, NormalContactParams, NormalContactProblem,
+    NormalContactSolution, NormalLoading,
 };

@@ -18,8 +18,8 @@
 //!
 //! Both stop on the same measure (see [`complementarity_residual`]) and report it.
 
-use faer::{Mat, Side};
 use faer::linalg::solvers::Solve;
+use faer::{Mat, Side};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
@@ -49,7 +49,10 @@ pub struct NormalContactParams {
 
 impl Default for NormalContactParams {
     fn default() -> Self {
-        Self { tolerance: 1e-10, max_iterations: 10_000 }
+        Self {
+            tolerance: 1e-10,
+            max_iterations: 10_000,
+        }
     }
 }
 
@@ -57,10 +60,18 @@ impl NormalContactParams {
     /// Check the parameters (tolerance finite in (0, 1), at least one iteration).
     pub fn validate(&self) -> Result<()> {
         if !(self.tolerance.is_finite() && self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(Error::invalid("solver.tolerance", self.tolerance, "must be in (0, 1)"));
+            return Err(Error::invalid(
+                "solver.tolerance",
+                self.tolerance,
+                "must be in (0, 1)",
+            ));
         }
         if self.max_iterations == 0 {
-            return Err(Error::invalid("solver.max_iterations", 0, "must be at least 1"));
+            return Err(Error::invalid(
+                "solver.max_iterations",
+                0,
+                "must be at least 1",
+            ));
         }
         Ok(())
     }
@@ -114,14 +125,28 @@ impl NormalContactSolution {
 /// The combined surface compliance of two bodies for uniform pressure on the elements of
 /// `grid`: `K(di, dj) = F(di dx, dj dy) / (pi E*)` (Love 1929; Johnson 1985 eq. (3.25);
 /// HALFSPACE.md 1.1), m/Pa. This is the operator of the paper's (16) discretized.
-pub fn normal_compliance_kernel(grid: &SurfaceGrid, composite_modulus: f64) -> impl Fn(isize, isize) -> f64 + Sync {
+pub fn normal_compliance_kernel(
+    grid: &SurfaceGrid,
+    composite_modulus: f64,
+) -> impl Fn(isize, isize) -> f64 + Sync {
     let (dx, dy) = (grid.dx(), grid.dy());
-    move |di, dj| love::normal_compliance(di as f64 * dx, dj as f64 * dy, 0.5 * dx, 0.5 * dy, composite_modulus)
+    move |di, dj| {
+        love::normal_compliance(
+            di as f64 * dx,
+            dj as f64 * dy,
+            0.5 * dx,
+            0.5 * dy,
+            composite_modulus,
+        )
+    }
 }
 
 /// The FFT compliance operator of the normal problem on `grid` (build once, reuse for many
 /// loads).
-pub fn normal_compliance_operator(grid: &SurfaceGrid, composite_modulus: f64) -> ConvolutionOperator {
+pub fn normal_compliance_operator(
+    grid: &SurfaceGrid,
+    composite_modulus: f64,
+) -> ConvolutionOperator {
     ConvolutionOperator::new(grid, normal_compliance_kernel(grid, composite_modulus))
 }
 
@@ -142,20 +167,26 @@ pub fn complementarity_residual(pressure: &[f64], gap: &[f64], displacement_scal
     if !(p_max > 0.0 && displacement_scale > 0.0) {
         return f64::INFINITY;
     }
-    pressure
-        .iter()
-        .zip(gap)
-        .fold(0.0f64, |m, (&p, &g)| m.max((p / p_max).min(g / displacement_scale).abs()))
+    pressure.iter().zip(gap).fold(0.0f64, |m, (&p, &g)| {
+        m.max((p / p_max).min(g / displacement_scale).abs())
+    })
 }
 
-fn validate_problem(problem: &NormalContactProblem<'_>, params: &NormalContactParams) -> Result<()> {
+fn validate_problem(
+    problem: &NormalContactProblem<'_>,
+    params: &NormalContactParams,
+) -> Result<()> {
     params.validate()?;
     let grid = problem.grid;
     if problem.initial_gap.len() != grid.len() {
         return Err(Error::invalid(
             "initial_gap",
             format!("{} values", problem.initial_gap.len()),
-            format!("must hold one value per element ({} x {})", grid.nx(), grid.ny()),
+            format!(
+                "must hold one value per element ({} x {})",
+                grid.nx(),
+                grid.ny()
+            ),
         ));
     }
     if let Some(i) = problem.initial_gap.iter().position(|h| !h.is_finite()) {
@@ -167,17 +198,28 @@ fn validate_problem(problem: &NormalContactProblem<'_>, params: &NormalContactPa
     }
     let e_star = problem.composite_modulus;
     if !(e_star.is_finite() && e_star > 0.0) {
-        return Err(Error::invalid("composite_modulus", e_star, "must be finite and > 0 (Pa)"));
+        return Err(Error::invalid(
+            "composite_modulus",
+            e_star,
+            "must be finite and > 0 (Pa)",
+        ));
     }
     match problem.loading {
-        NormalLoading::Force(f) if !(f.is_finite() && f > 0.0) => {
-            Err(Error::invalid("contact.load", f, "the normal force must be finite and > 0 (N)"))
-        }
-        NormalLoading::Approach(d) if !d.is_finite() => {
-            Err(Error::invalid("contact.approach", d, "the approach must be finite (m)"))
-        }
+        NormalLoading::Force(f) if !(f.is_finite() && f > 0.0) => Err(Error::invalid(
+            "contact.load",
+            f,
+            "the normal force must be finite and > 0 (N)",
+        )),
+        NormalLoading::Approach(d) if !d.is_finite() => Err(Error::invalid(
+            "contact.approach",
+            d,
+            "the approach must be finite (m)",
+        )),
         NormalLoading::Approach(d) => {
-            let h_min = problem.initial_gap.iter().fold(f64::INFINITY, |m, &h| m.min(h));
+            let h_min = problem
+                .initial_gap
+                .iter()
+                .fold(f64::INFINITY, |m, &h| m.min(h));
             if d <= h_min {
                 Err(Error::NoContact {
                     detail: format!(
@@ -223,7 +265,9 @@ fn finish(
     let area = grid.element_area();
     let contact_elements = pressure.iter().filter(|&&p| p > 0.0).count();
     if contact_elements == 0 {
-        return Err(Error::NoContact { detail: "the solution has no element in contact".into() });
+        return Err(Error::NoContact {
+            detail: "the solution has no element in contact".into(),
+        });
     }
     let normal_load = area * pressure.iter().sum::<f64>();
     Ok(NormalContactSolution {
@@ -241,11 +285,21 @@ fn finish(
 /// Solve by the constrained conjugate gradient method of Polonsky & Keer (1999) on the FFT
 /// operator. See [`solve_normal_cg_with`] for the fast path with a prebuilt operator and a
 /// progress observer.
-pub fn solve_normal_cg(problem: &NormalContactProblem<'_>, params: &NormalContactParams) -> Result<NormalContactSolution> {
+pub fn solve_normal_cg(
+    problem: &NormalContactProblem<'_>,
+    params: &NormalContactParams,
+) -> Result<NormalContactSolution> {
     validate_problem(problem, params)?;
     let operator = normal_compliance_operator(problem.grid, problem.composite_modulus);
     let mut workspace = operator.workspace();
-    solve_normal_cg_with(&operator, &mut workspace, problem.initial_gap, problem.loading, params, &mut |_, _| {})
+    solve_normal_cg_with(
+        &operator,
+        &mut workspace,
+        problem.initial_gap,
+        problem.loading,
+        params,
+        &mut |_, _| {},
+    )
 }
 
 /// The Polonsky-Keer constrained conjugate gradient method with a caller-built compliance
@@ -268,7 +322,12 @@ pub fn solve_normal_cg_with(
 ) -> Result<NormalContactSolution> {
     let grid = *operator.grid();
     validate_problem(
-        &NormalContactProblem { grid: &grid, initial_gap, composite_modulus: 1.0, loading },
+        &NormalContactProblem {
+            grid: &grid,
+            initial_gap,
+            composite_modulus: 1.0,
+            loading,
+        },
         params,
     )?;
     let n = grid.len();
@@ -280,7 +339,10 @@ pub fn solve_normal_cg_with(
         // Uniform pressure over the window carrying the load (Polonsky & Keer's start).
         NormalLoading::Force(force) => vec![force / (n as f64 * area); n],
         // Jacobi guess: the pressure that closes each element's interpenetration alone.
-        NormalLoading::Approach(delta) => h.iter().map(|&hi| ((delta - hi) / diagonal).max(0.0)).collect(),
+        NormalLoading::Approach(delta) => h
+            .iter()
+            .map(|&hi| ((delta - hi) / diagonal).max(0.0))
+            .collect(),
     };
     let mut displacement = vec![0.0; n];
     let mut gap = vec![0.0; n];
@@ -294,6 +356,9 @@ pub fn solve_normal_cg_with(
     // linear then), halving the FFTs per iteration. A full recomputation every
     // `REFRESH_INTERVAL` steps and before accepting convergence bounds the drift.
     const REFRESH_INTERVAL: usize = 32;
+    // A sparse correction costs one O(N) pass; beyond a few, one FFT product is cheaper.
+    const MAX_SPARSE_CORRECTIONS: usize = 6;
+    let mut corrections: Vec<(usize, f64)> = Vec::with_capacity(MAX_SPARSE_CORRECTIONS + 1);
     let mut fresh = false;
     let mut since_refresh = 0usize;
 
@@ -337,7 +402,9 @@ pub fn solve_normal_cg_with(
             break;
         }
         if n_contact == 0 {
-            return Err(Error::NoContact { detail: "no element carries pressure".into() });
+            return Err(Error::NoContact {
+                detail: "no element carries pressure".into(),
+            });
         }
         iteration += 1;
 
@@ -350,7 +417,11 @@ pub fn solve_normal_cg_with(
         }
         let beta = if conjugate { norm / norm_old } else { 0.0 };
         for i in 0..n {
-            direction[i] = if pressure[i] > 0.0 { gap[i] + beta * direction[i] } else { 0.0 };
+            direction[i] = if pressure[i] > 0.0 {
+                gap[i] + beta * direction[i]
+            } else {
+                0.0
+            };
         }
         norm_old = norm;
 
@@ -359,7 +430,11 @@ pub fn solve_normal_cg_with(
         // set (the approach adjusts to keep the load).
         let response_mean = match loading {
             NormalLoading::Force(_) => {
-                (0..n).filter(|&i| pressure[i] > 0.0).map(|i| response[i]).sum::<f64>() / n_contact as f64
+                (0..n)
+                    .filter(|&i| pressure[i] > 0.0)
+                    .map(|i| response[i])
+                    .sum::<f64>()
+                    / n_contact as f64
             }
             NormalLoading::Approach(_) => 0.0,
         };
@@ -370,7 +445,7 @@ pub fn solve_normal_cg_with(
                 den += (response[i] - response_mean) * direction[i];
             }
         }
-        if !(den > 0.0) {
+        if den.is_nan() || den <= 0.0 {
             return Err(Error::Numerical {
                 context: "Polonsky-Keer CG",
                 detail: format!("non-positive curvature {den:e} along the search direction"),
@@ -379,20 +454,27 @@ pub fn solve_normal_cg_with(
         let step = num / den;
 
         // Step, projection onto p >= 0, re-entry of overlapping points.
+        // `corrections` records where the new pressure departs from the linear step
+        // p - step t (projection and re-entry), for the incremental displacement update.
         let mut overlap = false;
-        let mut clipped = false;
+        corrections.clear();
         for i in 0..n {
             if pressure[i] > 0.0 {
                 let p = pressure[i] - step * direction[i];
                 if p < 0.0 {
-                    clipped = true;
                     pressure[i] = 0.0;
+                    if corrections.len() <= MAX_SPARSE_CORRECTIONS {
+                        corrections.push((i, -p));
+                    }
                 } else {
                     pressure[i] = p;
                 }
             } else if gap[i] < 0.0 {
                 pressure[i] = -step * gap[i];
                 overlap = true;
+                if corrections.len() <= MAX_SPARSE_CORRECTIONS {
+                    corrections.push((i, pressure[i]));
+                }
             }
         }
         conjugate = !overlap;
@@ -400,7 +482,7 @@ pub fn solve_normal_cg_with(
         let mut scale = 1.0;
         if let NormalLoading::Force(force) = loading {
             let total = area * pressure.iter().sum::<f64>();
-            if !(total > 0.0) {
+            if total.is_nan() || total <= 0.0 {
                 return Err(Error::Numerical {
                     context: "Polonsky-Keer CG",
                     detail: "the pressure vanished during the iteration".into(),
@@ -411,12 +493,19 @@ pub fn solve_normal_cg_with(
                 *p *= scale;
             }
         }
-        if overlap || clipped || since_refresh + 1 >= REFRESH_INTERVAL {
+        if corrections.len() > MAX_SPARSE_CORRECTIONS || since_refresh + 1 >= REFRESH_INTERVAL {
             fresh = false;
         } else {
-            // p_new = scale (p - step t) exactly, so K p_new = scale (K p - step K t).
+            // p_new = scale (p - step t + c) with c sparse, so
+            // K p_new = scale (K p - step K t + K c), K c by direct sums over few sources.
             for (u, r) in displacement.iter_mut().zip(&response) {
-                *u = scale * (*u - step * r);
+                *u -= step * r;
+            }
+            for &(i, c) in &corrections {
+                operator.add_source(i, c, &mut displacement);
+            }
+            for u in displacement.iter_mut() {
+                *u *= scale;
             }
             since_refresh += 1;
         }
@@ -436,10 +525,16 @@ pub fn solve_normal_cg_with(
 /// Schur complement of the bordered system); elements with negative pressure leave the set,
 /// elements outside it with negative gap enter. For grids up to
 /// [`crate::operators::dense::MAX_DENSE_ELEMENTS`] elements.
-pub fn solve_normal_active_set(problem: &NormalContactProblem<'_>, params: &NormalContactParams) -> Result<NormalContactSolution> {
+pub fn solve_normal_active_set(
+    problem: &NormalContactProblem<'_>,
+    params: &NormalContactParams,
+) -> Result<NormalContactSolution> {
     validate_problem(problem, params)?;
     let grid = *problem.grid;
-    let dense = DenseInfluence::new(&grid, normal_compliance_kernel(&grid, problem.composite_modulus))?;
+    let dense = DenseInfluence::new(
+        &grid,
+        normal_compliance_kernel(&grid, problem.composite_modulus),
+    )?;
     let matrix = dense.matrix();
     let n = grid.len();
     let area = grid.element_area();
@@ -457,7 +552,9 @@ pub fn solve_normal_active_set(problem: &NormalContactProblem<'_>, params: &Norm
         let index: Vec<usize> = (0..n).filter(|&i| active[i]).collect();
         let nc = index.len();
         if nc == 0 {
-            return Err(Error::NoContact { detail: "the active set emptied".into() });
+            return Err(Error::NoContact {
+                detail: "the active set emptied".into(),
+            });
         }
         let block = Mat::from_fn(nc, nc, |a, b| matrix[(index[a], index[b])]);
         let cholesky = block.llt(Side::Lower).map_err(|e| Error::Numerical {

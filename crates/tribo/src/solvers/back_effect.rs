@@ -1,0 +1,100 @@
+//! The back effect of bulk loading on the contact (the paper's Sec. 3, (18), Fig. 2a): at a
+//! fixed rigid approach of roller and shaft, a bulk stress sigma moves the shaft surface by
+//! u_z (18) and so changes the contact force.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::grid::SurfaceGrid;
+use crate::kernels::bulk::{hertz_force_ratio, BulkLoad};
+use crate::material::ElasticMaterial;
+use crate::solvers::normal::{
+    normal_compliance_operator, solve_normal_cg_with, NormalContactParams, NormalLoading,
+};
+
+/// One point of the curve of Fig. 2a.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct BackEffectPoint {
+    /// The bulk load.
+    pub load: BulkLoad,
+    /// Axial stress at the contact, Pa.
+    pub stress: f64,
+    /// Change of the elastic approach u_z (18), m.
+    pub approach_change: f64,
+    /// Contact force from the numerical solution, N.
+    pub normal_load: f64,
+    /// F / F(sigma = 0), numerical.
+    pub force_ratio: f64,
+    /// F / F(sigma = 0) by the Hertz estimate `(1 + u_z / delta_0)^(3/2)`.
+    pub force_ratio_hertz: f64,
+    /// CG iterations of this point.
+    pub iterations: usize,
+}
+
+/// The contact at a fixed rigid approach `initial_approach` (m) under the bulk loads
+/// `loads`: the contact force for each (approach control at `delta_0 + u_z`), relative to
+/// the force without bulk load. One FFT operator serves all points.
+///
+/// `initial_gap` is sampled on `grid` (m), `composite_modulus` is E* (Pa), `shaft` and
+/// `shaft_radius` (m) define u_z by (18).
+#[allow(clippy::too_many_arguments)]
+pub fn back_effect_curve(
+    grid: &SurfaceGrid,
+    initial_gap: &[f64],
+    composite_modulus: f64,
+    shaft: &ElasticMaterial,
+    shaft_radius: f64,
+    initial_approach: f64,
+    loads: &[BulkLoad],
+    params: &NormalContactParams,
+) -> Result<Vec<BackEffectPoint>> {
+    if !(initial_approach.is_finite() && initial_approach > 0.0) {
+        return Err(Error::invalid(
+            "contact.approach",
+            initial_approach,
+            "must be finite and > 0 (m)",
+        ));
+    }
+    let operator = normal_compliance_operator(grid, composite_modulus);
+    let mut workspace = operator.workspace();
+    let reference = solve_normal_cg_with(
+        &operator,
+        &mut workspace,
+        initial_gap,
+        NormalLoading::Approach(initial_approach),
+        params,
+        &mut |_, _| {},
+    )?;
+    loads
+        .iter()
+        .map(|load| {
+            let change = load.approach_change(shaft, shaft_radius)?;
+            let approach = initial_approach + change;
+            let (normal_load, iterations) = if approach <= 0.0 {
+                (0.0, 0)
+            } else {
+                match solve_normal_cg_with(
+                    &operator,
+                    &mut workspace,
+                    initial_gap,
+                    NormalLoading::Approach(approach),
+                    params,
+                    &mut |_, _| {},
+                ) {
+                    Ok(s) => (s.normal_load, s.iterations),
+                    Err(Error::NoContact { .. }) => (0.0, 0),
+                    Err(e) => return Err(e),
+                }
+            };
+            Ok(BackEffectPoint {
+                load: *load,
+                stress: load.surface_stress(),
+                approach_change: change,
+                normal_load,
+                force_ratio: normal_load / reference.normal_load,
+                force_ratio_hertz: hertz_force_ratio(change, initial_approach),
+                iterations,
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,238 @@
+//! Normal contact: the verification table, convergence under refinement, and the errors a
+//! solver must raise. Every number asserted here has its reference and tolerance stated in
+//! `tribo::validation` (one source for `tribo validate` and the tests).
+
+use tribo::kernels::hertz::{GapCurvature, HertzContact};
+use tribo::solvers::normal::*;
+use tribo::validation::{self, ValidationRow};
+use tribo::{Error, SurfaceGrid};
+
+fn assert_rows(rows: &[ValidationRow]) {
+    let failed: Vec<_> = rows.iter().filter(|r| !r.passed).collect();
+    assert!(failed.is_empty(), "failed rows: {failed:#?}");
+}
+
+#[test]
+fn kernel_rows_pass() {
+    assert_rows(&validation::kernel_rows().unwrap());
+}
+
+#[test]
+fn operator_rows_pass() {
+    assert_rows(&validation::operator_rows().unwrap());
+}
+
+#[test]
+fn paper_case_rows_pass() {
+    let rows = validation::paper_case_rows().unwrap();
+    assert_rows(&rows);
+    // The independent implementation of HALFSPACE.md 4 gets eps_avg = 3.7e-3 at 21x21 with
+    // 147 elements in contact; ours must agree to the digits quoted.
+    let eps_avg = rows
+        .iter()
+        .find(|r| r.quantity == "eps_avg (17)")
+        .unwrap()
+        .computed;
+    assert!((eps_avg - 3.7e-3).abs() < 0.05e-3, "{eps_avg}");
+}
+
+#[test]
+fn convergence_rows_pass_and_errors_fall_at_every_level() {
+    assert_rows(&validation::convergence_rows().unwrap());
+    let levels = validation::paper_case_convergence(&[21, 41, 81, 161]).unwrap();
+    for pair in levels.windows(2) {
+        assert!(pair[1].eps_avg < pair[0].eps_avg, "{pair:?}");
+        assert!(pair[1].approach_error < pair[0].approach_error, "{pair:?}");
+        assert!(pair[1].area_error < pair[0].area_error, "{pair:?}");
+    }
+}
+
+#[test]
+fn hertz_family_rows_pass() {
+    assert_rows(&validation::hertz_family_rows().unwrap());
+}
+
+fn paper_problem(n: usize, extent: f64) -> (SurfaceGrid, Vec<f64>, f64, HertzContact) {
+    let (curvature, e_star) = validation::paper_case_curvature().unwrap();
+    let hertz = HertzContact::from_load(&curvature, e_star, 2000.0).unwrap();
+    let half = extent * hertz.semi_major;
+    let grid = SurfaceGrid::centred(n, n, half, half).unwrap();
+    let gap = grid.sample(|x, y| curvature.gap(x, y));
+    (grid, gap, e_star, hertz)
+}
+
+#[test]
+fn solvers_agree_under_approach_control_and_complementarity_holds() {
+    let (grid, gap, e_star, _) = paper_problem(25, 1.5);
+    let problem = NormalContactProblem {
+        grid: &grid,
+        initial_gap: &gap,
+        composite_modulus: e_star,
+        loading: NormalLoading::Approach(2.723e-5),
+    };
+    let params = NormalContactParams::default();
+    let cg = solve_normal_cg(&problem, &params).unwrap();
+    let dense = solve_normal_active_set(&problem, &params).unwrap();
+    let p0 = cg.max_pressure();
+    for (a, b) in cg.pressure.iter().zip(&dense.pressure) {
+        // Both at residual <= 1e-10; the pressures agree to ~10x that.
+        assert!((a - b).abs() <= 1e-8 * p0);
+    }
+    assert_eq!(cg.contact_elements, dense.contact_elements);
+    // Complementarity on the returned fields: p >= 0; gap >= -tol u_max; gap ~ 0 in contact.
+    let u_scale = 2.723e-5;
+    for (&p, &g) in cg.pressure.iter().zip(&cg.gap) {
+        assert!(p >= 0.0);
+        assert!(g >= -1e-9 * u_scale);
+        if p > 0.0 {
+            assert!(g.abs() <= 1e-9 * u_scale);
+        }
+    }
+}
+
+#[test]
+fn serial_equals_parallel() {
+    // The FFT path splits rows and columns over threads; each output is computed by the same
+    // arithmetic regardless of the split, so one thread and two give identical bits.
+    let (grid, gap, e_star, _) = paper_problem(48, 1.5);
+    let problem = NormalContactProblem {
+        grid: &grid,
+        initial_gap: &gap,
+        composite_modulus: e_star,
+        loading: NormalLoading::Force(2000.0),
+    };
+    let params = NormalContactParams::default();
+    let serial = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let parallel = rayon::ThreadPoolBuilder::new()
+        .num_threads(3)
+        .build()
+        .unwrap();
+    let a = serial.install(|| solve_normal_cg(&problem, &params).unwrap());
+    let b = parallel.install(|| solve_normal_cg(&problem, &params).unwrap());
+    assert_eq!(a.pressure, b.pressure);
+    assert_eq!(a.iterations, b.iterations);
+}
+
+#[test]
+fn a_window_the_contact_reaches_is_refused() {
+    let (grid, gap, e_star, _) = paper_problem(21, 0.8);
+    let problem = NormalContactProblem {
+        grid: &grid,
+        initial_gap: &gap,
+        composite_modulus: e_star,
+        loading: NormalLoading::Force(2000.0),
+    };
+    for result in [
+        solve_normal_cg(&problem, &NormalContactParams::default()),
+        solve_normal_active_set(&problem, &NormalContactParams::default()),
+    ] {
+        match result {
+            Err(Error::ContactReachesWindow { .. }) => {}
+            other => panic!("expected ContactReachesWindow, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn an_approach_without_contact_is_refused() {
+    let (grid, gap, e_star, _) = paper_problem(21, 1.5);
+    for approach in [-1e-6, 0.0] {
+        let problem = NormalContactProblem {
+            grid: &grid,
+            initial_gap: &gap,
+            composite_modulus: e_star,
+            loading: NormalLoading::Approach(approach),
+        };
+        assert!(matches!(
+            solve_normal_cg(&problem, &NormalContactParams::default()),
+            Err(Error::NoContact { .. })
+        ));
+    }
+}
+
+#[test]
+fn bad_loads_name_the_field() {
+    let (grid, gap, e_star, _) = paper_problem(21, 1.5);
+    for (loading, field) in [
+        (NormalLoading::Force(0.0), "contact.load"),
+        (NormalLoading::Force(-5.0), "contact.load"),
+        (NormalLoading::Force(f64::NAN), "contact.load"),
+        (NormalLoading::Approach(f64::INFINITY), "contact.approach"),
+    ] {
+        let problem = NormalContactProblem {
+            grid: &grid,
+            initial_gap: &gap,
+            composite_modulus: e_star,
+            loading,
+        };
+        match solve_normal_cg(&problem, &NormalContactParams::default()) {
+            Err(Error::InvalidParameter { field: f, .. }) => assert_eq!(f, field),
+            other => panic!("expected InvalidParameter({field}), got {other:?}"),
+        }
+    }
+    let short = vec![0.0; 10];
+    let problem = NormalContactProblem {
+        grid: &grid,
+        initial_gap: &short,
+        composite_modulus: e_star,
+        loading: NormalLoading::Force(1.0),
+    };
+    assert!(matches!(
+        solve_normal_cg(&problem, &NormalContactParams::default()),
+        Err(Error::InvalidParameter { .. })
+    ));
+}
+
+#[test]
+fn stopping_early_is_an_error_with_the_residual() {
+    let (grid, gap, e_star, _) = paper_problem(41, 1.5);
+    let problem = NormalContactProblem {
+        grid: &grid,
+        initial_gap: &gap,
+        composite_modulus: e_star,
+        loading: NormalLoading::Force(2000.0),
+    };
+    let params = NormalContactParams {
+        tolerance: 1e-10,
+        max_iterations: 3,
+    };
+    match solve_normal_cg(&problem, &params) {
+        Err(Error::NotConverged {
+            iterations,
+            residual,
+            tolerance,
+            ..
+        }) => {
+            assert_eq!(iterations, 3);
+            assert!(residual > tolerance && residual.is_finite());
+        }
+        other => panic!("expected NotConverged, got {other:?}"),
+    }
+}
+
+#[test]
+fn curvature_from_radii_refuses_flat_pairs() {
+    assert!(GapCurvature::from_radii([f64::INFINITY; 2], [f64::INFINITY; 2], 0.0).is_err());
+    assert!(GapCurvature::from_radii([0.0, 0.01], [0.01, 0.01], 0.0).is_err());
+}
+
+#[test]
+fn back_effect_rows_pass() {
+    assert_rows(&validation::back_effect_rows().unwrap());
+}
+
+#[test]
+fn back_effect_curve_is_monotone_and_passes_through_one() {
+    // Compression raises the force, tension lowers it, monotonically; sigma = 0 gives 1.
+    let ratios = [-1.0, -0.5, 0.0, 0.5, 1.0];
+    let points = validation::back_effect_points(&ratios).unwrap();
+    for kind in points.chunks(ratios.len()) {
+        assert!((kind[2].force_ratio - 1.0).abs() < 1e-12);
+        for pair in kind.windows(2) {
+            assert!(pair[1].force_ratio < pair[0].force_ratio, "{pair:?}");
+        }
+    }
+}
