@@ -74,6 +74,11 @@ done
 
 mkdir -p "$here/results"
 out="$here/results/halfspace-$(date +%Y-%m-%d).md"
+k=2
+while [ -e "$out" ]; do  # never overwrite an earlier run of the same day
+    out="$here/results/halfspace-$(date +%Y-%m-%d)-$k.md"
+    k=$((k + 1))
+done
 cpu="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//' || true)"
 commit="$(cd "$root" && git rev-parse --short HEAD 2>/dev/null || echo unknown)"
 tamaas_version="$("$py" -c 'import tamaas; print(tamaas.__version__)' 2>/dev/null || echo -)"
