@@ -1,1 +1,309 @@
-fn main() {}
+//! `tribo-bench --n N [--tolerance T] [--max-iterations M] [--pressure-out FILE] [--one-call]`
+//!
+//! Solves the paper's half-space case (HALFSPACE.md section 4) once with tribo's
+//! Polonsky-Keer solver and prints one line of JSON. `seconds` is the iteration
+//! (`solve_normal_cg_with`), `operator_seconds` the FFT operator's construction, which
+//! `solve_normal_cg` does first; `--one-call` times `solve_normal_cg` as one piece instead. `apply_seconds`: one FFT
+//! operator application (mean of 5, after the solve).
+//! `--pressure-out FILE` writes the pressure (f64 little-endian, x fastest) for
+//! `tamaas_case.py --evaluate`. One process per N, so that
+//! the peak memory (`VmHWM`) belongs to that N alone. `bench/halfspace.sh` runs it beside
+//! `bench/tamaas_case.py` and tabulates both.
+//!
+//! The case: E1 = E2 = 2.01e11 Pa, nu = 0.3 (E* = 1.10440e11 Pa); initial gap
+//! h = 50 x^2 + 60 y^2 (1/m); F_N = 2000 N under force control; window |x|, |y| <= 1.5 a with
+//! a = 5.2964e-4 m (Hertz long semi-axis), N x N square elements. eps_avg is the paper's
+//! eq. (17): the mean over all N^2 elements of |p_H - p| / p0, p_H the Hertz pressure at the
+//! element centres.
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use serde_json::{json, Value};
+use tribo::kernels::hertz::{GapCurvature, HertzContact};
+use tribo::solvers::normal::{normal_compliance_operator, solve_normal_cg_with};
+use tribo::solvers::{solve_normal_cg, NormalContactParams, NormalContactProblem, NormalLoading};
+use tribo::{composite_modulus, ElasticMaterial, SurfaceGrid};
+
+const YOUNGS_MODULUS: f64 = 2.01e11;
+const POISSON_RATIO: f64 = 0.3;
+const GAP_A: f64 = 50.0;
+const GAP_B: f64 = 60.0;
+const LOAD: f64 = 2000.0;
+/// Hertz reference values of the case (HALFSPACE.md section 4): a, b (m), p0 (Pa), E* (Pa).
+const HERTZ_A: f64 = 5.2964e-4;
+const HERTZ_B: f64 = 4.6903e-4;
+const HERTZ_P0: f64 = 3.8440e9;
+const E_STAR: f64 = 1.10440e11;
+/// Half width of the window in units of the Hertz long semi-axis.
+const EXTENT: f64 = 1.5;
+
+const USAGE: &str =
+    "usage: tribo-bench --n N [--tolerance T] [--max-iterations M] [--pressure-out FILE] [--one-call]";
+
+struct Args {
+    n: usize,
+    tolerance: Option<f64>,
+    max_iterations: Option<usize>,
+    pressure_out: Option<String>,
+    one_call: bool,
+}
+
+fn parse_args() -> Result<Args, String> {
+    let mut n = None;
+    let mut tolerance = None;
+    let mut max_iterations = None;
+    let mut pressure_out = None;
+    let mut one_call = false;
+    let mut it = std::env::args().skip(1);
+    while let Some(arg) = it.next() {
+        let (key, inline) = match arg.split_once('=') {
+            Some((k, v)) => (k.to_string(), Some(v.to_string())),
+            None => (arg.clone(), None),
+        };
+        if key == "-h" || key == "--help" {
+            return Err(USAGE.to_string());
+        }
+        if key == "--one-call" {
+            one_call = true;
+            continue;
+        }
+        let mut value = || {
+            inline
+                .clone()
+                .or_else(|| it.next())
+                .ok_or_else(|| format!("{key} needs a value\n{USAGE}"))
+        };
+        match key.as_str() {
+            "--n" => n = Some(value()?.parse::<usize>().map_err(|e| format!("--n: {e}"))?),
+            "--tolerance" => {
+                let t = value()?
+                    .parse::<f64>()
+                    .map_err(|e| format!("--tolerance: {e}"))?;
+                if !(t.is_finite() && t > 0.0) {
+                    return Err("--tolerance must be finite and > 0".into());
+                }
+                tolerance = Some(t);
+            }
+            "--max-iterations" => {
+                max_iterations = Some(
+                    value()?
+                        .parse::<usize>()
+                        .map_err(|e| format!("--max-iterations: {e}"))?,
+                )
+            }
+            "--pressure-out" => pressure_out = Some(value()?),
+            _ => return Err(format!("unknown argument {arg:?}\n{USAGE}")),
+        }
+    }
+    let n = n.ok_or_else(|| format!("--n is required\n{USAGE}"))?;
+    Ok(Args {
+        n,
+        tolerance,
+        max_iterations,
+        pressure_out,
+        one_call,
+    })
+}
+
+/// Peak resident set size of this process (`VmHWM` in /proc/self/status), bytes.
+fn peak_rss_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+/// Threads rayon will use: RAYON_NUM_THREADS if set, else the available parallelism.
+fn rayon_threads() -> usize {
+    std::env::var("RAYON_NUM_THREADS")
+        .ok()
+        .and_then(|v| v.parse::<usize>().ok())
+        .filter(|&n| n > 0)
+        .unwrap_or_else(|| {
+            std::thread::available_parallelism()
+                .map(|n| n.get())
+                .unwrap_or(1)
+        })
+}
+
+fn mean_and_std(values: &[f64]) -> (f64, f64) {
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let var = values.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n;
+    (mean, var.sqrt())
+}
+
+fn run(args: &Args) -> Result<Value, String> {
+    let t_setup = Instant::now();
+    let steel = ElasticMaterial::new(YOUNGS_MODULUS, POISSON_RATIO).map_err(|e| e.to_string())?;
+    let e_star = composite_modulus(&steel, &steel);
+    let curvature = GapCurvature {
+        a_coefficient: GAP_A,
+        b_coefficient: GAP_B,
+        angle: 0.0,
+    };
+    let hertz = HertzContact::from_load(&curvature, e_star, LOAD).map_err(|e| e.to_string())?;
+    // The library's Hertz solution must reproduce the reference numbers of HALFSPACE.md.
+    for (what, got, want) in [
+        ("E*", e_star, E_STAR),
+        ("a", hertz.semi_major, HERTZ_A),
+        ("b", hertz.semi_minor, HERTZ_B),
+        ("p0", hertz.max_pressure, HERTZ_P0),
+    ] {
+        if (got / want - 1.0).abs() > 1e-4 {
+            return Err(format!(
+                "Hertz reference off: {what} = {got:e}, expected {want:e}"
+            ));
+        }
+    }
+    let half_width = EXTENT * hertz.semi_major;
+    let grid =
+        SurfaceGrid::centred(args.n, args.n, half_width, half_width).map_err(|e| e.to_string())?;
+    let gap = grid.sample(|x, y| GAP_A * x * x + GAP_B * y * y);
+    let p_hertz = grid.sample(|x, y| hertz.pressure(x, y));
+    let mut params = NormalContactParams::default();
+    if let Some(t) = args.tolerance {
+        params.tolerance = t;
+    }
+    if let Some(m) = args.max_iterations {
+        params.max_iterations = m;
+    }
+    let problem = NormalContactProblem {
+        grid: &grid,
+        initial_gap: &gap,
+        composite_modulus: e_star,
+        loading: NormalLoading::Force(LOAD),
+    };
+    let setup_seconds = t_setup.elapsed().as_secs_f64();
+
+    // `solve_normal_cg` = build the FFT operator (kernel spectrum) + `solve_normal_cg_with`.
+    // The two are timed apart here; `--one-call` times `solve_normal_cg` itself.
+    let (operator_seconds, apply_seconds, seconds, solved) = if args.one_call {
+        let t = Instant::now();
+        let solved = solve_normal_cg(&problem, &params);
+        (None, None, t.elapsed().as_secs_f64(), solved)
+    } else {
+        let t = Instant::now();
+        let operator = normal_compliance_operator(&grid, e_star);
+        let mut workspace = operator.workspace();
+        let operator_seconds = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let solved = solve_normal_cg_with(
+            &operator,
+            &mut workspace,
+            &gap,
+            problem.loading,
+            &params,
+            &mut |_, _| {},
+        );
+        let seconds = t.elapsed().as_secs_f64();
+        // One operator application (the FFT convolution), mean of a few, after the solve.
+        let reps = 5;
+        let mut out = vec![0.0; grid.len()];
+        let t = Instant::now();
+        for _ in 0..reps {
+            operator.apply_into(&gap, &mut out, &mut workspace);
+        }
+        let apply_seconds = t.elapsed().as_secs_f64() / reps as f64;
+        (Some(operator_seconds), Some(apply_seconds), seconds, solved)
+    };
+    let sol = solved.map_err(|e| format!("solve_normal_cg failed after {seconds:.3} s: {e}"))?;
+
+    // Accuracy against Hertz, the paper's (17).
+    let p0 = hertz.max_pressure;
+    let mut sum_abs = 0.0;
+    let mut max_abs: f64 = 0.0;
+    for (p, ph) in sol.pressure.iter().zip(&p_hertz) {
+        let d = (ph - p).abs();
+        sum_abs += d;
+        max_abs = max_abs.max(d);
+    }
+    let eps_avg = sum_abs / (sol.pressure.len() as f64 * p0);
+    let eps_max = max_abs / p0;
+    let max_pressure = sol
+        .pressure
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+
+    // tamaas's convergence measure on tribo's own gap (the same formula as tamaas_case.py):
+    // sum p (g - min_contact g) / (sum p * std(h)).
+    let min_gap_contact = sol
+        .pressure
+        .iter()
+        .zip(&sol.gap)
+        .filter(|(p, _)| **p > 0.0)
+        .map(|(_, g)| *g)
+        .fold(f64::INFINITY, f64::min);
+    let min_gap_outside = sol
+        .pressure
+        .iter()
+        .zip(&sol.gap)
+        .filter(|(p, _)| **p <= 0.0)
+        .map(|(_, g)| *g)
+        .fold(f64::INFINITY, f64::min);
+    let (_, h_std) = mean_and_std(&gap);
+    let p_sum: f64 = sol.pressure.iter().sum();
+    let pg: f64 = sol
+        .pressure
+        .iter()
+        .zip(&sol.gap)
+        .map(|(p, g)| p * (g - min_gap_contact))
+        .sum();
+    let common_residual = pg / (p_sum * h_std);
+
+    if let Some(path) = &args.pressure_out {
+        let bytes: Vec<u8> = sol.pressure.iter().flat_map(|p| p.to_le_bytes()).collect();
+        std::fs::write(path, bytes).map_err(|e| format!("{path}: {e}"))?;
+    }
+
+    Ok(json!({
+        "code": "tribo",
+        "version": env!("CARGO_PKG_VERSION"),
+        "n": args.n,
+        "tolerance": params.tolerance,
+        "seconds": seconds,
+        "operator_seconds": operator_seconds,
+        "apply_seconds": apply_seconds,
+        "setup_seconds": setup_seconds,
+        "total_seconds": setup_seconds + operator_seconds.unwrap_or(0.0) + seconds,
+        "threads": rayon_threads(),
+        "iterations": sol.iterations,
+        "residual": sol.residual,
+        "common_residual": common_residual,
+        "eps_avg": eps_avg,
+        "eps_max": eps_max,
+        "max_pressure": max_pressure,
+        "normal_load": sol.normal_load,
+        "approach": sol.approach,
+        "contact_elements": sol.contact_elements,
+        "min_gap_outside": if min_gap_outside.is_finite() { json!(min_gap_outside) } else { Value::Null },
+        "hertz": {"a": hertz.semi_major, "b": hertz.semi_minor, "p0": hertz.max_pressure, "approach": hertz.approach},
+        "peak_rss_bytes": peak_rss_bytes(),
+    }))
+}
+
+fn main() -> ExitCode {
+    let args = match parse_args() {
+        Ok(a) => a,
+        Err(msg) => {
+            eprintln!("{msg}");
+            return ExitCode::from(2);
+        }
+    };
+    match run(&args) {
+        Ok(v) => {
+            println!("{v}");
+            ExitCode::SUCCESS
+        }
+        Err(msg) => {
+            eprintln!("tribo-bench: {msg}");
+            println!(
+                "{}",
+                json!({"code": "tribo", "n": args.n, "error": msg, "peak_rss_bytes": peak_rss_bytes()})
+            );
+            ExitCode::from(3)
+        }
+    }
+}
