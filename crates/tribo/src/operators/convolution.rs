@@ -91,6 +91,18 @@ impl ConvolutionOperator {
     ///
     /// `kernel(di, dj)` is called once for every offset `|di| < nx`, `|dj| < ny` (in parallel).
     pub fn new(grid: &SurfaceGrid, kernel: impl Fn(isize, isize) -> f64 + Sync) -> Self {
+        Self::build(grid, kernel, false)
+    }
+
+    /// As [`ConvolutionOperator::new`] for a kernel even in both offsets,
+    /// `K(-di, dj) = K(di, -dj) = K(di, dj)` (Love's pressure kernel on a regular grid): the
+    /// kernel is evaluated on one quadrant only (a quarter of the calls) and mirrored.
+    /// Passing a kernel that is not even gives a wrong operator.
+    pub fn new_even(grid: &SurfaceGrid, kernel: impl Fn(isize, isize) -> f64 + Sync) -> Self {
+        Self::build(grid, kernel, true)
+    }
+
+    fn build(grid: &SurfaceGrid, kernel: impl Fn(isize, isize) -> f64 + Sync, even: bool) -> Self {
         let (nx, ny) = (grid.nx(), grid.ny());
         let (padded_x, padded_y) = (2 * nx, 2 * ny);
         let bins_x = nx + 1;
@@ -126,18 +138,48 @@ impl ConvolutionOperator {
             }
         };
         let mut kernel_rows = vec![0.0; padded_y * padded_x];
-        kernel_rows
-            .par_chunks_mut(padded_x)
-            .enumerate()
-            .for_each(|(ky, row)| {
-                if let Some(dj) = offset(ky, ny) {
-                    for (kx, value) in row.iter_mut().enumerate() {
-                        if let Some(di) = offset(kx, nx) {
-                            *value = kernel(di, dj);
+        if even {
+            // One quadrant (di, dj >= 0), then mirrored: index 2n - k holds offset -k.
+            let mut quadrant = vec![0.0; ny * nx];
+            quadrant
+                .par_chunks_mut(nx)
+                .enumerate()
+                .for_each(|(dj, row)| {
+                    for (di, value) in row.iter_mut().enumerate() {
+                        *value = kernel(di as isize, dj as isize);
+                    }
+                });
+            kernel_rows
+                .par_chunks_mut(padded_x)
+                .enumerate()
+                .for_each(|(ky, row)| {
+                    let dj = if ky < ny {
+                        ky
+                    } else if ky > ny {
+                        padded_y - ky
+                    } else {
+                        return;
+                    };
+                    let source = &quadrant[dj * nx..(dj + 1) * nx];
+                    row[..nx].copy_from_slice(source);
+                    for kx in nx + 1..padded_x {
+                        row[kx] = source[padded_x - kx];
+                    }
+                });
+        } else {
+            kernel_rows
+                .par_chunks_mut(padded_x)
+                .enumerate()
+                .for_each(|(ky, row)| {
+                    if let Some(dj) = offset(ky, ny) {
+                        for (kx, value) in row.iter_mut().enumerate() {
+                            if let Some(di) = offset(kx, nx) {
+                                *value = kernel(di, dj);
+                            }
                         }
                     }
-                }
-            });
+                });
+        }
         operator.kernel_table = kernel_rows.clone();
         let mut rows_spectrum = vec![Complex::new(0.0, 0.0); padded_y * bins_x];
         operator.rows_forward(&mut kernel_rows, &mut rows_spectrum, padded_y);
@@ -512,6 +554,22 @@ mod tests {
         let slow_b = convolve_direct(&grid, asymmetric_kernel, &b);
         for (x, y) in out_b.iter().zip(&slow_b) {
             assert!((x - y).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn even_construction_equals_the_general_one() {
+        let even_kernel = |di: isize, dj: isize| asymmetric_kernel(di.abs(), dj.abs());
+        for &(nx, ny) in &[(5usize, 7usize), (16, 9)] {
+            let grid = SurfaceGrid::centred(nx, ny, 1.0, 1.0).unwrap();
+            let general = ConvolutionOperator::new(&grid, even_kernel);
+            let even = ConvolutionOperator::new_even(&grid, even_kernel);
+            let input = pseudo_random_field(nx * ny, 9);
+            assert_eq!(general.apply(&input), even.apply(&input));
+            let slow = convolve_direct(&grid, even_kernel, &input);
+            for (a, b) in even.apply(&input).iter().zip(&slow) {
+                assert!((a - b).abs() < 1e-12);
+            }
         }
     }
 

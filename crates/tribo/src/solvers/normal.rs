@@ -147,7 +147,8 @@ pub fn normal_compliance_operator(
     grid: &SurfaceGrid,
     composite_modulus: f64,
 ) -> ConvolutionOperator {
-    ConvolutionOperator::new(grid, normal_compliance_kernel(grid, composite_modulus))
+    // Love's F is even in both offsets on a regular grid.
+    ConvolutionOperator::new_even(grid, normal_compliance_kernel(grid, composite_modulus))
 }
 
 /// The complementarity residual of a pressure / gap pair (dimensionless):
