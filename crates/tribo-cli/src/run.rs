@@ -9,7 +9,7 @@ use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
 use tribo::geometry::initial_gap;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
 use tribo::solvers::{
-    solve_normal_active_set, solve_normal_cg, NormalContactProblem, NormalContactSolution,
+    solve_normal_active_set, solve_normal_cg_observed, NormalContactProblem, NormalContactSolution,
     NormalLoading,
 };
 use tribo::SurfaceGrid;
@@ -137,8 +137,16 @@ pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome>
         ),
     );
     let start = Instant::now();
+    let tolerance = case.params.tolerance;
+    let (nx, ny) = (prepared.grid.nx(), prepared.grid.ny());
+    let mut report = |iteration: usize, residual: f64| {
+        pb.set_message(format!(
+            "solving normal contact ({nx} x {ny} elements, cg): iteration {iteration}, \
+             residual {residual:.2e} (tolerance {tolerance:.0e})"
+        ));
+    };
     let result = match case.method {
-        Method::Cg => solve_normal_cg(&problem, &case.params),
+        Method::Cg => solve_normal_cg_observed(&problem, &case.params, &mut report),
         Method::ActiveSet => solve_normal_active_set(&problem, &case.params),
     };
     let solve_time = start.elapsed();

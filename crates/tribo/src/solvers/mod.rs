@@ -4,6 +4,6 @@ pub mod back_effect;
 pub mod normal;
 
 pub use normal::{
-    solve_normal_active_set, solve_normal_cg, NormalContactParams, NormalContactProblem,
-    NormalContactSolution, NormalLoading,
+    solve_normal_active_set, solve_normal_cg, solve_normal_cg_observed, NormalContactParams,
+    NormalContactProblem, NormalContactSolution, NormalLoading,
 };

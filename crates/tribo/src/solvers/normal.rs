@@ -290,6 +290,16 @@ pub fn solve_normal_cg(
     problem: &NormalContactProblem<'_>,
     params: &NormalContactParams,
 ) -> Result<NormalContactSolution> {
+    solve_normal_cg_observed(problem, params, &mut |_, _| {})
+}
+
+/// [`solve_normal_cg`] with a progress observer, called as `observer(iteration, residual)`
+/// once per iteration (e.g. to drive a progress bar).
+pub fn solve_normal_cg_observed(
+    problem: &NormalContactProblem<'_>,
+    params: &NormalContactParams,
+    observer: &mut dyn FnMut(usize, f64),
+) -> Result<NormalContactSolution> {
     validate_problem(problem, params)?;
     let operator = normal_compliance_operator(problem.grid, problem.composite_modulus);
     let mut workspace = operator.workspace();
@@ -299,7 +309,7 @@ pub fn solve_normal_cg(
         problem.initial_gap,
         problem.loading,
         params,
-        &mut |_, _| {},
+        observer,
     )
 }
 
