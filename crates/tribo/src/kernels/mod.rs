@@ -4,3 +4,4 @@ pub mod elliptic;
 pub mod hertz;
 pub mod love;
 pub(crate) mod quadrature;
+pub mod subsurface;
