@@ -5,3 +5,4 @@ pub mod elliptic;
 pub mod hertz;
 pub mod love;
 pub(crate) mod quadrature;
+pub mod subsurface;
