@@ -9,10 +9,12 @@
 use serde::{Deserialize, Serialize};
 
 use crate::analysis::hertz_error::pressure_errors;
+use crate::analysis::stress_field::{stress_field_direct, FieldGrid, SurfaceTractions};
 use crate::error::Result;
 use crate::grid::SurfaceGrid;
 use crate::kernels::bulk::BulkLoad;
 use crate::kernels::hertz::{GapCurvature, HertzContact};
+use crate::kernels::subsurface::StressTensor;
 use crate::kernels::{elliptic, love};
 use crate::material::{composite_modulus, ElasticMaterial};
 use crate::operators::convolution::convolve_direct;
@@ -637,6 +639,114 @@ pub fn back_effect_rows() -> Result<Vec<ValidationRow>> {
     Ok(rows)
 }
 
+/// The maximum of `measure` along the axis x = y = 0 over depths `z_over_a` (a = `a`), from
+/// the direct stress sum: (max value / p0, depth / a).
+fn axis_maximum(
+    grid: &SurfaceGrid,
+    pressure: &[f64],
+    a: f64,
+    p0: f64,
+    z_over_a: &[f64],
+    measure: impl Fn(&StressTensor) -> f64,
+) -> Result<(f64, f64)> {
+    let tractions = SurfaceTractions {
+        grid,
+        pressure,
+        shear_x: None,
+        shear_y: None,
+    };
+    let field = FieldGrid {
+        x: vec![0.0],
+        y: vec![0.0],
+        z: z_over_a.iter().map(|r| r * a).collect(),
+    };
+    let stress = stress_field_direct(&tractions, 0.3, &field)?;
+    let (value, at) = stress.max_of(measure);
+    Ok((value / p0, at[2] / a))
+}
+
+/// Rows of the subsurface stress field under frictionless Hertz contact (nu = 0.3).
+pub fn stress_rows() -> Result<Vec<ValidationRow>> {
+    let mut rows = Vec::new();
+    // Depth scan 0.30a ... 0.70a in steps of 0.001a: the located depth is exact to 5e-4 a.
+    let depths: Vec<f64> = (0..=400).map(|k| 0.3 + 0.001 * k as f64).collect();
+
+    // Circle: element-averaged Hertz pressure (the exact load per element) on 81 x 81
+    // elements over 2.4a; discretization error of the stress at z ~ 0.5a is O((dx/z)^2).
+    let hertz = HertzContact::circle(0.01, 1.1e11, 1000.0)?;
+    let a = hertz.semi_major;
+    let grid = SurfaceGrid::centred(81, 81, 1.2 * a, 1.2 * a)?;
+    let (hx, hy) = (0.5 * grid.dx(), 0.5 * grid.dy());
+    let pressure = grid.sample(|x, y| hertz.mean_pressure_over_rectangle(x, y, hx, hy));
+    let (tau, depth) = axis_maximum(&grid, &pressure, a, hertz.max_pressure, &depths, |s| {
+        s.max_shear()
+    })?;
+    let case = "Hertz circle, exact load on 81x81, axis";
+    let src = "Huber (1904), Johnson 1985 sec. 3.4; HALFSPACE.md 3.2";
+    rows.push(ValidationRow::new(
+        case,
+        "max tau_1 / p0",
+        0.3100,
+        tau,
+        ErrorMeasure::Relative,
+        2e-3,
+        src,
+    ));
+    rows.push(ValidationRow::new(
+        case,
+        "depth of max tau_1 / a",
+        0.4809,
+        depth,
+        ErrorMeasure::Absolute,
+        0.01,
+        src,
+    ));
+
+    // The paper's ellipse with the numerical pressure of the CG solver (81 x 81 over 1.5a):
+    // the chain contact -> stress (eps_avg ~ 4e-4 at this grid).
+    let (curvature, e_star) = paper_case_curvature()?;
+    let hertz = HertzContact::from_load(&curvature, e_star, 2000.0)?;
+    let (grid, solution) = solve_hertzian(
+        &curvature,
+        e_star,
+        &hertz,
+        81,
+        1.5,
+        NormalLoading::Force(2000.0),
+        false,
+    )?;
+    let a = hertz.semi_major;
+    let (vm, depth) = axis_maximum(
+        &grid,
+        &solution.pressure,
+        a,
+        hertz.max_pressure,
+        &depths,
+        |s| s.von_mises(),
+    )?;
+    let case = "paper Sec. 3 ellipse, CG pressure 81x81, axis";
+    let src = "HALFSPACE.md 3.2 (quadrature of Boussinesq over the Hertz pressure)";
+    rows.push(ValidationRow::new(
+        case,
+        "max von Mises / p0",
+        0.6197,
+        vm,
+        ErrorMeasure::Relative,
+        3e-3,
+        src,
+    ));
+    rows.push(ValidationRow::new(
+        case,
+        "depth of max von Mises / a",
+        0.451,
+        depth,
+        ErrorMeasure::Absolute,
+        0.01,
+        src,
+    ));
+    Ok(rows)
+}
+
 /// The whole suite, in table order.
 pub fn run_all() -> Result<Vec<ValidationRow>> {
     let mut rows = kernel_rows()?;
@@ -645,5 +755,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(convergence_rows()?);
     rows.extend(hertz_family_rows()?);
     rows.extend(back_effect_rows()?);
+    rows.extend(stress_rows()?);
     Ok(rows)
 }

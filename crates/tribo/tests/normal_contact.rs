@@ -236,3 +236,8 @@ fn back_effect_curve_is_monotone_and_passes_through_one() {
         }
     }
 }
+
+#[test]
+fn stress_rows_pass() {
+    assert_rows(&validation::stress_rows().unwrap());
+}
