@@ -23,6 +23,9 @@ use crate::solvers::normal::{
     normal_compliance_kernel, normal_compliance_operator, solve_normal_active_set, solve_normal_cg,
     NormalContactParams, NormalContactProblem, NormalContactSolution, NormalLoading,
 };
+use crate::solvers::tangential::{
+    solve_tangential, TangentialLoading, TangentialParams, TangentialProblem,
+};
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -747,6 +750,140 @@ pub fn stress_rows() -> Result<Vec<ValidationRow>> {
     Ok(rows)
 }
 
+/// Rows of Cattaneo-Mindlin partial slip (Cattaneo 1938; Mindlin 1949; Johnson 1985
+/// sec. 7.1; HALFSPACE.md 3.4): a steel sphere (R = 10 mm) on a steel flat under 1000 N,
+/// f = 0.3, Q / (f P) = 0.2, 0.5, 0.8, on 96 x 96 elements over 2.6a; and the paper's
+/// ellipse at Q / (f P) = 0.5 (the stick zone is an ellipse similar to the contact).
+pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
+    let mut rows = Vec::new();
+    let steel = ElasticMaterial::new(2.1e11, 0.3)?;
+    let e_star = composite_modulus(&steel, &steel);
+    let curvature = GapCurvature::from_radii([0.01, 0.01], [f64::INFINITY; 2], 0.0)?;
+    let hertz = HertzContact::from_load(&curvature, e_star, 1000.0)?;
+    let a = hertz.semi_major;
+    let (grid, normal) = solve_hertzian(
+        &curvature,
+        e_star,
+        &hertz,
+        96,
+        1.3,
+        NormalLoading::Force(1000.0),
+        false,
+    )?;
+    let f = 0.3;
+    let g = steel.shear_modulus();
+    let nu = steel.poisson_ratio();
+    for ratio in [0.2, 0.5, 0.8] {
+        let problem = TangentialProblem {
+            grid: &grid,
+            pressure: &normal.pressure,
+            friction: f,
+            body1: steel,
+            body2: steel,
+            loading: TangentialLoading::Force {
+                magnitude: ratio * f * normal.normal_load,
+                angle: 0.0,
+            },
+        };
+        let s = solve_tangential(&problem, &TangentialParams::default())?;
+        let case = format!("Cattaneo-Mindlin sphere, Q/fP = {ratio}, 96x96");
+        let src = "Cattaneo 1938, Mindlin 1949 (Johnson 1985 sec. 7.1)";
+        // The stick boundary is located within an element: tolerance half an element.
+        rows.push(ValidationRow::new(
+            &case,
+            "stick radius c / a = (1 - Q/fP)^(1/3)",
+            (1.0 - ratio).cbrt(),
+            (s.stick_area / std::f64::consts::PI).sqrt() / a,
+            ErrorMeasure::Absolute,
+            0.5 * grid.dx() / a,
+            src,
+        ));
+        // Rigid shift of two identical bodies: 2 x 3 (2 - nu) f P [1 - (1 - Q/fP)^(2/3)] /
+        // (16 G a). The load discretization moves it by O((dx/a)^2) = 7e-4 at most; observed
+        // 2e-5.
+        let shift =
+            2.0 * 3.0 * (2.0 - nu) * f * normal.normal_load * (1.0 - (1.0 - ratio).powf(2.0 / 3.0))
+                / (16.0 * g * a);
+        rows.push(ValidationRow::new(
+            &case,
+            "rigid shift W, m",
+            shift,
+            s.shift,
+            ErrorMeasure::Relative,
+            5e-3,
+            src,
+        ));
+        // Traction: mean |q - q_CM| / (f p0) over the contact elements; like eps_avg of the
+        // pressure it is dominated by the elements cut by the contact and stick edges.
+        let c = a * (1.0 - ratio).cbrt();
+        let p0 = hertz.max_pressure;
+        let (mut sum, mut count) = (0.0, 0usize);
+        for iy in 0..grid.ny() {
+            for ix in 0..grid.nx() {
+                let k = grid.index(ix, iy);
+                if normal.pressure[k] <= 0.0 {
+                    continue;
+                }
+                let r2 = grid.x(ix).powi(2) + grid.y(iy).powi(2);
+                let outer = (1.0 - r2 / (a * a)).max(0.0).sqrt();
+                let inner = if r2 < c * c {
+                    (c / a) * (1.0 - r2 / (c * c)).sqrt()
+                } else {
+                    0.0
+                };
+                sum += (s.traction_x[k] - f * p0 * (outer - inner)).abs() / (f * p0);
+                count += 1;
+            }
+        }
+        rows.push(ValidationRow::new(
+            &case,
+            "mean |q_x - q_CM| / (f p0) over the contact",
+            0.0,
+            sum / count as f64,
+            ErrorMeasure::Bound,
+            // Edge-band argument as for eps_avg: O((dx/a)^1.5) = 4.4e-3 here; observed
+            // 1.1e-3 - 1.3e-3, bound 0.6 (dx/a)^1.5.
+            0.6 * (grid.dx() / a).powf(1.5),
+            src,
+        ));
+    }
+    // The paper's ellipse, Q/fP = 0.5: stick area / contact area = (1 - Q/fP)^(2/3).
+    let (curvature, e_star) = paper_case_curvature()?;
+    let paper_steel = ElasticMaterial::new(2.01e11, 0.3)?;
+    let hertz = HertzContact::from_load(&curvature, e_star, 2000.0)?;
+    let (grid, normal) = solve_hertzian(
+        &curvature,
+        e_star,
+        &hertz,
+        96,
+        1.3,
+        NormalLoading::Force(2000.0),
+        false,
+    )?;
+    let problem = TangentialProblem {
+        grid: &grid,
+        pressure: &normal.pressure,
+        friction: 0.2,
+        body1: paper_steel,
+        body2: paper_steel,
+        loading: TangentialLoading::Force {
+            magnitude: 0.5 * 0.2 * normal.normal_load,
+            angle: 0.0,
+        },
+    };
+    let s = solve_tangential(&problem, &TangentialParams::default())?;
+    rows.push(ValidationRow::new(
+        "Mindlin, paper ellipse (b/a = 0.886), Q/fP = 0.5, 96x96",
+        "sqrt(stick area / contact area) = (1 - Q/fP)^(1/3)",
+        0.5f64.cbrt(),
+        (s.stick_area / (s.stick_area + s.slip_area)).sqrt(),
+        ErrorMeasure::Absolute,
+        0.5 * grid.dx() / hertz.semi_minor,
+        "Mindlin 1949: similar elliptical stick zone (HALFSPACE.md 3.4)",
+    ));
+    Ok(rows)
+}
+
 /// The whole suite, in table order.
 pub fn run_all() -> Result<Vec<ValidationRow>> {
     let mut rows = kernel_rows()?;
@@ -756,5 +893,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(hertz_family_rows()?);
     rows.extend(back_effect_rows()?);
     rows.extend(stress_rows()?);
+    rows.extend(tangential_rows()?);
     Ok(rows)
 }

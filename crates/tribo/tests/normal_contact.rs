@@ -241,3 +241,8 @@ fn back_effect_curve_is_monotone_and_passes_through_one() {
 fn stress_rows_pass() {
     assert_rows(&validation::stress_rows().unwrap());
 }
+
+#[test]
+fn tangential_rows_pass() {
+    assert_rows(&validation::tangential_rows().unwrap());
+}
