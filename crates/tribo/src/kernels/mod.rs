@@ -1,6 +1,7 @@
 //! Layer 1: closed-form elastic solutions, each a pure function citing its source.
 
 pub mod elliptic;
+pub mod hamilton;
 pub mod hertz;
 pub mod love;
 pub(crate) mod quadrature;
