@@ -246,3 +246,8 @@ fn stress_rows_pass() {
 fn tangential_rows_pass() {
     assert_rows(&validation::tangential_rows().unwrap());
 }
+
+#[test]
+fn sliding_sphere_rows_pass() {
+    assert_rows(&validation::sliding_sphere_rows().unwrap());
+}

@@ -529,7 +529,7 @@ pub fn solve_normal_cg_with(
     })
 }
 
-/// Solve by the paper's direct "matrix inversion" (section 3, ref. [8]): an active set over
+/// Solve by the paper's direct "matrix inversion" (section 3, its ref. 8): an active set over
 /// the dense influence matrix. Each sweep factorizes the contact block `K_cc` (Cholesky;
 /// `K` is symmetric positive definite) and solves `K_cc p_c = delta - h_c` (approach
 /// control) or the same with `delta` unknown and `sum p dA = F_N` (force control, by the
