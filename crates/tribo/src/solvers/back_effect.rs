@@ -48,6 +48,35 @@ pub fn back_effect_curve(
     loads: &[BulkLoad],
     params: &NormalContactParams,
 ) -> Result<Vec<BackEffectPoint>> {
+    back_effect_curve_observed(
+        grid,
+        initial_gap,
+        composite_modulus,
+        shaft,
+        shaft_radius,
+        initial_approach,
+        loads,
+        params,
+        &mut |_, _| {},
+    )
+}
+
+/// [`back_effect_curve`] with a progress observer, called as `progress(done, total)` after
+/// the reference solution and after each point (`total = loads.len() + 1`), e.g. to drive
+/// a progress bar.
+#[allow(clippy::too_many_arguments)]
+pub fn back_effect_curve_observed(
+    grid: &SurfaceGrid,
+    initial_gap: &[f64],
+    composite_modulus: f64,
+    shaft: &ElasticMaterial,
+    shaft_radius: f64,
+    initial_approach: f64,
+    loads: &[BulkLoad],
+    params: &NormalContactParams,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Vec<BackEffectPoint>> {
+    let total = loads.len() + 1;
     if !(initial_approach.is_finite() && initial_approach > 0.0) {
         return Err(Error::invalid(
             "contact.approach",
@@ -65,9 +94,11 @@ pub fn back_effect_curve(
         params,
         &mut |_, _| {},
     )?;
+    progress(1, total);
     loads
         .iter()
-        .map(|load| {
+        .enumerate()
+        .map(|(k, load)| {
             let change = load.approach_change(shaft, shaft_radius)?;
             let approach = initial_approach + change;
             let (normal_load, iterations) = if approach <= 0.0 {
@@ -86,6 +117,7 @@ pub fn back_effect_curve(
                     Err(e) => return Err(e),
                 }
             };
+            progress(k + 2, total);
             Ok(BackEffectPoint {
                 load: *load,
                 stress: load.surface_stress(),
