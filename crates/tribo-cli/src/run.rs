@@ -253,7 +253,24 @@ pub fn back_effect(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<
     );
     let time = start.elapsed();
     pb.finish_and_clear();
-    let points = result?;
+    let points = result.map_err(|e| match e {
+        tribo::Error::ContactReachesWindow { detail } => {
+            let (field, value) = match bulk.stress {
+                Some(s) if s.abs() > bulk.stress_max => ("bulk.stress", s),
+                _ => ("bulk.stress_max", bulk.stress_max),
+            };
+            crate::error::CliError::field(
+                field,
+                value,
+                format!(
+                    "under this bulk stress (compression) the approach delta_0 + u_z grows the \
+                     contact to the edge of the window ({detail}); lower the stress or enlarge \
+                     the window (grid.extent or grid.half_width)"
+                ),
+            )
+        }
+        e => e.into(),
+    })?;
     let n = ratios.len();
     let curves: Vec<(LoadKind, Vec<BackEffectPoint>)> = bulk
         .kinds

@@ -669,6 +669,12 @@ fn bad_bulk_input_exits_2_names_the_field_and_writes_nothing() {
         &[],
         "bulk.stress_max",
     );
+    // Compression so large that the contact reaches the window.
+    assert_bad_input(
+        &(PAPER.to_string() + "[bulk]\nstress_max = \"3 GPa\"\npoints = 3\n"),
+        &[],
+        "bulk.stress_max",
+    );
     assert_bad_input(
         &(PAPER.to_string() + "[bulk]\nkind = \"bending\"\n"),
         &[],

@@ -130,3 +130,39 @@ pub fn back_effect_curve_observed(
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_observer_sees_every_solution_and_zero_stress_is_the_reference() {
+        // A sphere-like gap h = (x^2 + y^2) / (2 R), R = 10 mm, steel.
+        let steel = ElasticMaterial::new(2.01e11, 0.3).unwrap();
+        let grid = SurfaceGrid::centred(16, 16, 4e-4, 4e-4).unwrap();
+        let gap = grid.sample(|x, y| (x * x + y * y) / 0.02);
+        let loads = [
+            BulkLoad::Bending {
+                surface_stress: 0.0,
+            },
+            BulkLoad::TensionCompression { stress: 3e8 },
+        ];
+        let mut seen = Vec::new();
+        let points = back_effect_curve_observed(
+            &grid,
+            &gap,
+            1.1e11,
+            &steel,
+            0.01,
+            4e-6,
+            &loads,
+            &NormalContactParams::default(),
+            &mut |done, total| seen.push((done, total)),
+        )
+        .unwrap();
+        assert_eq!(seen, [(1, 3), (2, 3), (3, 3)]);
+        assert!((points[0].force_ratio - 1.0).abs() < 1e-9);
+        // Tension lowers the force (u_z < 0).
+        assert!(points[1].approach_change < 0.0 && points[1].force_ratio < 1.0);
+    }
+}
