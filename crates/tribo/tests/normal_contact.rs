@@ -236,3 +236,13 @@ fn back_effect_curve_is_monotone_and_passes_through_one() {
         }
     }
 }
+
+#[test]
+fn stress_rows_pass() {
+    assert_rows(&validation::stress_rows().unwrap());
+}
+
+#[test]
+fn tangential_rows_pass() {
+    assert_rows(&validation::tangential_rows().unwrap());
+}

@@ -1,3 +1,4 @@
 //! Layer 4: pure functions of fields: error measures against reference solutions, ...
 
 pub mod hertz_error;
+pub mod stress_field;

@@ -2,6 +2,7 @@
 
 pub mod bulk;
 pub mod elliptic;
+pub mod hamilton;
 pub mod hertz;
 pub mod love;
 pub(crate) mod quadrature;

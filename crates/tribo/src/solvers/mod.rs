@@ -2,6 +2,7 @@
 
 pub mod back_effect;
 pub mod normal;
+pub mod tangential;
 
 pub use normal::{
     solve_normal_active_set, solve_normal_cg, solve_normal_cg_observed, NormalContactParams,

@@ -1,0 +1,439 @@
+//! The spatial stress-strain state under the contact, the paper's (11) and Sec. 6: all six
+//! stress components on a 3D grid of points from the surface tractions (p, q_x, q_y), plus
+//! the bulk stress of the shaft (direct effect, Fig. 5), strains by Hooke's law, and the
+//! strain energy density split as in the paper's (32).
+//!
+//! Two evaluation paths, the same numbers (tested to round-off):
+//! - [`stress_field_direct`]: any points (x, y, z), a direct sum over the loaded elements of
+//!   the closed-form stresses of uniform traction on a rectangle
+//!   ([`crate::kernels::subsurface`]); O(points x loaded elements). Points need not be
+//!   aligned with element centres: the piecewise-constant tractions are integrated exactly.
+//! - [`stress_field_on_centres`]: points at the element centres of the surface grid at given
+//!   depths, one non-periodic FFT convolution per depth and component (DC-FFT; Liu & Wang
+//!   2002, J. Tribol. 124:36); O(depths x N log N).
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::grid::SurfaceGrid;
+use crate::kernels::bulk::BulkLoad;
+use crate::kernels::subsurface::{pressure_stress, shear_x_stress, shear_y_stress, StressTensor};
+use crate::material::ElasticMaterial;
+use crate::operators::ConvolutionOperator;
+
+/// Surface tractions on a grid (Pa, grid layout): pressure and optional shear.
+#[derive(Debug, Clone, Copy)]
+pub struct SurfaceTractions<'a> {
+    /// The grid the tractions live on.
+    pub grid: &'a SurfaceGrid,
+    /// Pressure p (compressive positive), Pa.
+    pub pressure: &'a [f64],
+    /// Shear q_x on the body (acting in +x), Pa.
+    pub shear_x: Option<&'a [f64]>,
+    /// Shear q_y, Pa.
+    pub shear_y: Option<&'a [f64]>,
+}
+
+impl SurfaceTractions<'_> {
+    fn validate(&self) -> Result<()> {
+        let n = self.grid.len();
+        for (name, field) in [
+            ("pressure", Some(self.pressure)),
+            ("shear_x", self.shear_x),
+            ("shear_y", self.shear_y),
+        ] {
+            if let Some(f) = field {
+                if f.len() != n {
+                    return Err(Error::invalid(
+                        name,
+                        format!("{} values", f.len()),
+                        "must hold one value per element",
+                    ));
+                }
+                if f.iter().any(|v| !v.is_finite()) {
+                    return Err(Error::invalid(
+                        name,
+                        "non-finite value",
+                        "tractions must be finite (Pa)",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A tensor-product grid of field points: x, y and depth z (m, z >= 0 into the body).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FieldGrid {
+    /// x coordinates, m.
+    pub x: Vec<f64>,
+    /// y coordinates, m.
+    pub y: Vec<f64>,
+    /// Depths z >= 0, m.
+    pub z: Vec<f64>,
+}
+
+impl FieldGrid {
+    /// `nx x ny x nz` points evenly spaced over `[-half_x, half_x] x [-half_y, half_y] x
+    /// [0, depth]` (end points included), the layout of the paper's Sec. 6 field
+    /// (20 x 39 x 39 points over z in [0, 1.5a], x and y in [-1.5a, 1.5a]).
+    pub fn uniform(
+        nx: usize,
+        ny: usize,
+        nz: usize,
+        half_x: f64,
+        half_y: f64,
+        depth: f64,
+    ) -> Result<Self> {
+        for (field, n) in [("field.nx", nx), ("field.ny", ny), ("field.nz", nz)] {
+            if !(2..=4096).contains(&n) {
+                return Err(Error::invalid(field, n, "must be in [2, 4096]"));
+            }
+        }
+        for (field, v) in [
+            ("field.half_x", half_x),
+            ("field.half_y", half_y),
+            ("field.depth", depth),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(Error::invalid(field, v, "must be finite and > 0 (m)"));
+            }
+        }
+        let line = |n: usize, lo: f64, hi: f64| {
+            (0..n)
+                .map(|i| lo + (hi - lo) * i as f64 / (n - 1) as f64)
+                .collect()
+        };
+        Ok(Self {
+            x: line(nx, -half_x, half_x),
+            y: line(ny, -half_y, half_y),
+            z: line(nz, 0.0, depth),
+        })
+    }
+
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.x.len() * self.y.len() * self.z.len()
+    }
+
+    /// Whether the grid has no points.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Flat index of point (ix, iy, iz): x fastest, then y, then z.
+    pub fn index(&self, ix: usize, iy: usize, iz: usize) -> usize {
+        (iz * self.y.len() + iy) * self.x.len() + ix
+    }
+}
+
+/// A stress field on a [`FieldGrid`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StressField {
+    /// The points.
+    pub grid: FieldGrid,
+    /// Stress at each point (layout of [`FieldGrid::index`]), Pa.
+    pub stress: Vec<StressTensor>,
+}
+
+impl StressField {
+    /// Superpose the bulk stress of the shaft (the direct effect, the paper's Fig. 5): the
+    /// axial stress sigma_xx of `load` at each point's depth (uniform for tension, linear
+    /// through the section for bending, [`BulkLoad::axial_stress_at_depth`]).
+    pub fn add_bulk(&mut self, load: &BulkLoad, shaft_radius: f64) {
+        let (nx, ny) = (self.grid.x.len(), self.grid.y.len());
+        for (iz, &z) in self.grid.z.iter().enumerate() {
+            let sigma = load.axial_stress_at_depth(z, shaft_radius);
+            for s in &mut self.stress[iz * nx * ny..(iz + 1) * nx * ny] {
+                s.xx += sigma;
+            }
+        }
+    }
+
+    /// The point and value where `measure` is largest.
+    pub fn max_of(&self, measure: impl Fn(&StressTensor) -> f64) -> (f64, [f64; 3]) {
+        let mut best = (f64::NEG_INFINITY, 0usize);
+        for (i, s) in self.stress.iter().enumerate() {
+            let v = measure(s);
+            if v > best.0 {
+                best = (v, i);
+            }
+        }
+        let (nx, ny) = (self.grid.x.len(), self.grid.y.len());
+        let i = best.1;
+        let (ix, iy, iz) = (i % nx, (i / nx) % ny, i / (nx * ny));
+        (best.0, [self.grid.x[ix], self.grid.y[iy], self.grid.z[iz]])
+    }
+}
+
+/// The stress of unit uniform tractions on the element centred at the origin, at offset
+/// (x, y, z): (pressure, q_x, q_y) kernels.
+fn unit_kernels(
+    x: f64,
+    y: f64,
+    z: f64,
+    hx: f64,
+    hy: f64,
+    nu: f64,
+    shear: (bool, bool),
+) -> [StressTensor; 3] {
+    [
+        pressure_stress(x, y, z, hx, hy, nu),
+        if shear.0 {
+            shear_x_stress(x, y, z, hx, hy, nu)
+        } else {
+            StressTensor::ZERO
+        },
+        if shear.1 {
+            shear_y_stress(x, y, z, hx, hy, nu)
+        } else {
+            StressTensor::ZERO
+        },
+    ]
+}
+
+/// Stresses at the points of `field` by the direct sum over loaded elements (exact for
+/// piecewise-constant tractions at any point), for a body of Poisson's ratio `nu`.
+pub fn stress_field_direct(
+    tractions: &SurfaceTractions<'_>,
+    poisson_ratio: f64,
+    field: &FieldGrid,
+) -> Result<StressField> {
+    tractions.validate()?;
+    let grid = tractions.grid;
+    let (hx, hy) = (0.5 * grid.dx(), 0.5 * grid.dy());
+    let shear = (tractions.shear_x.is_some(), tractions.shear_y.is_some());
+    // Loaded elements only: (centre x, centre y, p, q_x, q_y).
+    let loaded: Vec<(f64, f64, f64, f64, f64)> = (0..grid.len())
+        .filter_map(|k| {
+            let p = tractions.pressure[k];
+            let qx = tractions.shear_x.map_or(0.0, |q| q[k]);
+            let qy = tractions.shear_y.map_or(0.0, |q| q[k]);
+            (p != 0.0 || qx != 0.0 || qy != 0.0)
+                .then(|| (grid.x(k % grid.nx()), grid.y(k / grid.nx()), p, qx, qy))
+        })
+        .collect();
+    let (nx, ny) = (field.x.len(), field.y.len());
+    let stress: Vec<StressTensor> = (0..field.len())
+        .into_par_iter()
+        .map(|i| {
+            let (x, y, z) = (
+                field.x[i % nx],
+                field.y[(i / nx) % ny],
+                field.z[i / (nx * ny)],
+            );
+            let mut total = StressTensor::ZERO;
+            for &(cx, cy, p, qx, qy) in &loaded {
+                let [sp, sx, sy] = unit_kernels(x - cx, y - cy, z, hx, hy, poisson_ratio, shear);
+                total = total + sp.scale(p) + sx.scale(qx) + sy.scale(qy);
+            }
+            total
+        })
+        .collect();
+    Ok(StressField {
+        grid: field.clone(),
+        stress,
+    })
+}
+
+/// Stresses at the element centres of the traction grid, at each depth of `depths` (m), by
+/// one FFT convolution per depth and stress component (and traction direction).
+pub fn stress_field_on_centres(
+    tractions: &SurfaceTractions<'_>,
+    poisson_ratio: f64,
+    depths: &[f64],
+) -> Result<StressField> {
+    tractions.validate()?;
+    if let Some(z) = depths.iter().find(|z| !(z.is_finite() && **z >= 0.0)) {
+        return Err(Error::invalid(
+            "field.depths",
+            z,
+            "depths must be finite and >= 0 (m)",
+        ));
+    }
+    let grid = tractions.grid;
+    let (nx, ny) = (grid.nx(), grid.ny());
+    let (dx, dy) = (grid.dx(), grid.dy());
+    let (hx, hy) = (0.5 * dx, 0.5 * dy);
+    let field = FieldGrid {
+        x: (0..nx).map(|i| grid.x(i)).collect(),
+        y: (0..ny).map(|j| grid.y(j)).collect(),
+        z: depths.to_vec(),
+    };
+    let mut stress = vec![StressTensor::ZERO; field.len()];
+    let sources: Vec<(usize, &[f64])> = [
+        Some(tractions.pressure),
+        tractions.shear_x,
+        tractions.shear_y,
+    ]
+    .into_iter()
+    .enumerate()
+    .filter_map(|(k, f)| f.map(|f| (k, f)))
+    .collect();
+    let mut component_out = vec![0.0; nx * ny];
+    for (iz, &z) in depths.iter().enumerate() {
+        let layer = &mut stress[iz * nx * ny..(iz + 1) * nx * ny];
+        for &(source, traction) in &sources {
+            for component in 0..6 {
+                let kernel = |di: isize, dj: isize| {
+                    let (x, y) = (di as f64 * dx, dj as f64 * dy);
+                    let s = match source {
+                        0 => pressure_stress(x, y, z, hx, hy, poisson_ratio),
+                        1 => shear_x_stress(x, y, z, hx, hy, poisson_ratio),
+                        _ => shear_y_stress(x, y, z, hx, hy, poisson_ratio),
+                    };
+                    s.to_array()[component]
+                };
+                let operator = ConvolutionOperator::new(grid, kernel);
+                let mut workspace = operator.workspace();
+                operator.apply_into(traction, &mut component_out, &mut workspace);
+                for (s, v) in layer.iter_mut().zip(&component_out) {
+                    let mut c = s.to_array();
+                    c[component] += v;
+                    *s = StressTensor::from_array(c);
+                }
+            }
+        }
+    }
+    Ok(StressField {
+        grid: field,
+        stress,
+    })
+}
+
+/// Small strain tensor by Hooke's law, eps = [(1 + nu) sigma - nu tr(sigma) I] / E
+/// (tensor shear components eps_xy = sigma_xy / (2G)); the paper's strain tensor in (26).
+pub fn strain(stress: &StressTensor, material: &ElasticMaterial) -> StressTensor {
+    let (e, nu) = (material.youngs_modulus(), material.poisson_ratio());
+    let trace = stress.xx + stress.yy + stress.zz;
+    StressTensor::new(
+        ((1.0 + nu) * stress.xx - nu * trace) / e,
+        ((1.0 + nu) * stress.yy - nu * trace) / e,
+        ((1.0 + nu) * stress.zz - nu * trace) / e,
+        (1.0 + nu) * stress.xy / e,
+        (1.0 + nu) * stress.yz / e,
+        (1.0 + nu) * stress.xz / e,
+    )
+}
+
+/// Strain energy density and its split, J/m^3 (the paper's (32), DESIGN.md section 2).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct EnergyDensity {
+    /// u = (1/2) sigma : eps, J/m^3.
+    pub total: f64,
+    /// Volumetric part (1 - 2 nu) / (6 E) (s1 + s2 + s3)^2, J/m^3.
+    pub volumetric: f64,
+    /// Distortional part (1 + nu) / (6 E) [(s1 - s2)^2 + (s1 - s3)^2 + (s2 - s3)^2], J/m^3.
+    pub distortional: f64,
+}
+
+/// The strain energy density of `stress` in `material` (paper (32)): the distortional part
+/// is written with the invariant J2 (equal to the principal-stress form).
+pub fn energy_density(stress: &StressTensor, material: &ElasticMaterial) -> EnergyDensity {
+    let (e, nu) = (material.youngs_modulus(), material.poisson_ratio());
+    let trace = stress.xx + stress.yy + stress.zz;
+    let volumetric = (1.0 - 2.0 * nu) / (6.0 * e) * trace * trace;
+    // (s1-s2)^2 + (s1-s3)^2 + (s2-s3)^2 = 6 J2.
+    let distortional = (1.0 + nu) / e * stress.j2();
+    EnergyDensity {
+        total: volumetric + distortional,
+        volumetric,
+        distortional,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernels::hertz::HertzContact;
+
+    fn hertz_circle_tractions(n: usize) -> (SurfaceGrid, Vec<f64>, HertzContact) {
+        let hertz = HertzContact::circle(0.01, 1.1e11, 1000.0).unwrap();
+        let a = hertz.semi_major;
+        let grid = SurfaceGrid::centred(n, n, 1.2 * a, 1.2 * a).unwrap();
+        let half = (0.5 * grid.dx(), 0.5 * grid.dy());
+        // Element-averaged Hertz pressure: the exact load carried by each element.
+        let p = grid.sample(|x, y| hertz.mean_pressure_over_rectangle(x, y, half.0, half.1));
+        (grid, p, hertz)
+    }
+
+    #[test]
+    fn fft_path_equals_direct_sum() {
+        // Same closed-form kernels, same sums: round-off only (relative 1e-12 of the peak).
+        let (grid, p, hertz) = hertz_circle_tractions(16);
+        let qx: Vec<f64> = p.iter().map(|v| 0.3 * v).collect();
+        let tractions = SurfaceTractions {
+            grid: &grid,
+            pressure: &p,
+            shear_x: Some(&qx),
+            shear_y: None,
+        };
+        let depths = [0.1 * hertz.semi_major, 0.5 * hertz.semi_major];
+        let fast = stress_field_on_centres(&tractions, 0.3, &depths).unwrap();
+        let slow = stress_field_direct(&tractions, 0.3, &fast.grid).unwrap();
+        for (a, b) in fast.stress.iter().zip(&slow.stress) {
+            for (u, v) in a.to_array().iter().zip(b.to_array()) {
+                assert!((u - v).abs() < 1e-12 * hertz.max_pressure, "{u} vs {v}");
+            }
+        }
+    }
+
+    #[test]
+    fn hertz_axis_stresses_match_huber() {
+        // Element-averaged Hertz pressure on 81 x 81 elements (dx = 0.03 a): the stresses
+        // on the axis at depth >= 0.2a differ from Huber's closed form by the discretization
+        // of the load, O((dx/z)^2) ~ 1e-3; tolerance 2e-3 p0 (a 1 % kernel error fails).
+        let (grid, p, hertz) = hertz_circle_tractions(81);
+        let a = hertz.semi_major;
+        let tractions = SurfaceTractions {
+            grid: &grid,
+            pressure: &p,
+            shear_x: None,
+            shear_y: None,
+        };
+        let field = FieldGrid {
+            x: vec![0.0],
+            y: vec![0.0],
+            z: (1..=10).map(|k| 0.2 * a * k as f64).collect(),
+        };
+        let computed = stress_field_direct(&tractions, 0.3, &field).unwrap();
+        let p0 = hertz.max_pressure;
+        for (s, &z) in computed.stress.iter().zip(&field.z) {
+            // Huber (1904); Johnson 1985 eq. (3.64), nu = 0.3, zeta = z / a.
+            let zeta = z / a;
+            let sigma_z = -1.0 / (1.0 + zeta * zeta);
+            let sigma_r =
+                -((1.0 + 0.3) * (1.0 - zeta * (1.0 / zeta).atan()) - 0.5 / (1.0 + zeta * zeta));
+            assert!(
+                (s.zz / p0 - sigma_z).abs() < 2e-3,
+                "z/a = {zeta}: {} vs {sigma_z}",
+                s.zz / p0
+            );
+            assert!(
+                (s.xx / p0 - sigma_r).abs() < 2e-3,
+                "z/a = {zeta}: {} vs {sigma_r}",
+                s.xx / p0
+            );
+        }
+    }
+
+    #[test]
+    fn energy_split_adds_up_and_matches_the_principal_form() {
+        let m = ElasticMaterial::new(2.0e11, 0.3).unwrap();
+        let s = StressTensor::new(-1.2e9, 3.0e8, -2.2e9, 1.1e8, -4.0e8, 2.5e8);
+        let e = energy_density(&s, &m);
+        let eps = strain(&s, &m);
+        let direct: f64 = 0.5
+            * (s.xx * eps.xx
+                + s.yy * eps.yy
+                + s.zz * eps.zz
+                + 2.0 * (s.xy * eps.xy + s.yz * eps.yz + s.xz * eps.xz));
+        assert!((e.total - direct).abs() < 1e-12 * direct.abs());
+        let [s1, s2, s3] = s.principal();
+        let distortional = (1.0 + 0.3) / (6.0 * 2.0e11)
+            * ((s1 - s2).powi(2) + (s1 - s3).powi(2) + (s2 - s3).powi(2));
+        assert!((e.distortional - distortional).abs() < 1e-10 * distortional);
+    }
+}

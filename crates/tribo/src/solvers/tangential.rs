@@ -1,0 +1,591 @@
+//! Tangential contact with Coulomb friction, the paper's (8), for a known contact pressure:
+//! full sliding `q = f p` and partial slip with unknown stick and slip zones.
+//!
+//! Unknown: the tangential traction on body 1 (Pa, piecewise constant on the grid's
+//! elements), taken parallel to the applied tangential force Q (unit direction e): q = tau e.
+//! This is the standard assumption of Cattaneo (1938) and Mindlin (1949) and of most
+//! FFT-based partial-slip codes; it neglects the slip across e that Poisson coupling
+//! induces in the slip zone (of relative order nu / (2 (2 - nu)) in the compliance; Johnson
+//! 1985 sec. 7.1). The relative tangential displacement along e is `u_e = C_ee tau`, with
+//! `C_ee = e.C e` the sum of both bodies' surface compliances for shear along e (Cerruti;
+//! rectangle integrals of Pohrt & Li 2014, [`crate::kernels::love`]); by mirror symmetry
+//! body 2's in-plane response to `-q` is `-C_2 q`.
+//!
+//! Coulomb's law (8) with Q prescribed, W (the rigid shift of body 2 relative to body 1
+//! along e, m) unknown: `|tau| <= f p`; stick where `|tau| < f p`: `C_ee tau = W`; slip where
+//! `|tau| = f p`: the slip `W - C_ee tau` has the sign of tau. These are the optimality
+//! conditions of `min 1/2 tau.C tau - W sum tau` over the box `|tau_i| <= f p_i` with
+//! `sum tau dA = |Q|` (Kalker 1990, *Three-dimensional elastic bodies in rolling contact*,
+//! ch. 2: the variational form of the frictional problem).
+//!
+//! Solver: the constrained conjugate gradient method of Polonsky & Keer (1999), carried over
+//! from the one-sided bound p >= 0 to the two-sided box: conjugate gradients on the stick
+//! elements with the residual's mean removed (the mean is W; the force stays fixed), elements
+//! that leave the box are projected onto it and slip, slip elements whose slip would reverse
+//! re-enter the stick zone, the conjugate direction is reset when the zones change.
+//!
+//! Scope: for bodies of equal elastic constants (Dundurs beta = 0) the tangential traction
+//! does not act back on the pressure; for dissimilar materials the problems couple (not yet
+//! implemented: the pressure is taken as given).
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::grid::SurfaceGrid;
+use crate::kernels::love;
+use crate::material::ElasticMaterial;
+use crate::operators::{ConvolutionOperator, ConvolutionWorkspace};
+
+/// How the tangential contact is loaded.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum TangentialLoading {
+    /// Partial slip: the tangential force on body 1, N, of magnitude below f F_N, along the
+    /// direction at `angle` (rad) from the x axis.
+    Force {
+        /// |Q|, N.
+        magnitude: f64,
+        /// Direction of Q, rad from the x axis.
+        angle: f64,
+    },
+    /// Full sliding: q = f p along the direction at `angle` (rad) from the x axis.
+    Sliding {
+        /// Direction of the traction on body 1, rad from the x axis.
+        angle: f64,
+    },
+}
+
+/// Parameters of the tangential solver.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct TangentialParams {
+    /// Tolerance on the residual (see [`TangentialSolution::residual`]).
+    pub tolerance: f64,
+    /// Iteration limit.
+    pub max_iterations: usize,
+}
+
+impl Default for TangentialParams {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-10,
+            max_iterations: 10_000,
+        }
+    }
+}
+
+/// The tangential problem: a grid, the contact pressure on it, the friction coefficient,
+/// the two materials and the loading.
+#[derive(Debug, Clone, Copy)]
+pub struct TangentialProblem<'a> {
+    /// The surface window.
+    pub grid: &'a SurfaceGrid,
+    /// Contact pressure at element centres, Pa (grid layout), e.g. from the normal solver.
+    pub pressure: &'a [f64],
+    /// Coulomb friction coefficient f (dimensionless, > 0).
+    pub friction: f64,
+    /// Body 1 (e.g. the roller).
+    pub body1: ElasticMaterial,
+    /// Body 2 (e.g. the shaft).
+    pub body2: ElasticMaterial,
+    /// Force (partial slip) or full sliding.
+    pub loading: TangentialLoading,
+}
+
+/// The solution of a tangential contact problem, with its convergence record.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TangentialSolution {
+    /// q_x on body 1 at element centres, Pa.
+    pub traction_x: Vec<f64>,
+    /// q_y on body 1 at element centres, Pa.
+    pub traction_y: Vec<f64>,
+    /// Slip along the load direction, W - C_ee tau, at element centres, m (0 in the stick
+    /// zone, 0 outside the contact).
+    pub slip: Vec<f64>,
+    /// Whether each element sticks (in contact with |q| < f p).
+    pub stick: Vec<bool>,
+    /// Rigid shift W of body 2 relative to body 1 along the load direction, m (partial slip;
+    /// 0 for full sliding).
+    pub shift: f64,
+    /// Tangential force (Q_x, Q_y) = sum q dA, N.
+    pub tangential_force: (f64, f64),
+    /// Area of the stick zone, m^2.
+    pub stick_area: f64,
+    /// Area of the slip zone (in contact, not sticking), m^2.
+    pub slip_area: f64,
+    /// Largest |q|, Pa.
+    pub max_traction: f64,
+    /// Iterations done.
+    pub iterations: usize,
+    /// Final residual: the largest violation of the optimality conditions (stick: |W - C
+    /// tau|; slip: a slip against tau) in units of the largest |C tau|, or the relative
+    /// force error if larger.
+    pub residual: f64,
+}
+
+/// The combined tangential compliance along a direction e of two bodies on a grid,
+/// `C_ee = e.(C_1 + C_2) e` per unit uniform shear along e on an element, m/Pa.
+pub fn tangential_compliance_operator(
+    grid: &SurfaceGrid,
+    body1: &ElasticMaterial,
+    body2: &ElasticMaterial,
+    angle: f64,
+) -> ConvolutionOperator {
+    let (dx, dy) = (grid.dx(), grid.dy());
+    let (hx, hy) = (0.5 * dx, 0.5 * dy);
+    let (sin, cos) = angle.sin_cos();
+    let bodies = [*body1, *body2];
+    ConvolutionOperator::new(grid, move |di: isize, dj: isize| {
+        let (x, y) = (di as f64 * dx, dj as f64 * dy);
+        bodies
+            .iter()
+            .map(|m| {
+                let (g, nu) = (m.shear_modulus(), m.poisson_ratio());
+                let ux = love::shear_x_displacement(x, y, hx, hy, g, nu);
+                let uy = love::shear_y_displacement(x, y, hx, hy, g, nu);
+                // e.(u due to e) = cos^2 u_x(q_x) + sin cos (u_y(q_x) + u_x(q_y)) + sin^2 u_y(q_y)
+                cos * cos * ux[0] + sin * cos * (ux[1] + uy[0]) + sin * sin * uy[1]
+            })
+            .sum()
+    })
+}
+
+fn validate(problem: &TangentialProblem<'_>, params: &TangentialParams) -> Result<()> {
+    if !(params.tolerance.is_finite() && params.tolerance > 0.0 && params.tolerance < 1.0) {
+        return Err(Error::invalid(
+            "solver.tolerance",
+            params.tolerance,
+            "must be in (0, 1)",
+        ));
+    }
+    if params.max_iterations == 0 {
+        return Err(Error::invalid(
+            "solver.max_iterations",
+            0,
+            "must be at least 1",
+        ));
+    }
+    if problem.pressure.len() != problem.grid.len() {
+        return Err(Error::invalid(
+            "pressure",
+            format!("{} values", problem.pressure.len()),
+            "must hold one value per element",
+        ));
+    }
+    if let Some(p) = problem
+        .pressure
+        .iter()
+        .find(|p| !(p.is_finite() && **p >= 0.0))
+    {
+        return Err(Error::invalid(
+            "pressure",
+            p,
+            "must be finite and >= 0 (Pa)",
+        ));
+    }
+    let f = problem.friction;
+    if !(f.is_finite() && f > 0.0) {
+        return Err(Error::invalid(
+            "contact.friction",
+            f,
+            "the friction coefficient must be finite and > 0",
+        ));
+    }
+    let normal: f64 = problem.pressure.iter().sum::<f64>() * problem.grid.element_area();
+    if normal <= 0.0 {
+        return Err(Error::NoContact {
+            detail: "the pressure carries no load".into(),
+        });
+    }
+    match problem.loading {
+        TangentialLoading::Force { magnitude, angle } => {
+            if !(magnitude.is_finite() && magnitude > 0.0) {
+                return Err(Error::invalid(
+                    "contact.tangential_load",
+                    magnitude,
+                    "must be finite and > 0 (N)",
+                ));
+            }
+            if !angle.is_finite() {
+                return Err(Error::invalid(
+                    "contact.tangential_angle",
+                    angle,
+                    "must be finite",
+                ));
+            }
+            if magnitude >= f * normal {
+                return Err(Error::invalid(
+                    "contact.tangential_load",
+                    magnitude,
+                    format!(
+                        "partial slip needs |Q| < f F_N = {:.6e} N; at or above it the contact \
+                         slides (use sliding = true)",
+                        f * normal
+                    ),
+                ));
+            }
+        }
+        TangentialLoading::Sliding { angle } if !angle.is_finite() => {
+            return Err(Error::invalid(
+                "contact.sliding_angle",
+                angle,
+                "must be finite",
+            ));
+        }
+        TangentialLoading::Sliding { .. } => {}
+    }
+    Ok(())
+}
+
+/// Solve the tangential problem: full sliding in closed form, partial slip by the
+/// constrained conjugate gradient method of the module docs.
+pub fn solve_tangential(
+    problem: &TangentialProblem<'_>,
+    params: &TangentialParams,
+) -> Result<TangentialSolution> {
+    validate(problem, params)?;
+    let angle = match problem.loading {
+        TangentialLoading::Force { angle, .. } | TangentialLoading::Sliding { angle } => angle,
+    };
+    let operator =
+        tangential_compliance_operator(problem.grid, &problem.body1, &problem.body2, angle);
+    let mut workspace = operator.workspace();
+    solve_tangential_with(&operator, &mut workspace, problem, params)
+}
+
+/// [`solve_tangential`] with a caller-built operator ([`tangential_compliance_operator`] for
+/// the load direction) and workspace.
+pub fn solve_tangential_with(
+    operator: &ConvolutionOperator,
+    workspace: &mut ConvolutionWorkspace,
+    problem: &TangentialProblem<'_>,
+    params: &TangentialParams,
+) -> Result<TangentialSolution> {
+    validate(problem, params)?;
+    let grid = problem.grid;
+    let n = grid.len();
+    let area = grid.element_area();
+    let bound: Vec<f64> = problem
+        .pressure
+        .iter()
+        .map(|p| problem.friction * p)
+        .collect();
+    let total_bound: f64 = bound.iter().sum();
+    let (magnitude, angle) = match problem.loading {
+        TangentialLoading::Sliding { angle } => {
+            let tau = bound.clone();
+            let slip = vec![0.0; n];
+            return Ok(summarize(
+                grid,
+                &bound,
+                &tau,
+                angle,
+                slip,
+                vec![false; n],
+                0.0,
+                0,
+                0.0,
+            ));
+        }
+        TangentialLoading::Force { magnitude, angle } => (magnitude, angle),
+    };
+    // Target sum of tau over the elements (the force divided by the element area).
+    let target = magnitude / area;
+
+    // Start: tau proportional to the bound, carrying the force (inside the box, Q < f P).
+    let mut tau: Vec<f64> = bound.iter().map(|b| b * target / total_bound).collect();
+    let mut displacement = vec![0.0; n];
+    let mut residual_field = vec![0.0; n];
+    let mut direction = vec![0.0; n];
+    let mut response = vec![0.0; n];
+    let mut free = vec![false; n];
+    let mut norm_old = 1.0;
+    let mut conjugate = false;
+    let mut residual = f64::INFINITY;
+    const INSIDE: f64 = 1.0 - 1e-13;
+
+    for iteration in 0..=params.max_iterations {
+        operator.apply_into(&tau, &mut displacement, workspace);
+        // Stick zone (strictly inside the box) and the shift W = mean of C tau over it.
+        let mut n_free = 0usize;
+        let mut shift = 0.0;
+        for i in 0..n {
+            free[i] = bound[i] > 0.0 && tau[i].abs() < INSIDE * bound[i];
+            if free[i] {
+                n_free += 1;
+                shift += displacement[i];
+            }
+        }
+        if n_free == 0 {
+            return Err(Error::Numerical {
+                context: "tangential CG",
+                detail: "the stick zone vanished below f F_N".into(),
+            });
+        }
+        shift /= n_free as f64;
+        let u_scale = displacement.iter().fold(0.0f64, |m, u| m.max(u.abs()));
+        let mut worst = 0.0f64;
+        for i in 0..n {
+            let r = displacement[i] - shift;
+            residual_field[i] = r;
+            if free[i] {
+                worst = worst.max(r.abs());
+            } else if bound[i] > 0.0 && r * tau[i] > 0.0 {
+                // At the bound with the slip W - C tau against tau: must re-enter stick.
+                worst = worst.max(r.abs());
+            }
+        }
+        let force_error = (tau.iter().sum::<f64>() - target).abs() / target;
+        residual = (worst / u_scale).max(force_error);
+        if residual <= params.tolerance {
+            let slip: Vec<f64> = (0..n)
+                .map(|i| {
+                    if bound[i] > 0.0 && !free[i] {
+                        -residual_field[i]
+                    } else {
+                        0.0
+                    }
+                })
+                .collect();
+            return Ok(summarize(
+                grid,
+                &bound,
+                &tau,
+                angle,
+                slip,
+                free.clone(),
+                shift,
+                iteration,
+                residual,
+            ));
+        }
+        if iteration == params.max_iterations {
+            break;
+        }
+
+        // Conjugate direction on the stick zone, mean removed (keeps the force).
+        let norm: f64 = (0..n)
+            .filter(|&i| free[i])
+            .map(|i| residual_field[i] * residual_field[i])
+            .sum();
+        let beta = if conjugate { norm / norm_old } else { 0.0 };
+        norm_old = norm;
+        let mut mean = 0.0;
+        for i in 0..n {
+            direction[i] = if free[i] {
+                residual_field[i] + beta * direction[i]
+            } else {
+                0.0
+            };
+            mean += direction[i];
+        }
+        mean /= n_free as f64;
+        for i in 0..n {
+            if free[i] {
+                direction[i] -= mean;
+            }
+        }
+        operator.apply_into(&direction, &mut response, workspace);
+        let (mut num, mut den) = (0.0, 0.0);
+        for i in 0..n {
+            if free[i] {
+                num += residual_field[i] * direction[i];
+                den += response[i] * direction[i];
+            }
+        }
+        if den.is_nan() || den <= 0.0 {
+            return Err(Error::Numerical {
+                context: "tangential CG",
+                detail: format!("non-positive curvature {den:e} along the search direction"),
+            });
+        }
+        let step = num / den;
+
+        // Step, projection onto the box, re-entry of slip elements whose slip reversed.
+        let mut changed = false;
+        for i in 0..n {
+            if bound[i] <= 0.0 {
+                continue;
+            }
+            if free[i] {
+                let t = tau[i] - step * direction[i];
+                if t.abs() > bound[i] {
+                    tau[i] = bound[i].copysign(t);
+                    changed = true;
+                } else {
+                    tau[i] = t;
+                }
+            } else if residual_field[i] * tau[i] > 0.0 {
+                let t = tau[i] - step * residual_field[i];
+                tau[i] = t.clamp(-bound[i], bound[i]);
+                changed = true;
+            }
+        }
+        // Restore the force on the stick zone (projections change it).
+        if changed {
+            let deficit = target - tau.iter().sum::<f64>();
+            let inside: Vec<usize> = (0..n)
+                .filter(|&i| bound[i] > 0.0 && tau[i].abs() < INSIDE * bound[i])
+                .collect();
+            if !inside.is_empty() {
+                let share = deficit / inside.len() as f64;
+                for &i in &inside {
+                    tau[i] = (tau[i] + share).clamp(-bound[i], bound[i]);
+                }
+            }
+        }
+        conjugate = !changed;
+    }
+    Err(Error::NotConverged {
+        solver: "tangential constrained conjugate gradient",
+        iterations: params.max_iterations,
+        residual,
+        tolerance: params.tolerance,
+    })
+}
+
+#[allow(clippy::too_many_arguments)]
+fn summarize(
+    grid: &SurfaceGrid,
+    bound: &[f64],
+    tau: &[f64],
+    angle: f64,
+    slip: Vec<f64>,
+    stick: Vec<bool>,
+    shift: f64,
+    iterations: usize,
+    residual: f64,
+) -> TangentialSolution {
+    let area = grid.element_area();
+    let (sin, cos) = angle.sin_cos();
+    let traction_x: Vec<f64> = tau.iter().map(|t| t * cos).collect();
+    let traction_y: Vec<f64> = tau.iter().map(|t| t * sin).collect();
+    let n_contact = bound.iter().filter(|&&b| b > 0.0).count();
+    let n_stick = stick.iter().filter(|&&s| s).count();
+    let total: f64 = tau.iter().sum::<f64>() * area;
+    TangentialSolution {
+        traction_x,
+        traction_y,
+        slip,
+        stick,
+        shift,
+        tangential_force: (total * cos, total * sin),
+        stick_area: area * n_stick as f64,
+        slip_area: area * (n_contact - n_stick) as f64,
+        max_traction: tau.iter().fold(0.0f64, |m, t| m.max(t.abs())),
+        iterations,
+        residual,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn setup() -> (SurfaceGrid, Vec<f64>, ElasticMaterial) {
+        let grid = SurfaceGrid::centred(16, 16, 1.0e-3, 1.0e-3).unwrap();
+        let pressure = grid.sample(|x, y| (1e9 * (1.0 - (x * x + y * y) / 0.6e-6)).max(0.0));
+        (grid, pressure, ElasticMaterial::new(2.1e11, 0.3).unwrap())
+    }
+
+    #[test]
+    fn full_sliding_is_f_p_along_the_direction() {
+        let (grid, pressure, steel) = setup();
+        let problem = TangentialProblem {
+            grid: &grid,
+            pressure: &pressure,
+            friction: 0.25,
+            body1: steel,
+            body2: steel,
+            loading: TangentialLoading::Sliding {
+                angle: std::f64::consts::FRAC_PI_2,
+            },
+        };
+        let s = solve_tangential(&problem, &TangentialParams::default()).unwrap();
+        for (k, p) in pressure.iter().enumerate() {
+            assert!((s.traction_y[k] - 0.25 * p).abs() <= 1e-9 * p.max(1.0));
+            assert!(s.traction_x[k].abs() <= 1e-6 * p.max(1.0));
+        }
+        assert_eq!(s.stick_area, 0.0);
+    }
+
+    #[test]
+    fn bad_input_names_the_field() {
+        let (grid, pressure, steel) = setup();
+        let normal: f64 = pressure.iter().sum::<f64>() * grid.element_area();
+        let cases = [
+            (
+                0.0,
+                TangentialLoading::Force {
+                    magnitude: 1.0,
+                    angle: 0.0,
+                },
+                "contact.friction",
+            ),
+            (
+                0.2,
+                TangentialLoading::Force {
+                    magnitude: 0.2 * normal,
+                    angle: 0.0,
+                },
+                "contact.tangential_load",
+            ),
+            (
+                0.2,
+                TangentialLoading::Force {
+                    magnitude: -1.0,
+                    angle: 0.0,
+                },
+                "contact.tangential_load",
+            ),
+            (
+                0.2,
+                TangentialLoading::Sliding { angle: f64::NAN },
+                "contact.sliding_angle",
+            ),
+        ];
+        for (friction, loading, field) in cases {
+            let problem = TangentialProblem {
+                grid: &grid,
+                pressure: &pressure,
+                friction,
+                body1: steel,
+                body2: steel,
+                loading,
+            };
+            match solve_tangential(&problem, &TangentialParams::default()) {
+                Err(Error::InvalidParameter { field: f, .. }) => assert_eq!(f, field),
+                other => panic!("expected InvalidParameter({field}), got {other:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn stopping_early_reports_the_residual() {
+        let (grid, pressure, steel) = setup();
+        let normal: f64 = pressure.iter().sum::<f64>() * grid.element_area();
+        let problem = TangentialProblem {
+            grid: &grid,
+            pressure: &pressure,
+            friction: 0.3,
+            body1: steel,
+            body2: steel,
+            loading: TangentialLoading::Force {
+                magnitude: 0.5 * 0.3 * normal,
+                angle: 0.3,
+            },
+        };
+        let params = TangentialParams {
+            tolerance: 1e-12,
+            max_iterations: 2,
+        };
+        assert!(matches!(
+            solve_tangential(&problem, &params),
+            Err(Error::NotConverged { iterations: 2, .. })
+        ));
+        // And without the limit it converges, with the force along the direction.
+        let s = solve_tangential(&problem, &TangentialParams::default()).unwrap();
+        let q = 0.5 * 0.3 * normal;
+        assert!((s.tangential_force.0 - q * 0.3f64.cos()).abs() < 1e-9 * q);
+        assert!((s.tangential_force.1 - q * 0.3f64.sin()).abs() < 1e-9 * q);
+        assert!(s.stick_area > 0.0 && s.slip_area > 0.0);
+    }
+}
