@@ -24,6 +24,13 @@
 //! method = "cg"                    # "cg" (Polonsky-Keer) or "active_set" (dense, small grids)
 //! tolerance = 1e-10
 //! max_iterations = 10000
+//! [bulk]                           # optional: the back effect of bulk loading, (18), Fig. 2a
+//! shaft = "body2"                  # which body is the shaft: "body1" or "body2" (default body2)
+//! shaft_radius = 0.01              # R2, m (default: the body's radius where it has one)
+//! kind = "both"                    # "tension-compression", "bending" or "both" (default)
+//! stress_max = 6.4e8               # sigma_a,max, Pa: the curve spans sigma/sigma_max in [-1, 1]
+//! points = 21                      # points per curve, odd, 3 ... 1001 (default 21)
+//! # stress = 3.2e8                 # optional operating bulk stress, Pa: F_N reported there
 //! ```
 
 use crate::error::{CliError, CliResult};
@@ -58,6 +65,7 @@ struct RawCase {
     contact: RawContact,
     grid: Option<RawGrid>,
     solver: Option<RawSolver>,
+    bulk: Option<RawBulk>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -112,6 +120,17 @@ struct RawSolver {
     method: Option<Method>,
     tolerance: Option<Value>,
     max_iterations: Option<Value>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBulk {
+    shaft: Option<Value>,
+    shaft_radius: Option<Value>,
+    kind: Option<Value>,
+    stress_max: Option<Value>,
+    points: Option<Value>,
+    stress: Option<Value>,
 }
 
 // ---------------------------------------------------------------- validated layer
@@ -181,6 +200,67 @@ pub enum Window {
     HalfWidth([f64; 2]),
 }
 
+/// Default number of points per back-effect curve.
+pub const DEFAULT_BULK_POINTS: usize = 21;
+/// Most points per back-effect curve (each is one contact solution).
+pub const MAX_BULK_POINTS: usize = 1001;
+
+/// A kind of bulk load of the shaft, as the back effect (18) distinguishes them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LoadKind {
+    /// Tension-compression: u_z = -(nu/E) sigma R2.
+    TensionCompression,
+    /// Bending: u_z = -(nu/(2E)) sigma R2.
+    Bending,
+}
+
+impl LoadKind {
+    /// The name used in case files and outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            LoadKind::TensionCompression => "tension-compression",
+            LoadKind::Bending => "bending",
+        }
+    }
+
+    /// The bulk load of this kind with axial stress `sigma` (Pa) at the contact.
+    pub fn load(self, sigma: f64) -> tribo::kernels::bulk::BulkLoad {
+        use tribo::kernels::bulk::BulkLoad;
+        match self {
+            LoadKind::TensionCompression => BulkLoad::TensionCompression { stress: sigma },
+            LoadKind::Bending => BulkLoad::Bending {
+                surface_stress: sigma,
+            },
+        }
+    }
+}
+
+/// The validated `[bulk]` section: the back effect of bulk loading of the shaft.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bulk {
+    /// Which body is the shaft: "body1" or "body2".
+    pub shaft: &'static str,
+    /// Shaft radius R2, m.
+    pub shaft_radius: f64,
+    /// The load kinds, tension-compression first.
+    pub kinds: Vec<LoadKind>,
+    /// sigma_a,max, Pa.
+    pub stress_max: f64,
+    /// Points per curve (odd, so that sigma = 0 is one of them).
+    pub points: usize,
+    /// An operating bulk stress, Pa, at which F_N is reported.
+    pub stress: Option<f64>,
+}
+
+impl Bulk {
+    /// The stress ratios sigma/sigma_max of the curve: `points` values evenly over [-1, 1].
+    pub fn ratios(&self) -> Vec<f64> {
+        // (2k - m) / m: one correctly rounded division, so 0.1 is 0.1 and the middle is 0.
+        let m = self.points as f64 - 1.0;
+        (0..self.points).map(|k| (2.0 * k as f64 - m) / m).collect()
+    }
+}
+
 /// A validated case, ready to run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Case {
@@ -202,6 +282,8 @@ pub struct Case {
     pub method: Method,
     /// Solver parameters.
     pub params: NormalContactParams,
+    /// The back effect of bulk loading, where asked for.
+    pub bulk: Option<Bulk>,
     /// The case as written (TOML converted to JSON), echoed in `summary.json`.
     pub echo: serde_json::Value,
 }
@@ -216,6 +298,15 @@ impl Case {
     /// Composite modulus E*, Pa.
     pub fn composite_modulus(&self) -> f64 {
         tribo::composite_modulus(&self.body1.material, &self.body2.material)
+    }
+
+    /// The body named `name` ("body1" or "body2").
+    pub fn body(&self, name: &str) -> &Body {
+        if name == "body1" {
+            &self.body1
+        } else {
+            &self.body2
+        }
     }
 }
 
@@ -382,6 +473,10 @@ fn validate(
     }
 
     let (method, params) = solver(raw.solver, n)?;
+    let bulk = match raw.bulk {
+        None => None,
+        Some(b) => Some(bulk(b, &shape1, &shape2)?),
+    };
 
     let title = raw.title.unwrap_or_else(|| source.to_string());
     Ok(Case {
@@ -400,7 +495,129 @@ fn validate(
         window,
         method,
         params,
+        bulk,
         echo,
+    })
+}
+
+/// The default shaft radius from a body's radii: their common magnitude where both are
+/// finite and equal up to the sign (the paper's shaft, radii [-0.01, 0.01]), or the one
+/// finite convex radius of a cylinder ([inf, R]).
+fn shaft_radius_from(shape: &Shape) -> Option<f64> {
+    let Shape::Radii {
+        radii: [r0, r1], ..
+    } = *shape
+    else {
+        return None;
+    };
+    match (r0.is_finite(), r1.is_finite()) {
+        (true, true) if (r0.abs() - r1.abs()).abs() <= 1e-12 * r0.abs().max(r1.abs()) => {
+            Some(r0.abs())
+        }
+        (true, false) if r0 > 0.0 => Some(r0),
+        (false, true) if r1 > 0.0 => Some(r1),
+        _ => None,
+    }
+}
+
+fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
+    let shaft = match &b.shaft {
+        None => "body2",
+        Some(Value::String(s)) if s == "body1" => "body1",
+        Some(Value::String(s)) if s == "body2" => "body2",
+        Some(v) => {
+            return Err(CliError::field(
+                "bulk.shaft",
+                show(v),
+                "must be \"body1\" or \"body2\" (the body that is the shaft)",
+            ))
+        }
+    };
+    let shaft_shape = if shaft == "body1" { shape1 } else { shape2 };
+    let shaft_radius = match &b.shaft_radius {
+        Some(v) => positive("bulk.shaft_radius", v, Dim::Length, "the shaft radius (m)")?,
+        None => shaft_radius_from(shaft_shape).ok_or_else(|| {
+            CliError::field(
+                "bulk.shaft_radius",
+                "(missing)",
+                format!(
+                    "required: {shaft} has no single radius to take it from (its radii differ, \
+                     or it is a surface); give the shaft radius R2 in m"
+                ),
+            )
+        })?,
+    };
+    let kinds = match &b.kind {
+        None => vec![LoadKind::TensionCompression, LoadKind::Bending],
+        Some(Value::String(s)) if s == "both" => {
+            vec![LoadKind::TensionCompression, LoadKind::Bending]
+        }
+        Some(Value::String(s)) if s == "tension-compression" => {
+            vec![LoadKind::TensionCompression]
+        }
+        Some(Value::String(s)) if s == "bending" => vec![LoadKind::Bending],
+        Some(v) => {
+            return Err(CliError::field(
+                "bulk.kind",
+                show(v),
+                "must be \"tension-compression\", \"bending\" or \"both\"",
+            ))
+        }
+    };
+    let stress_max = match &b.stress_max {
+        Some(v) => positive(
+            "bulk.stress_max",
+            v,
+            Dim::Pressure,
+            "the largest bulk stress sigma_a,max (Pa)",
+        )?,
+        None => {
+            return Err(CliError::field(
+                "bulk.stress_max",
+                "(missing)",
+                "required: the largest bulk stress sigma_a,max in Pa (the curve spans \
+                 sigma/sigma_max in [-1, 1])",
+            ))
+        }
+    };
+    let points = match &b.points {
+        None => DEFAULT_BULK_POINTS,
+        Some(v) => {
+            let k = count("bulk.points", v)?;
+            if !(3..=MAX_BULK_POINTS).contains(&k) || k % 2 == 0 {
+                return Err(CliError::field(
+                    "bulk.points",
+                    k,
+                    format!(
+                        "must be odd and in 3 ... {MAX_BULK_POINTS} (odd, so that sigma = 0 \
+                         is a point of the curve)"
+                    ),
+                ));
+            }
+            k
+        }
+    };
+    let stress = match &b.stress {
+        None => None,
+        Some(v) => {
+            let x = quantity("bulk.stress", v, Dim::Pressure)?;
+            if !x.is_finite() {
+                return Err(CliError::field(
+                    "bulk.stress",
+                    show(v),
+                    "the operating bulk stress must be finite (Pa, tension > 0)",
+                ));
+            }
+            Some(x)
+        }
+    };
+    Ok(Bulk {
+        shaft,
+        shaft_radius,
+        kinds,
+        stress_max,
+        points,
+        stress,
     })
 }
 
@@ -1031,6 +1248,72 @@ extent = 1.5
         assert!(
             err(&(PAPER.to_string() + "[solver]\ntolerance = 0\n")).starts_with("solver.tolerance")
         );
+    }
+
+    #[test]
+    fn bulk_section() {
+        assert_eq!(parse(PAPER).unwrap().bulk, None);
+        let c = parse(&(PAPER.to_string() + "[bulk]\nstress_max = \"640 MPa\"\n")).unwrap();
+        let b = c.bulk.unwrap();
+        assert_eq!((b.shaft, b.shaft_radius), ("body2", 0.01));
+        assert_eq!(b.kinds, [LoadKind::TensionCompression, LoadKind::Bending]);
+        assert_eq!((b.stress_max, b.points, b.stress), (6.4e8, 21, None));
+        let r = b.ratios();
+        assert_eq!((r.len(), r[0], r[10], r[20]), (21, -1.0, 0.0, 1.0));
+        let t = PAPER.to_string()
+            + "[bulk]\nshaft = \"body2\"\nshaft_radius = \"10.5 mm\"\nkind = \"bending\"\n\
+               stress_max = 6.4e8\npoints = 5\nstress = -3.2e8\n";
+        let b = parse(&t).unwrap().bulk.unwrap();
+        assert!((b.shaft_radius - 0.0105).abs() < 1e-15);
+        assert_eq!(
+            (b.kinds.as_slice(), b.points),
+            ([LoadKind::Bending].as_slice(), 5)
+        );
+        assert_eq!(b.stress, Some(-3.2e8));
+        // Body 1's radii differ: the radius is required.
+        let e = err(&(PAPER.to_string() + "[bulk]\nshaft = \"body1\"\nstress_max = 1e8\n"));
+        assert!(
+            e.starts_with("bulk.shaft_radius") && e.contains("required"),
+            "{e}"
+        );
+        let bad = |extra: &str| err(&format!("{PAPER}[bulk]\nstress_max = 6.4e8\n{extra}\n"));
+        for (extra, field) in [
+            ("shaft = \"body3\"", "bulk.shaft = \"body3\""),
+            ("shaft_radius = -0.01", "bulk.shaft_radius = -0.01"),
+            ("shaft_radius = 0", "bulk.shaft_radius = 0"),
+            ("kind = \"torsion\"", "bulk.kind = \"torsion\""),
+            ("points = 2", "bulk.points = 2"),
+            ("points = 20", "bulk.points = 20"),
+            ("points = 1", "bulk.points = 1"),
+            ("points = 100001", "bulk.points = 100001"),
+            ("points = 2.5", "bulk.points = 2.5"),
+            ("stress = nan", "bulk.stress = nan"),
+            ("stress = \"3 mm\"", "bulk.stress"),
+        ] {
+            let e = bad(extra);
+            assert!(e.starts_with(field), "{extra}: {e}");
+        }
+        let e = err(&(PAPER.to_string() + "[bulk]\nstress_max = -1\n"));
+        assert!(e.starts_with("bulk.stress_max = -1"), "{e}");
+        let e = err(&(PAPER.to_string() + "[bulk]\nkind = \"bending\"\n"));
+        assert!(
+            e.starts_with("bulk.stress_max") && e.contains("required"),
+            "{e}"
+        );
+        let e = bad("stres = 1e8");
+        assert!(e.contains("stres"), "{e}");
+    }
+
+    #[test]
+    fn default_shaft_radius() {
+        let r = |radii: [f64; 2]| shaft_radius_from(&Shape::Radii { radii, angle: 0.0 });
+        assert_eq!(r([-0.01, 0.01]), Some(0.01));
+        assert_eq!(r([0.02, 0.02]), Some(0.02));
+        assert_eq!(r([f64::INFINITY, 0.01]), Some(0.01));
+        assert_eq!(r([0.01, f64::INFINITY]), Some(0.01));
+        assert_eq!(r([-0.01, f64::INFINITY]), None);
+        assert_eq!(r([0.005, 0.05]), None);
+        assert_eq!(r([f64::INFINITY; 2]), None);
     }
 
     const ROLLER: &str = r#"

@@ -27,6 +27,11 @@ pub const EXAMPLES: &[Example] = &[
         text: include_str!("../examples/cases/roller-shaft-approach.toml"),
     },
     Example {
+        name: "roller-shaft-bending",
+        description: "the same with bulk loading of the shaft: the back effect, Fig. 2a",
+        text: include_str!("../examples/cases/roller-shaft-bending.toml"),
+    },
+    Example {
         name: "sphere-on-flat",
         description: "steel ball (R = 10 mm) on a flat, 100 N: circular Hertz contact",
         text: include_str!("../examples/cases/sphere-on-flat.toml"),

@@ -43,6 +43,7 @@ Examples:
   tribo example sphere-on-flat > s.toml
   tribo run s.toml -o out               run a case file, write out/
   tribo example crowned-roller | tribo run - -o roller --json
+  tribo example roller-shaft-bending | tribo run - -o fig2a   the back effect (Fig. 2a)
   tribo validate                        the verification table";
 
 #[derive(Debug, Parser)]
@@ -66,6 +67,14 @@ roller on shaft, when CASE is not given; `-` reads the case from stdin) and writ
                          initial_gap_m (and hertz_pressure_Pa)
   pressure_map.png       the pressure over the window with the Hertz ellipse
   pressure_profiles.png  p along x and along y through the centre, against Hertz
+
+With a [bulk] section (the back effect of bulk loading of the shaft, the paper's (18) and
+Fig. 2a) also:
+
+  back_effect.csv        kind, sigma_Pa, sigma_over_sigma_max, approach_change_m,
+                         normal_load_N, force_ratio, force_ratio_hertz
+  back_effect.png        F_N / F_N(0) against sigma / sigma_max at the fixed rigid approach,
+                         numerical points and the Hertz estimate, for each load kind
 
 A short summary goes to stdout (--json: the summary JSON instead); progress to stderr.
 Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3).")]

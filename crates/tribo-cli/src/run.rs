@@ -1,13 +1,15 @@
 //! The pipeline of `tribo run`: validated case -> grid and initial gap -> normal contact
-//! solution -> comparison with Hertz (where the gap is Hertzian).
+//! solution -> comparison with Hertz (where the gap is Hertzian) -> the back effect of bulk
+//! loading (where the case has `[bulk]`).
 
-use crate::case::{Case, Method, Shape, Window};
+use crate::case::{Case, LoadKind, Method, Shape, Window};
 use crate::error::CliResult;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::time::{Duration, Instant};
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
 use tribo::geometry::initial_gap;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
+use tribo::solvers::back_effect::{back_effect_curve_observed, BackEffectPoint};
 use tribo::solvers::{
     solve_normal_active_set, solve_normal_cg_observed, NormalContactProblem, NormalContactSolution,
     NormalLoading,
@@ -49,6 +51,35 @@ pub struct Outcome {
     pub error: Option<PressureErrors>,
     /// Wall time of the solve.
     pub solve_time: Duration,
+    /// The back effect of bulk loading (cases with `[bulk]`).
+    pub back_effect: Option<BackEffect>,
+}
+
+/// Where the fixed rigid approach of the back effect comes from.
+pub const APPROACH_FROM_CASE: &str = "contact.approach";
+/// Where the fixed rigid approach of the back effect comes from, under force control.
+pub const APPROACH_FROM_SOLUTION: &str = "the normal solution under contact.load";
+
+/// The back effect of bulk loading, the paper's (18) and Fig. 2a: the contact force at a
+/// fixed rigid approach against the bulk stress of the shaft.
+#[derive(Debug, Clone)]
+pub struct BackEffect {
+    /// The fixed rigid approach delta_0, m.
+    pub reference_approach: f64,
+    /// Where delta_0 comes from ([`APPROACH_FROM_CASE`] or [`APPROACH_FROM_SOLUTION`]).
+    pub approach_from: &'static str,
+    /// F_N at delta_0 without bulk load, N.
+    pub reference_load: f64,
+    /// sigma / sigma_max of the curve points.
+    pub ratios: Vec<f64>,
+    /// One curve per load kind, points in the order of `ratios`.
+    pub curves: Vec<(LoadKind, Vec<BackEffectPoint>)>,
+    /// At the operating stress `bulk.stress`, one point per load kind.
+    pub operating: Vec<(LoadKind, BackEffectPoint)>,
+    /// CG iterations over all points.
+    pub iterations: usize,
+    /// Wall time, s.
+    pub time: Duration,
 }
 
 /// Build the grid and the initial gap, and the Hertz reference where the gap is Hertzian.
@@ -160,11 +191,112 @@ pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome>
         }
         None => (None, None),
     };
-    Ok(Outcome {
+    let mut outcome = Outcome {
         prepared,
         solution,
         hertz_pressure,
         error,
         solve_time,
-    })
+        back_effect: None,
+    };
+    outcome.back_effect = back_effect(case, &outcome, quiet)?;
+    Ok(outcome)
+}
+
+/// The back effect of the case's `[bulk]` section (None without one): every curve point and
+/// the operating stress solved on one FFT operator at the fixed rigid approach, which is
+/// `contact.approach` under approach control and the approach the normal solution found
+/// under force control.
+pub fn back_effect(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<BackEffect>> {
+    let Some(bulk) = &case.bulk else {
+        return Ok(None);
+    };
+    let (reference_approach, approach_from) = match case.loading {
+        NormalLoading::Approach(d) => (d, APPROACH_FROM_CASE),
+        NormalLoading::Force(_) => (out.solution.approach, APPROACH_FROM_SOLUTION),
+    };
+    let ratios = bulk.ratios();
+    let mut loads = Vec::new();
+    for &kind in &bulk.kinds {
+        loads.extend(ratios.iter().map(|r| kind.load(r * bulk.stress_max)));
+    }
+    if let Some(sigma) = bulk.stress {
+        loads.extend(bulk.kinds.iter().map(|k| k.load(sigma)));
+    }
+    let pb = if quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::with_draw_target(Some(loads.len() as u64 + 1), ProgressDrawTarget::stderr())
+    };
+    if let Ok(style) =
+        ProgressStyle::with_template("{spinner} {msg} [{bar:30}] {pos}/{len} [{elapsed}]")
+    {
+        pb.set_style(style.progress_chars("=> "));
+    }
+    pb.set_message(format!(
+        "back effect of bulk loading ({} contact solutions at delta_0 = {reference_approach:.4e} m)",
+        loads.len() + 1
+    ));
+    pb.enable_steady_tick(Duration::from_millis(100));
+    let p = &out.prepared;
+    let start = Instant::now();
+    let result = back_effect_curve_observed(
+        &p.grid,
+        &p.initial_gap,
+        p.composite_modulus,
+        &case.body(bulk.shaft).material,
+        bulk.shaft_radius,
+        reference_approach,
+        &loads,
+        &case.params,
+        &mut |done, _| pb.set_position(done as u64),
+    );
+    let time = start.elapsed();
+    pb.finish_and_clear();
+    let points = result.map_err(|e| match e {
+        tribo::Error::ContactReachesWindow { detail } => {
+            let (field, value) = match bulk.stress {
+                Some(s) if s.abs() > bulk.stress_max => ("bulk.stress", s),
+                _ => ("bulk.stress_max", bulk.stress_max),
+            };
+            crate::error::CliError::field(
+                field,
+                value,
+                format!(
+                    "under this bulk stress (compression) the approach delta_0 + u_z grows the \
+                     contact to the edge of the window ({detail}); lower the stress or enlarge \
+                     the window (grid.extent or grid.half_width)"
+                ),
+            )
+        }
+        e => e.into(),
+    })?;
+    let n = ratios.len();
+    let curves: Vec<(LoadKind, Vec<BackEffectPoint>)> = bulk
+        .kinds
+        .iter()
+        .enumerate()
+        .map(|(k, &kind)| (kind, points[k * n..(k + 1) * n].to_vec()))
+        .collect();
+    let operating = bulk
+        .kinds
+        .iter()
+        .zip(&points[bulk.kinds.len() * n..])
+        .map(|(&kind, p)| (kind, *p))
+        .collect();
+    // The middle point is sigma = 0 (points is odd): its load is F_N(0).
+    let reference_load = curves
+        .first()
+        .and_then(|(_, c)| c.get(n / 2))
+        .map_or(0.0, |p| p.normal_load);
+    Ok(Some(BackEffect {
+        reference_approach,
+        approach_from,
+        reference_load,
+        ratios,
+        curves,
+        operating,
+        iterations: points.iter().map(|p| p.iterations).sum(),
+        time,
+    }))
 }

@@ -417,6 +417,7 @@ fn examples_list_print_and_validate() {
     for expected in [
         "roller-shaft",
         "roller-shaft-approach",
+        "roller-shaft-bending",
         "sphere-on-flat",
         "steel-on-cast-iron",
         "crowned-roller",
@@ -503,4 +504,185 @@ fn validate_prints_the_table_and_passes() {
     assert!(rows
         .as_array()
         .is_some_and(|r| !r.is_empty() && r.iter().all(|r| r["passed"] == true)));
+}
+
+/// The rows of `back_effect.csv`: (kind, the six numbers).
+fn back_effect_rows(out: &Path) -> Vec<(String, [f64; 6])> {
+    let t = std::fs::read_to_string(out.join("back_effect.csv")).unwrap();
+    let mut lines = t.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "kind,sigma_Pa,sigma_over_sigma_max,approach_change_m,normal_load_N,force_ratio,force_ratio_hertz"
+    );
+    lines
+        .map(|l| {
+            let mut cols = l.split(',');
+            let kind = cols.next().unwrap().to_string();
+            let v: Vec<f64> = cols.map(|c| c.parse().unwrap()).collect();
+            assert!(v.len() == 6 && v.iter().all(|x| x.is_finite()), "{l}");
+            (kind, [v[0], v[1], v[2], v[3], v[4], v[5]])
+        })
+        .collect()
+}
+
+#[test]
+fn the_back_effect_example_matches_hertz_and_the_paper() {
+    let text = stdout(&tribo(&["example", "roller-shaft-bending"], None));
+    let (o, out, _d) = run_case(&text, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let human = stdout(&o);
+    assert!(
+        human.contains("back effect") && human.contains("normal solution under contact.load"),
+        "{human}"
+    );
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "back_effect.csv",
+            "back_effect.png",
+            "fields.vti",
+            "gap.csv",
+            "pressure.csv",
+            "pressure_map.png",
+            "pressure_profiles.png",
+            "summary.json"
+        ]
+    );
+    let png = std::fs::read(out.join("back_effect.png")).unwrap();
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+
+    let rows = back_effect_rows(&out);
+    assert_eq!(rows.len(), 42, "21 points for each of the two kinds");
+    let at = |kind: &str, r: f64| {
+        rows.iter()
+            .find(|(k, v)| k == kind && v[1] == r)
+            .map(|(_, v)| *v)
+            .unwrap_or_else(|| panic!("no {kind} row at {r}"))
+    };
+    for kind in ["tension-compression", "bending"] {
+        let zero = at(kind, 0.0);
+        assert_eq!((zero[0], zero[2], zero[4], zero[5]), (0.0, 0.0, 1.0, 1.0));
+        for r in [-1.0, 1.0] {
+            let v = at(kind, r);
+            assert_eq!(v[0], r * 6.4e8);
+            // Issue 3: the numerical curve within 0.5 percentage points of Hertz
+            // (1 + u_z/delta0)^1.5.
+            assert!(
+                (v[4] - v[5]).abs() < 5e-3,
+                "{kind} at {r}: {} vs Hertz {}",
+                v[4],
+                v[5]
+            );
+            // Tension (r > 0) contracts the shaft radially and lowers F.
+            assert_eq!(v[2] < 0.0, r > 0.0, "{kind} at {r}: u_z = {}", v[2]);
+            assert_eq!(v[4] < 1.0, r > 0.0);
+        }
+    }
+    // The paper's Fig. 2a, bending: +27 % / -25 %, within 1 percentage point (read off the
+    // figure, rounded). Tension-compression differs by ~3 points (README, "Back effect").
+    let bend = |r: f64| 100.0 * (at("bending", r)[4] - 1.0);
+    assert!((bend(-1.0) - 27.0).abs() <= 1.0, "{}", bend(-1.0));
+    assert!((bend(1.0) + 25.0).abs() <= 1.0, "{}", bend(1.0));
+    // u_z (18) for tension-compression at 6.4e8 Pa: nu sigma R2 / E = 9.552e-6 m
+    // (HALFSPACE.md section 5).
+    assert!((at("tension-compression", 1.0)[2] + 9.5522e-6).abs() < 1e-9);
+
+    let s = read_json(&out.join("summary.json"));
+    let b = &s["back_effect"];
+    let f = |v: &serde_json::Value| v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"));
+    assert_eq!(
+        b["reference_approach_from"],
+        "the normal solution under contact.load"
+    );
+    assert_eq!(f(&b["reference_approach"]), f(&s["contact"]["approach"]));
+    assert!((f(&b["reference_load"]) / 2000.0 - 1.0).abs() < 1e-6);
+    assert_eq!((f(&b["shaft_radius"]), f(&b["stress_max"])), (0.01, 6.4e8));
+    let tc = &b["tension_compression"];
+    assert!((f(&tc["at_minus_one"]["change_percent"]) - 57.0).abs() < 0.5);
+    assert!((f(&tc["at_plus_one"]["change_percent"]) + 47.7).abs() < 0.5);
+    assert!((f(&tc["at_minus_one"]["hertz_change_percent"]) - 57.0).abs() < 0.5);
+    assert_eq!(tc["paper_fig2a_percent"], serde_json::json!([60.0, -50.0]));
+    assert_eq!(
+        b["bending"]["paper_fig2a_percent"],
+        serde_json::json!([27.0, -25.0])
+    );
+    assert_eq!(
+        f(&b["bending"]["at_plus_one"]["force_ratio"]),
+        at("bending", 1.0)[4]
+    );
+    for k in ["tension_compression", "bending"] {
+        assert!(f(&b[k]["max_deviation_from_hertz_points"]) < 0.5, "{k}");
+    }
+    // The operating stress 3.2e8 Pa: bending there equals tension-compression at 1.6e8.
+    let op = &b["operating"];
+    assert_eq!(f(&op["stress"]), 3.2e8);
+    assert_eq!(
+        f(&op["tension_compression"]["force_ratio"]),
+        at("tension-compression", 0.5)[4]
+    );
+    assert!(f(&op["bending"]["normal_load"]) < 2000.0);
+    let outputs = s["outputs"].as_array().unwrap();
+    assert!(outputs.iter().any(|o| o == "back_effect.csv"));
+}
+
+#[test]
+fn back_effect_under_approach_control_holds_the_given_approach() {
+    let text = PAPER.replace("load = 2000.0", "approach = \"27.23 um\"")
+        + "[bulk]\nkind = \"tension-compression\"\nstress_max = \"640 MPa\"\npoints = 3\n";
+    let (o, out, _d) = run_case(&text, &[], &["--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let b = &read_json(&out.join("summary.json"))["back_effect"];
+    assert_eq!(b["reference_approach_from"], "contact.approach");
+    assert!((b["reference_approach"].as_f64().unwrap() - 2.723e-5).abs() < 1e-15);
+    assert!(b["bending"].is_null() && b["operating"].is_null());
+    let rows = back_effect_rows(&out);
+    assert_eq!(rows.len(), 3);
+    assert!(rows.iter().all(|(k, _)| k == "tension-compression"));
+    for (_, v) in &rows {
+        assert!((v[4] - v[5]).abs() < 5e-3, "{v:?}");
+    }
+}
+
+#[test]
+fn bad_bulk_input_exits_2_names_the_field_and_writes_nothing() {
+    let base = PAPER.to_string() + "[bulk]\nstress_max = 6.4e8\n";
+    for (extra, field) in [
+        ("shaft_radius = -0.01", "bulk.shaft_radius"),
+        ("shaft_radius = \"-10 mm\"", "bulk.shaft_radius"),
+        ("points = 2", "bulk.points"),
+        ("points = 4", "bulk.points"),
+        ("kind = \"torsion\"", "bulk.kind"),
+        ("kind = \"tension_compression\"", "bulk.kind"),
+        ("shaft = \"roller\"", "bulk.shaft"),
+        ("stress = inf", "bulk.stress"),
+        ("sigma_max = 6.4e8", "sigma_max"),
+    ] {
+        assert_bad_input(&format!("{base}{extra}\n"), &[], field);
+    }
+    assert_bad_input(
+        &(PAPER.to_string() + "[bulk]\nstress_max = 0\n"),
+        &[],
+        "bulk.stress_max",
+    );
+    // Compression so large that the contact reaches the window.
+    assert_bad_input(
+        &(PAPER.to_string() + "[bulk]\nstress_max = \"3 GPa\"\npoints = 3\n"),
+        &[],
+        "bulk.stress_max",
+    );
+    assert_bad_input(
+        &(PAPER.to_string() + "[bulk]\nkind = \"bending\"\n"),
+        &[],
+        "bulk.stress_max",
+    );
+    assert_bad_input(
+        &(PAPER.to_string() + "[bulk]\nshaft = \"body1\"\nstress_max = 6.4e8\n"),
+        &[],
+        "bulk.shaft_radius",
+    );
 }

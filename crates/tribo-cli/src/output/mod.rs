@@ -1,10 +1,12 @@
 //! Writers of the files of `tribo run`: `summary.json`, `pressure.csv`, `gap.csv`,
-//! `fields.vti`, `pressure_map.png`, `pressure_profiles.png`.
+//! `fields.vti`, `pressure_map.png`, `pressure_profiles.png`; with `[bulk]` also
+//! `back_effect.csv` and `back_effect.png`.
 //!
 //! Every file is written whole or not at all: its content goes to a temporary file in the
 //! output directory, which is then renamed over the final name. Every number is checked
 //! finite before anything is written.
 
+pub mod back_effect;
 pub mod fields;
 pub mod plot;
 pub mod summary;
@@ -25,6 +27,18 @@ pub const FILES: [&str; 6] = [
     "pressure_map.png",
     "pressure_profiles.png",
 ];
+
+/// Names of the files the back effect adds (cases with `[bulk]`).
+pub const BACK_EFFECT_FILES: [&str; 2] = ["back_effect.csv", "back_effect.png"];
+
+/// Names of the files a run of this outcome writes.
+pub fn files(out: &Outcome) -> Vec<String> {
+    let mut f: Vec<String> = FILES.iter().map(|f| f.to_string()).collect();
+    if out.back_effect.is_some() {
+        f.extend(BACK_EFFECT_FILES.iter().map(|f| f.to_string()));
+    }
+    f
+}
 
 fn check_finite(what: &str, values: &[f64]) -> CliResult<()> {
     match values.iter().position(|v| !v.is_finite()) {
@@ -91,7 +105,7 @@ fn plot_atomic(
 
 /// The summary of a solved case, checked finite.
 pub fn summary(case: &Case, out: &Outcome) -> CliResult<Summary> {
-    let s = Summary::new(case, out, FILES.iter().map(|f| f.to_string()).collect());
+    let s = Summary::new(case, out, files(out));
     let c = &s.contact;
     let mut scalars = vec![
         c.normal_load,
@@ -120,6 +134,9 @@ pub fn summary(case: &Case, out: &Outcome) -> CliResult<Summary> {
             e.eps_max_inside,
             e.eps_max_element_averaged,
         ]);
+    }
+    if let Some(b) = &s.back_effect {
+        scalars.extend(b.scalars());
     }
     check_finite("summary.json", &scalars)?;
     Ok(s)
@@ -160,6 +177,18 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
         arrays.push(("hertz_pressure_Pa", ph));
     }
     let vti = fields::vti(grid, &arrays);
+    let back = match &out.back_effect {
+        Some(b) => {
+            check_finite("back_effect.csv", &back_effect::values(b))?;
+            let series = back_effect::series(case, b)?;
+            for s in &series {
+                let v: Vec<f64> = s.hertz.iter().flat_map(|p| [p.0, p.1]).collect();
+                check_finite("back_effect.png", &v)?;
+            }
+            Some((back_effect::csv(b), series))
+        }
+        None => None,
+    };
 
     std::fs::create_dir_all(dir).map_err(|source| CliError::Write {
         path: dir.to_path_buf(),
@@ -175,6 +204,12 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
     plot_atomic(dir, FILES[5], |p| {
         plot::pressure_profiles(p, grid, &sol.pressure, hertz, &case.title)
     })?;
+    if let Some((csv, series)) = &back {
+        write_atomic(dir, BACK_EFFECT_FILES[0], csv.as_bytes())?;
+        plot_atomic(dir, BACK_EFFECT_FILES[1], |p| {
+            plot::back_effect(p, series, &case.title)
+        })?;
+    }
     // Last: a summary.json in the directory means the whole run was written.
     write_atomic(dir, FILES[0], json.as_bytes())?;
     Ok(summary)

@@ -277,6 +277,98 @@ pub fn pressure_profiles(
     Ok(())
 }
 
+/// The back effect of bulk loading, like the paper's Fig. 2a: F_N / F_N(0) against
+/// sigma_a / sigma_a,max, numerical points (markers) and the Hertz estimate (curves) for each
+/// load kind.
+pub fn back_effect(
+    path: &Path,
+    series: &[super::back_effect::Series],
+    title: &str,
+) -> Result<(), String> {
+    register_font()?;
+    let root = BitMapBackend::new(path, (960, 720)).into_drawing_area();
+    root.fill(&WHITE).map_err(e)?;
+    let all = series
+        .iter()
+        .flat_map(|s| s.points.iter().chain(&s.hertz))
+        .map(|p| p.1)
+        .filter(|v| v.is_finite());
+    let (lo, hi) = all.fold((1.0f64, 1.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let pad = 0.06 * (hi - lo).max(0.1);
+    let (lo, hi) = ((lo - pad).max(0.0), hi + pad);
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            format!("Contact force vs bulk stress: {title}"),
+            (FAMILY, 20),
+        )
+        .margin(20)
+        .x_label_area_size(55)
+        .y_label_area_size(75)
+        .build_cartesian_2d(-1.08..1.08, lo..hi)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .x_desc("bulk stress at the contact, sigma_a / sigma_a,max (tension > 0)")
+        .y_desc("contact force at fixed approach, F_N / F_N(0)")
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
+        .label_style((FAMILY, 15))
+        .axis_desc_style((FAMILY, 17))
+        .light_line_style(WHITE.mix(0.0))
+        .draw()
+        .map_err(e)?;
+    chart
+        .draw_series(LineSeries::new(
+            [(-1.08, 1.0), (1.08, 1.0)],
+            BLACK.mix(0.3).stroke_width(1),
+        ))
+        .map_err(e)?;
+    for s in series {
+        let colour = if s.name == "bending" {
+            RGBColor(31, 119, 180)
+        } else {
+            RGBColor(214, 39, 40)
+        };
+        chart
+            .draw_series(LineSeries::new(
+                s.hertz.iter().copied(),
+                colour.stroke_width(2),
+            ))
+            .map_err(e)?
+            .label(format!("{}, Hertz (1 + u_z/delta_0)^1.5", s.name))
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+            });
+        if s.name == "bending" {
+            chart
+                .draw_series(
+                    s.points
+                        .iter()
+                        .map(|&p| TriangleMarker::new(p, 7, colour.filled())),
+                )
+                .map_err(e)?
+                .label(format!("{}, tribo", s.name))
+                .legend(move |(x, y)| TriangleMarker::new((x + 10, y), 7, colour.filled()));
+        } else {
+            chart
+                .draw_series(s.points.iter().map(|&p| Circle::new(p, 5, colour.filled())))
+                .map_err(e)?
+                .label(format!("{}, tribo", s.name))
+                .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.filled()));
+        }
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font((FAMILY, 15))
+        .draw()
+        .map_err(e)?;
+    root.present().map_err(e)?;
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,9 +1,10 @@
 //! `summary.json`: the result of a run, SI units throughout.
 
-use crate::case::{Case, Window};
-use crate::run::Outcome;
+use crate::case::{Case, LoadKind, Window};
+use crate::run::{BackEffect, Outcome};
 use serde::Serialize;
 use tribo::analysis::hertz_error::PressureErrors;
+use tribo::solvers::back_effect::BackEffectPoint;
 use tribo::solvers::NormalLoading;
 
 /// The summary written to `summary.json` and printed by `--json`.
@@ -27,6 +28,9 @@ pub struct Summary {
     pub solver: SolverInfo,
     /// The contact result.
     pub contact: Contact,
+    /// The back effect of bulk loading (cases with `[bulk]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub back_effect: Option<BackEffectSummary>,
     /// Files written (names within the output directory).
     pub outputs: Vec<String>,
 }
@@ -142,6 +146,211 @@ pub struct Contact {
     pub error_vs_hertz: Option<PressureErrors>,
 }
 
+/// The paper's Fig. 2a, read off the figure (Sec. 3 text: "approximately from +60 % to
+/// -50 % at tension-compression and approximately from +27 % to -25 % at bending"), for its
+/// case: steel, R2 = 10 mm, F_N(0) = 2000 N, sigma_a,max = 6.4e8 Pa.
+pub const PAPER_FIG2A_PERCENT: [(LoadKind, [f64; 2]); 2] = [
+    (LoadKind::TensionCompression, [60.0, -50.0]),
+    (LoadKind::Bending, [27.0, -25.0]),
+];
+
+/// The back effect in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct BackEffectSummary {
+    /// The model, in words.
+    pub model: &'static str,
+    /// Which body is the shaft.
+    pub shaft: &'static str,
+    /// Shaft radius R2, m.
+    pub shaft_radius: f64,
+    /// The shaft's Young's modulus, Pa.
+    pub shaft_e: f64,
+    /// The shaft's Poisson's ratio.
+    pub shaft_nu: f64,
+    /// sigma_a,max, Pa.
+    pub stress_max: f64,
+    /// Points per curve.
+    pub points: usize,
+    /// The fixed rigid approach delta_0, m.
+    pub reference_approach: f64,
+    /// Where delta_0 comes from.
+    pub reference_approach_from: &'static str,
+    /// F_N(sigma = 0) at delta_0, N.
+    pub reference_load: f64,
+    /// CG iterations over all points.
+    pub iterations: usize,
+    /// Wall time, s.
+    pub time_s: f64,
+    /// Tension-compression (kappa = 1), where computed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tension_compression: Option<BackEffectKind>,
+    /// Bending (kappa = 1/2), where computed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bending: Option<BackEffectKind>,
+    /// At the operating stress `bulk.stress`, where given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub operating: Option<BackEffectOperating>,
+}
+
+/// One load kind's curve, by its end points.
+#[derive(Debug, Clone, Serialize)]
+pub struct BackEffectKind {
+    /// kappa of (18): 1 tension-compression, 1/2 bending.
+    pub kappa: f64,
+    /// At sigma/sigma_max = -1 (compression at the contact).
+    pub at_minus_one: BackEffectValue,
+    /// At sigma/sigma_max = +1 (tension at the contact).
+    pub at_plus_one: BackEffectValue,
+    /// Largest |F/F0 - Hertz| over the curve, percentage points.
+    pub max_deviation_from_hertz_points: f64,
+    /// The paper's Fig. 2a, percent change at -1 and +1 (its case only; for comparison).
+    pub paper_fig2a_percent: [f64; 2],
+}
+
+/// The back effect at one bulk stress.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct BackEffectValue {
+    /// Axial stress at the contact, Pa (tension > 0).
+    pub stress: f64,
+    /// u_z (18): change of the elastic approach, m.
+    pub approach_change: f64,
+    /// F_N, N.
+    pub normal_load: f64,
+    /// F_N / F_N(0).
+    pub force_ratio: f64,
+    /// 100 (F_N / F_N(0) - 1), percent.
+    pub change_percent: f64,
+    /// Hertz: (1 + u_z / delta_0)^(3/2).
+    pub hertz_force_ratio: f64,
+    /// 100 (Hertz - 1), percent.
+    pub hertz_change_percent: f64,
+}
+
+impl From<&BackEffectPoint> for BackEffectValue {
+    fn from(p: &BackEffectPoint) -> Self {
+        BackEffectValue {
+            stress: p.stress,
+            approach_change: p.approach_change + 0.0,
+            normal_load: p.normal_load,
+            force_ratio: p.force_ratio,
+            change_percent: 100.0 * (p.force_ratio - 1.0),
+            hertz_force_ratio: p.force_ratio_hertz,
+            hertz_change_percent: 100.0 * (p.force_ratio_hertz - 1.0),
+        }
+    }
+}
+
+/// The back effect at the operating bulk stress.
+#[derive(Debug, Clone, Serialize)]
+pub struct BackEffectOperating {
+    /// The operating stress, Pa.
+    pub stress: f64,
+    /// Under tension-compression.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tension_compression: Option<BackEffectValue>,
+    /// Under bending.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bending: Option<BackEffectValue>,
+}
+
+impl BackEffectSummary {
+    /// Summarize a computed back effect.
+    pub fn new(case: &Case, b: &BackEffect) -> Option<Self> {
+        let bulk = case.bulk.as_ref()?;
+        let shaft = &case.body(bulk.shaft).material;
+        let kind = |want: LoadKind| {
+            let (_, c) = b.curves.iter().find(|(k, _)| *k == want)?;
+            let (first, last) = (c.first()?, c.last()?);
+            let paper = PAPER_FIG2A_PERCENT
+                .iter()
+                .find(|(k, _)| *k == want)
+                .map_or([0.0; 2], |(_, p)| *p);
+            Some(BackEffectKind {
+                kappa: want.load(1.0).back_effect_factor(),
+                at_minus_one: first.into(),
+                at_plus_one: last.into(),
+                max_deviation_from_hertz_points: c
+                    .iter()
+                    .map(|p| 100.0 * (p.force_ratio - p.force_ratio_hertz).abs())
+                    .fold(0.0, f64::max),
+                paper_fig2a_percent: paper,
+            })
+        };
+        let operating = bulk.stress.map(|stress| {
+            let at = |want: LoadKind| {
+                b.operating
+                    .iter()
+                    .find(|(k, _)| *k == want)
+                    .map(|(_, p)| p.into())
+            };
+            BackEffectOperating {
+                stress,
+                tension_compression: at(LoadKind::TensionCompression),
+                bending: at(LoadKind::Bending),
+            }
+        });
+        Some(BackEffectSummary {
+            model: "u_z = -kappa (nu/E) sigma R2 (18), kappa = 1 tension-compression, 1/2 \
+                    bending; F_N solved at the fixed rigid approach delta_0 + u_z; Hertz \
+                    F/F0 = (1 + u_z/delta_0)^(3/2)",
+            shaft: bulk.shaft,
+            shaft_radius: bulk.shaft_radius,
+            shaft_e: shaft.youngs_modulus(),
+            shaft_nu: shaft.poisson_ratio(),
+            stress_max: bulk.stress_max,
+            points: bulk.points,
+            reference_approach: b.reference_approach,
+            reference_approach_from: b.approach_from,
+            reference_load: b.reference_load,
+            iterations: b.iterations,
+            time_s: b.time.as_secs_f64(),
+            tension_compression: kind(LoadKind::TensionCompression),
+            bending: kind(LoadKind::Bending),
+            operating,
+        })
+    }
+
+    /// Every number, for the finiteness check.
+    pub fn scalars(&self) -> Vec<f64> {
+        let mut v = vec![
+            self.shaft_radius,
+            self.shaft_e,
+            self.shaft_nu,
+            self.stress_max,
+            self.reference_approach,
+            self.reference_load,
+            self.time_s,
+        ];
+        let value = |v: &mut Vec<f64>, x: &BackEffectValue| {
+            v.extend([
+                x.stress,
+                x.approach_change,
+                x.normal_load,
+                x.force_ratio,
+                x.change_percent,
+                x.hertz_force_ratio,
+                x.hertz_change_percent,
+            ])
+        };
+        for k in [&self.tension_compression, &self.bending]
+            .into_iter()
+            .flatten()
+        {
+            value(&mut v, &k.at_minus_one);
+            value(&mut v, &k.at_plus_one);
+            v.extend([k.kappa, k.max_deviation_from_hertz_points]);
+            v.extend(k.paper_fig2a_percent);
+        }
+        if let Some(o) = &self.operating {
+            v.push(o.stress);
+            for x in [&o.tension_compression, &o.bending].into_iter().flatten() {
+                value(&mut v, x);
+            }
+        }
+        v
+    }
+}
+
 impl Summary {
     /// Assemble the summary of a solved case.
     pub fn new(case: &Case, out: &Outcome, outputs: Vec<String>) -> Self {
@@ -214,6 +423,10 @@ impl Summary {
                 hertz,
                 error_vs_hertz: out.error,
             },
+            back_effect: out
+                .back_effect
+                .as_ref()
+                .and_then(|b| BackEffectSummary::new(case, b)),
             outputs,
         }
     }
@@ -276,6 +489,51 @@ impl Summary {
                  Hertz {:.3e}), eps_avg {:.3e}",
                 e.eps_max, e.eps_max_inside, e.eps_max_element_averaged, e.eps_avg
             );
+        }
+        if let Some(b) = &self.back_effect {
+            let _ = writeln!(
+                o,
+                "  back effect   at the fixed rigid approach delta_0 = {:.5e} m (from {}), \
+                 F_N(0) = {:.6} N, shaft {} R2 = {:e} m, sigma_max = {:e} Pa",
+                b.reference_approach,
+                b.reference_approach_from,
+                b.reference_load,
+                b.shaft,
+                b.shaft_radius,
+                b.stress_max
+            );
+            for (name, k) in [
+                ("tension-compression", &b.tension_compression),
+                ("bending", &b.bending),
+            ] {
+                if let Some(k) = k {
+                    let _ = writeln!(
+                        o,
+                        "    {name:<20} F/F0 - 1 at sigma/sigma_max = -1, +1: {:+.1} %, {:+.1} % \
+                         (Hertz {:+.1} %, {:+.1} %; paper Fig. 2a {:+.0} %, {:+.0} %)",
+                        k.at_minus_one.change_percent,
+                        k.at_plus_one.change_percent,
+                        k.at_minus_one.hertz_change_percent,
+                        k.at_plus_one.hertz_change_percent,
+                        k.paper_fig2a_percent[0],
+                        k.paper_fig2a_percent[1],
+                    );
+                }
+            }
+            if let Some(op) = &b.operating {
+                for (name, v) in [
+                    ("tension-compression", &op.tension_compression),
+                    ("bending", &op.bending),
+                ] {
+                    if let Some(v) = v {
+                        let _ = writeln!(
+                            o,
+                            "    at sigma = {:e} Pa ({name}): F_N = {:.4} N ({:+.1} %, Hertz {:+.1} %)",
+                            op.stress, v.normal_load, v.change_percent, v.hertz_change_percent
+                        );
+                    }
+                }
+            }
         }
         let _ = writeln!(
             o,

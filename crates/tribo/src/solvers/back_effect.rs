@@ -48,6 +48,35 @@ pub fn back_effect_curve(
     loads: &[BulkLoad],
     params: &NormalContactParams,
 ) -> Result<Vec<BackEffectPoint>> {
+    back_effect_curve_observed(
+        grid,
+        initial_gap,
+        composite_modulus,
+        shaft,
+        shaft_radius,
+        initial_approach,
+        loads,
+        params,
+        &mut |_, _| {},
+    )
+}
+
+/// [`back_effect_curve`] with a progress observer, called as `progress(done, total)` after
+/// the reference solution and after each point (`total = loads.len() + 1`), e.g. to drive
+/// a progress bar.
+#[allow(clippy::too_many_arguments)]
+pub fn back_effect_curve_observed(
+    grid: &SurfaceGrid,
+    initial_gap: &[f64],
+    composite_modulus: f64,
+    shaft: &ElasticMaterial,
+    shaft_radius: f64,
+    initial_approach: f64,
+    loads: &[BulkLoad],
+    params: &NormalContactParams,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Vec<BackEffectPoint>> {
+    let total = loads.len() + 1;
     if !(initial_approach.is_finite() && initial_approach > 0.0) {
         return Err(Error::invalid(
             "contact.approach",
@@ -65,9 +94,11 @@ pub fn back_effect_curve(
         params,
         &mut |_, _| {},
     )?;
+    progress(1, total);
     loads
         .iter()
-        .map(|load| {
+        .enumerate()
+        .map(|(k, load)| {
             let change = load.approach_change(shaft, shaft_radius)?;
             let approach = initial_approach + change;
             let (normal_load, iterations) = if approach <= 0.0 {
@@ -86,6 +117,7 @@ pub fn back_effect_curve(
                     Err(e) => return Err(e),
                 }
             };
+            progress(k + 2, total);
             Ok(BackEffectPoint {
                 load: *load,
                 stress: load.surface_stress(),
@@ -97,4 +129,40 @@ pub fn back_effect_curve(
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_observer_sees_every_solution_and_zero_stress_is_the_reference() {
+        // A sphere-like gap h = (x^2 + y^2) / (2 R), R = 10 mm, steel.
+        let steel = ElasticMaterial::new(2.01e11, 0.3).unwrap();
+        let grid = SurfaceGrid::centred(16, 16, 4e-4, 4e-4).unwrap();
+        let gap = grid.sample(|x, y| (x * x + y * y) / 0.02);
+        let loads = [
+            BulkLoad::Bending {
+                surface_stress: 0.0,
+            },
+            BulkLoad::TensionCompression { stress: 3e8 },
+        ];
+        let mut seen = Vec::new();
+        let points = back_effect_curve_observed(
+            &grid,
+            &gap,
+            1.1e11,
+            &steel,
+            0.01,
+            4e-6,
+            &loads,
+            &NormalContactParams::default(),
+            &mut |done, total| seen.push((done, total)),
+        )
+        .unwrap();
+        assert_eq!(seen, [(1, 3), (2, 3), (3, 3)]);
+        assert!((points[0].force_ratio - 1.0).abs() < 1e-9);
+        // Tension lowers the force (u_z < 0).
+        assert!(points[1].approach_change < 0.0 && points[1].force_ratio < 1.0);
+    }
 }
