@@ -66,6 +66,7 @@ struct RawCase {
     grid: Option<RawGrid>,
     solver: Option<RawSolver>,
     bulk: Option<RawBulk>,
+    field: Option<RawField>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -104,6 +105,22 @@ enum RawSurface {
 struct RawContact {
     load: Option<Value>,
     approach: Option<Value>,
+    friction: Option<Value>,
+    tangential_load: Option<Value>,
+    tangential_angle_deg: Option<Value>,
+    sliding: Option<Value>,
+    sliding_angle_deg: Option<Value>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawField {
+    n: Option<Value>,
+    extent: Option<Value>,
+    half_width: Option<Value>,
+    depth: Option<Value>,
+    depth_m: Option<Value>,
+    body: Option<Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -261,6 +278,54 @@ impl Bulk {
     }
 }
 
+/// The validated friction keys of `[contact]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Friction {
+    /// Coulomb friction coefficient f.
+    pub coefficient: f64,
+    /// Partial slip under a force, or full sliding (angles in rad from x).
+    pub loading: tribo::solvers::tangential::TangentialLoading,
+}
+
+impl Friction {
+    /// "partial_slip" or "sliding".
+    pub fn mode(&self) -> &'static str {
+        match self.loading {
+            tribo::solvers::tangential::TangentialLoading::Force { .. } => "partial_slip",
+            tribo::solvers::tangential::TangentialLoading::Sliding { .. } => "sliding",
+        }
+    }
+}
+
+/// Default field points [nx, ny, nz] (the paper's Sec. 6 grid).
+pub const DEFAULT_FIELD_N: [usize; 3] = [39, 39, 20];
+/// Most field points per direction.
+pub const MAX_FIELD_N: usize = 512;
+/// Default field half width and depth in units of the Hertz long semi-axis.
+pub const DEFAULT_FIELD_EXTENT: f64 = 1.5;
+
+/// A length given in units of the Hertz long semi-axis a, or in m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Length {
+    /// Multiple of a (Hertzian gaps only).
+    Semi(f64),
+    /// Metres.
+    Metres(f64),
+}
+
+/// The validated `[field]` section: the subsurface stress field.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FieldSpec {
+    /// Points along x, y, z.
+    pub n: [usize; 3],
+    /// Half width of the field in x and y.
+    pub half_width: Length,
+    /// Depth of the field.
+    pub depth: Length,
+    /// The body the field is computed in ("body1" or "body2").
+    pub body: &'static str,
+}
+
 /// A validated case, ready to run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Case {
@@ -284,6 +349,10 @@ pub struct Case {
     pub params: NormalContactParams,
     /// The back effect of bulk loading, where asked for.
     pub bulk: Option<Bulk>,
+    /// Friction: the tangential problem, where `contact.friction` is given.
+    pub friction: Option<Friction>,
+    /// The subsurface stress field, where `[field]` is given.
+    pub field: Option<FieldSpec>,
     /// The case as written (TOML converted to JSON), echoed in `summary.json`.
     pub echo: serde_json::Value,
 }
@@ -478,6 +547,11 @@ fn validate(
         Some(b) => Some(bulk(b, &shape1, &shape2)?),
     };
 
+    let friction = friction(&raw.contact)?;
+    let field = match raw.field {
+        None => None,
+        Some(f) => Some(field_spec(f, hertzian)?),
+    };
     let title = raw.title.unwrap_or_else(|| source.to_string());
     Ok(Case {
         title,
@@ -496,6 +570,8 @@ fn validate(
         method,
         params,
         bulk,
+        friction,
+        field,
         echo,
     })
 }
@@ -618,6 +694,244 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
         stress_max,
         points,
         stress,
+    })
+}
+
+fn boolean(field: &str, v: &Value) -> CliResult<bool> {
+    match v {
+        Value::Boolean(b) => Ok(*b),
+        _ => Err(CliError::field(field, show(v), "must be true or false")),
+    }
+}
+
+fn angle_deg(field: &str, v: Option<&Value>) -> CliResult<f64> {
+    match v {
+        None => Ok(0.0),
+        Some(v) => {
+            let x = number(field, v)?;
+            if x.is_finite() {
+                Ok(x.to_radians())
+            } else {
+                Err(CliError::field(
+                    field,
+                    show(v),
+                    "the angle must be a finite number of degrees from the x axis",
+                ))
+            }
+        }
+    }
+}
+
+fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
+    use tribo::solvers::tangential::TangentialLoading;
+    let sliding = match &c.sliding {
+        None => None,
+        Some(v) => Some((boolean("contact.sliding", v)?, v)),
+    };
+    let Some(fv) = &c.friction else {
+        if let Some(q) = &c.tangential_load {
+            return Err(CliError::field(
+                "contact.tangential_load",
+                show(q),
+                "needs contact.friction (the Coulomb coefficient f > 0)",
+            ));
+        }
+        if let Some((_, v)) = sliding {
+            return Err(CliError::field(
+                "contact.sliding",
+                show(v),
+                "needs contact.friction (the Coulomb coefficient f > 0)",
+            ));
+        }
+        for (name, v) in [
+            ("contact.tangential_angle_deg", &c.tangential_angle_deg),
+            ("contact.sliding_angle_deg", &c.sliding_angle_deg),
+        ] {
+            if let Some(v) = v {
+                return Err(CliError::field(
+                    name,
+                    show(v),
+                    "needs contact.friction and a tangential load or sliding = true",
+                ));
+            }
+        }
+        return Ok(None);
+    };
+    let f = number("contact.friction", fv)?;
+    if !(f.is_finite() && f > 0.0) {
+        return Err(CliError::field(
+            "contact.friction",
+            show(fv),
+            "the friction coefficient must be finite and > 0",
+        ));
+    }
+    let loading = match (&c.tangential_load, sliding) {
+        (Some(q), None) | (Some(q), Some((false, _))) => {
+            if let Some(v) = &c.sliding_angle_deg {
+                return Err(CliError::field(
+                    "contact.sliding_angle_deg",
+                    show(v),
+                    "applies to sliding = true; under a tangential load give                      contact.tangential_angle_deg",
+                ));
+            }
+            let magnitude = positive(
+                "contact.tangential_load",
+                q,
+                Dim::Force,
+                "the tangential load |Q| (N)",
+            )?;
+            TangentialLoading::Force {
+                magnitude,
+                angle: angle_deg(
+                    "contact.tangential_angle_deg",
+                    c.tangential_angle_deg.as_ref(),
+                )?,
+            }
+        }
+        (None, Some((true, _))) => {
+            if let Some(v) = &c.tangential_angle_deg {
+                return Err(CliError::field(
+                    "contact.tangential_angle_deg",
+                    show(v),
+                    "applies to tangential_load; when sliding give contact.sliding_angle_deg",
+                ));
+            }
+            TangentialLoading::Sliding {
+                angle: angle_deg("contact.sliding_angle_deg", c.sliding_angle_deg.as_ref())?,
+            }
+        }
+        (Some(q), Some((true, _))) => {
+            return Err(CliError::field(
+                "contact.tangential_load",
+                show(q),
+                "give exactly one of contact.tangential_load (partial slip) and                  contact.sliding = true (full sliding), not both",
+            ))
+        }
+        (None, _) => {
+            return Err(CliError::field(
+                "contact.friction",
+                show(fv),
+                "needs exactly one of contact.tangential_load (N, partial slip) and                  contact.sliding = true (full sliding)",
+            ))
+        }
+    };
+    Ok(Some(Friction {
+        coefficient: f,
+        loading,
+    }))
+}
+
+fn field_length(
+    semi_key: &str,
+    semi: Option<&Value>,
+    metres_key: &str,
+    metres: Option<&Value>,
+    hertzian: bool,
+) -> CliResult<Length> {
+    match (semi, metres) {
+        (Some(v), Some(_)) => Err(CliError::field(
+            semi_key,
+            show(v),
+            format!("give either {semi_key} or {metres_key}, not both"),
+        )),
+        (Some(v), None) => {
+            let x = number(semi_key, v)?;
+            if !hertzian {
+                return Err(CliError::field(
+                    semi_key,
+                    show(v),
+                    format!(
+                        "is in units of the Hertz semi-axis, defined only where both bodies are                          given by radii; give {metres_key} (m)"
+                    ),
+                ));
+            }
+            if !(x.is_finite() && x > 0.0) {
+                return Err(CliError::field(
+                    semi_key,
+                    show(v),
+                    "must be finite and > 0 (units of the Hertz long semi-axis a)",
+                ));
+            }
+            Ok(Length::Semi(x))
+        }
+        (None, Some(v)) => Ok(Length::Metres(positive(
+            metres_key,
+            v,
+            Dim::Length,
+            "the field size (m)",
+        )?)),
+        (None, None) => {
+            if hertzian {
+                Ok(Length::Semi(DEFAULT_FIELD_EXTENT))
+            } else {
+                Err(CliError::field(
+                    metres_key,
+                    "(missing)",
+                    "required where a body is given by a surface (no Hertz semi-axis to scale                      by): give it in m",
+                ))
+            }
+        }
+    }
+}
+
+fn field_spec(f: RawField, hertzian: bool) -> CliResult<FieldSpec> {
+    let n = match &f.n {
+        None => DEFAULT_FIELD_N,
+        Some(Value::Array(a)) if a.len() == 3 => {
+            let mut n = [0usize; 3];
+            for (k, v) in a.iter().enumerate() {
+                let name = format!("field.n[{k}]");
+                let c = count(&name, v)?;
+                if !(2..=MAX_FIELD_N).contains(&c) {
+                    return Err(CliError::field(
+                        name,
+                        c,
+                        format!("must be in 2 ... {MAX_FIELD_N} points"),
+                    ));
+                }
+                n[k] = c;
+            }
+            n
+        }
+        Some(v) => {
+            return Err(CliError::field(
+                "field.n",
+                show(v),
+                "must be [nx, ny, nz], three point counts",
+            ))
+        }
+    };
+    let half_width = field_length(
+        "field.extent",
+        f.extent.as_ref(),
+        "field.half_width",
+        f.half_width.as_ref(),
+        hertzian,
+    )?;
+    let depth = field_length(
+        "field.depth",
+        f.depth.as_ref(),
+        "field.depth_m",
+        f.depth_m.as_ref(),
+        hertzian,
+    )?;
+    let body = match &f.body {
+        None => "body2",
+        Some(Value::String(s)) if s == "body1" => "body1",
+        Some(Value::String(s)) if s == "body2" => "body2",
+        Some(v) => {
+            return Err(CliError::field(
+                "field.body",
+                show(v),
+                "must be \"body1\" or \"body2\" (the body the field is computed in)",
+            ))
+        }
+    };
+    Ok(FieldSpec {
+        n,
+        half_width,
+        depth,
+        body,
     })
 }
 

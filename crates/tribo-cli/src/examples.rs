@@ -32,6 +32,11 @@ pub const EXAMPLES: &[Example] = &[
         text: include_str!("../examples/cases/roller-shaft-bending.toml"),
     },
     Example {
+        name: "roller-shaft-friction",
+        description: "the same with friction f = 0.2 sliding along y and the stress field (Sec. 6)",
+        text: include_str!("../examples/cases/roller-shaft-friction.toml"),
+    },
+    Example {
         name: "sphere-on-flat",
         description: "steel ball (R = 10 mm) on a flat, 100 N: circular Hertz contact",
         text: include_str!("../examples/cases/sphere-on-flat.toml"),

@@ -2,19 +2,24 @@
 //! solution -> comparison with Hertz (where the gap is Hertzian) -> the back effect of bulk
 //! loading (where the case has `[bulk]`).
 
-use crate::case::{Case, LoadKind, Method, Shape, Window};
+use crate::case::{Case, Length, LoadKind, Method, Shape, Window};
 use crate::error::CliResult;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::time::{Duration, Instant};
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
+use tribo::analysis::stress_field::{
+    stress_field_direct, FieldGrid, StressField, SurfaceTractions,
+};
 use tribo::geometry::initial_gap;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
 use tribo::solvers::back_effect::{back_effect_curve_observed, BackEffectPoint};
+use tribo::solvers::tangential::TangentialSolution;
+use tribo::solvers::tangential::{solve_tangential, TangentialParams, TangentialProblem};
 use tribo::solvers::{
     solve_normal_active_set, solve_normal_cg_observed, NormalContactProblem, NormalContactSolution,
     NormalLoading,
 };
-use tribo::SurfaceGrid;
+use tribo::{ElasticMaterial, SurfaceGrid};
 
 /// The Hertz solution of a case whose gap is Hertzian.
 #[derive(Debug, Clone, Copy)]
@@ -53,6 +58,44 @@ pub struct Outcome {
     pub solve_time: Duration,
     /// The back effect of bulk loading (cases with `[bulk]`).
     pub back_effect: Option<BackEffect>,
+    /// The tangential solution (cases with `contact.friction`).
+    pub tangential: Option<Tangential>,
+    /// The subsurface stress field (cases with `[field]`).
+    pub stress: Option<Stress>,
+}
+
+/// The tangential contact of a case with friction.
+#[derive(Debug, Clone)]
+pub struct Tangential {
+    /// The library's solution.
+    pub solution: TangentialSolution,
+    /// Dundurs' beta where the materials differ (the coupling is then neglected).
+    pub dundurs_beta: Option<f64>,
+    /// Wall time of the solve.
+    pub time: Duration,
+}
+
+/// The subsurface stress field of a case with `[field]`.
+#[derive(Debug, Clone)]
+pub struct Stress {
+    /// The stress at the field points.
+    pub field: StressField,
+    /// The body it is computed in.
+    pub body: &'static str,
+    /// Its material.
+    pub material: ElasticMaterial,
+    /// The bulk stress superposed: kind and operating stress, Pa.
+    pub bulk: Option<(LoadKind, f64)>,
+    /// Wall time.
+    pub time: Duration,
+}
+
+/// Dundurs' second constant beta = [(1-2nu1)/G1 - (1-2nu2)/G2] / (2[(1-nu1)/G1 +
+/// (1-nu2)/G2]) (Johnson 1985, eq. 5.4).
+pub fn dundurs_beta(m1: &ElasticMaterial, m2: &ElasticMaterial) -> f64 {
+    let (n1, g1) = (m1.poisson_ratio(), m1.shear_modulus());
+    let (n2, g2) = (m2.poisson_ratio(), m2.shear_modulus());
+    ((1.0 - 2.0 * n1) / g1 - (1.0 - 2.0 * n2) / g2) / (2.0 * ((1.0 - n1) / g1 + (1.0 - n2) / g2))
 }
 
 /// Where the fixed rigid approach of the back effect comes from.
@@ -198,8 +241,12 @@ pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome>
         error,
         solve_time,
         back_effect: None,
+        tangential: None,
+        stress: None,
     };
+    outcome.tangential = tangential(case, &outcome, quiet)?;
     outcome.back_effect = back_effect(case, &outcome, quiet)?;
+    outcome.stress = stress(case, &outcome, quiet)?;
     Ok(outcome)
 }
 
@@ -298,5 +345,170 @@ pub fn back_effect(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<
         operating,
         iterations: points.iter().map(|p| p.iterations).sum(),
         time,
+    }))
+}
+
+/// The tangential problem of a case with friction, for the normal solution's pressure.
+pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Tangential>> {
+    let Some(fr) = &case.friction else {
+        return Ok(None);
+    };
+    let (m1, m2) = (&case.body1.material, &case.body2.material);
+    let dissimilar =
+        m1.youngs_modulus() != m2.youngs_modulus() || m1.poisson_ratio() != m2.poisson_ratio();
+    let dundurs_beta = dissimilar.then(|| dundurs_beta(m1, m2));
+    if let Some(beta) = dundurs_beta {
+        if !quiet {
+            eprintln!(
+                "warning: dissimilar materials (Dundurs beta = {beta:.4}): the tangential \
+                 problem is solved for the normal pressure without the normal-tangential coupling"
+            );
+        }
+    }
+    if let tribo::solvers::tangential::TangentialLoading::Force { magnitude, .. } = fr.loading {
+        // The library refuses |Q| >= f F_N; within rounding of f F_N the stick zone vanishes
+        // first, so the same rule is applied here with a relative margin of 1e-9.
+        let limit = fr.coefficient * out.solution.normal_load;
+        if magnitude >= limit * (1.0 - 1e-9) {
+            return Err(crate::error::CliError::field(
+                "contact.tangential_load",
+                magnitude,
+                format!(
+                    "partial slip needs |Q| < f F_N = {limit:.6e} N; at or above it the contact \
+                     slides (use sliding = true)"
+                ),
+            ));
+        }
+    }
+    let problem = TangentialProblem {
+        grid: &out.prepared.grid,
+        pressure: &out.solution.pressure,
+        friction: fr.coefficient,
+        body1: *m1,
+        body2: *m2,
+        loading: fr.loading,
+    };
+    let params = TangentialParams {
+        tolerance: case.params.tolerance.max(1e-12),
+        max_iterations: case.params.max_iterations,
+    };
+    let pb = spinner(
+        quiet,
+        format!(
+            "solving tangential contact ({}, f = {})",
+            fr.mode(),
+            fr.coefficient
+        ),
+    );
+    let start = Instant::now();
+    let result = solve_tangential(&problem, &params);
+    let time = start.elapsed();
+    pb.finish_and_clear();
+    Ok(Some(Tangential {
+        solution: result?,
+        dundurs_beta,
+        time,
+    }))
+}
+
+fn resolve(length: Length, a: Option<f64>) -> f64 {
+    match (length, a) {
+        (Length::Metres(m), _) => m,
+        (Length::Semi(k), Some(a)) => k * a,
+        // Validation allows units of a only for Hertzian gaps.
+        (Length::Semi(k), None) => k,
+    }
+}
+
+/// The subsurface stress field of the case's `[field]` section, by the direct sum (exact at
+/// any point), layer by layer with progress; plus the bulk stress at `bulk.stress`.
+pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stress>> {
+    let Some(spec) = &case.field else {
+        return Ok(None);
+    };
+    let a = out.prepared.hertz.as_ref().map(|h| h.contact.semi_major);
+    let half = resolve(spec.half_width, a);
+    let depth = resolve(spec.depth, a);
+    let [nx, ny, nz] = spec.n;
+    let grid = FieldGrid::uniform(nx, ny, nz, half, half, depth)?;
+    let body = case.body(spec.body);
+    // q acts on body 1; body 2 carries -q (in the mirrored frame, z into body 2).
+    let (qx, qy) = match &out.tangential {
+        Some(t) => {
+            let sign = if spec.body == "body1" { 1.0 } else { -1.0 };
+            (
+                Some(
+                    t.solution
+                        .traction_x
+                        .iter()
+                        .map(|q| sign * q)
+                        .collect::<Vec<_>>(),
+                ),
+                Some(
+                    t.solution
+                        .traction_y
+                        .iter()
+                        .map(|q| sign * q)
+                        .collect::<Vec<_>>(),
+                ),
+            )
+        }
+        None => (None, None),
+    };
+    let tractions = SurfaceTractions {
+        grid: &out.prepared.grid,
+        pressure: &out.solution.pressure,
+        shear_x: qx.as_deref(),
+        shear_y: qy.as_deref(),
+    };
+    let pb = if quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::with_draw_target(Some(nz as u64), ProgressDrawTarget::stderr())
+    };
+    if let Ok(style) =
+        ProgressStyle::with_template("{spinner} {msg} [{bar:30}] {pos}/{len} [{elapsed}]")
+    {
+        pb.set_style(style.progress_chars("=> "));
+    }
+    pb.set_message(format!(
+        "stress field ({nx} x {ny} x {nz} points, direct sum)"
+    ));
+    pb.enable_steady_tick(Duration::from_millis(100));
+    let start = Instant::now();
+    let mut stress = Vec::with_capacity(grid.len());
+    for &z in &grid.z {
+        let layer = FieldGrid {
+            x: grid.x.clone(),
+            y: grid.y.clone(),
+            z: vec![z],
+        };
+        let f = stress_field_direct(&tractions, body.material.poisson_ratio(), &layer);
+        match f {
+            Ok(f) => stress.extend(f.stress),
+            Err(e) => {
+                pb.finish_and_clear();
+                return Err(e.into());
+            }
+        }
+        pb.inc(1);
+    }
+    pb.finish_and_clear();
+    let mut field = StressField { grid, stress };
+    let mut bulk_applied = None;
+    if let Some(b) = &case.bulk {
+        if let (Some(sigma), Some(&kind)) = (b.stress, b.kinds.first()) {
+            if b.shaft == spec.body {
+                field.add_bulk(&kind.load(sigma), b.shaft_radius);
+                bulk_applied = Some((kind, sigma));
+            }
+        }
+    }
+    Ok(Some(Stress {
+        field,
+        body: spec.body,
+        material: body.material,
+        bulk: bulk_applied,
+        time: start.elapsed(),
     }))
 }

@@ -9,6 +9,7 @@
 pub mod back_effect;
 pub mod fields;
 pub mod plot;
+pub mod stress;
 pub mod summary;
 
 use crate::case::Case;
@@ -17,6 +18,7 @@ use crate::run::Outcome;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use summary::Summary;
+use tribo::solvers::tangential::TangentialLoading;
 
 /// Names of the files a run writes, in order.
 pub const FILES: [&str; 6] = [
@@ -31,11 +33,28 @@ pub const FILES: [&str; 6] = [
 /// Names of the files the back effect adds (cases with `[bulk]`).
 pub const BACK_EFFECT_FILES: [&str; 2] = ["back_effect.csv", "back_effect.png"];
 
+/// Names of the files friction adds (cases with `contact.friction`).
+pub const TANGENTIAL_FILES: [&str; 3] = ["traction.csv", "stick_slip.png", "traction_profiles.png"];
+
+/// Names of the files the stress field adds (cases with `[field]`).
+pub const STRESS_FILES: [&str; 4] = [
+    "stress.vti",
+    "sigma_xx_y0.png",
+    "sigma_xx_z05a.png",
+    "von_mises_y0.png",
+];
+
 /// Names of the files a run of this outcome writes.
 pub fn files(out: &Outcome) -> Vec<String> {
     let mut f: Vec<String> = FILES.iter().map(|f| f.to_string()).collect();
     if out.back_effect.is_some() {
         f.extend(BACK_EFFECT_FILES.iter().map(|f| f.to_string()));
+    }
+    if out.tangential.is_some() {
+        f.extend(TANGENTIAL_FILES.iter().map(|f| f.to_string()));
+    }
+    if out.stress.is_some() {
+        f.extend(STRESS_FILES.iter().map(|f| f.to_string()));
     }
     f
 }
@@ -138,6 +157,12 @@ pub fn summary(case: &Case, out: &Outcome) -> CliResult<Summary> {
     if let Some(b) = &s.back_effect {
         scalars.extend(b.scalars());
     }
+    if let Some(t) = &s.tangential {
+        scalars.extend(t.scalars());
+    }
+    if let Some(t) = &s.stress {
+        scalars.extend(t.scalars());
+    }
     check_finite("summary.json", &scalars)?;
     Ok(s)
 }
@@ -176,6 +201,35 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
     if let Some(ph) = &out.hertz_pressure {
         arrays.push(("hertz_pressure_Pa", ph));
     }
+    let stick_f: Vec<f64>;
+    let traction = match &out.tangential {
+        Some(t) => {
+            let s = &t.solution;
+            check_finite("traction", &s.traction_x)?;
+            check_finite("traction", &s.traction_y)?;
+            stick_f = s.stick.iter().map(|&b| f64::from(u8::from(b))).collect();
+            arrays.push(("traction_x_Pa", &s.traction_x));
+            arrays.push(("traction_y_Pa", &s.traction_y));
+            arrays.push(("stick", &stick_f));
+            Some(stress::traction_csv(
+                grid,
+                &s.traction_x,
+                &s.traction_y,
+                &s.stick,
+            ))
+        }
+        None => None,
+    };
+    let stress_out = match &out.stress {
+        Some(st) => {
+            let arrays = stress::arrays(st);
+            for (name, v) in &arrays {
+                check_finite(&format!("stress.vti {name}"), v)?;
+            }
+            Some((stress::vti(st, &arrays), arrays))
+        }
+        None => None,
+    };
     let vti = fields::vti(grid, &arrays);
     let back = match &out.back_effect {
         Some(b) => {
@@ -208,6 +262,111 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
         write_atomic(dir, BACK_EFFECT_FILES[0], csv.as_bytes())?;
         plot_atomic(dir, BACK_EFFECT_FILES[1], |p| {
             plot::back_effect(p, series, &case.title)
+        })?;
+    }
+    if let (Some(csv), Some(t)) = (&traction, &out.tangential) {
+        write_atomic(dir, TANGENTIAL_FILES[0], csv.as_bytes())?;
+        let s = &t.solution;
+        let fr = case.friction.as_ref();
+        let f = fr.map_or(0.0, |f| f.coefficient);
+        // Cattaneo-Mindlin c/a (partial slip) or 0 (sliding: no stick zone).
+        let ratio = match (fr.map(|f| f.loading), hertz) {
+            (Some(TangentialLoading::Force { magnitude, .. }), Some(_)) => {
+                Some((1.0 - magnitude / (f * sol.normal_load)).max(0.0).cbrt())
+            }
+            _ => None,
+        };
+        let angle = match fr.map(|f| f.loading) {
+            Some(TangentialLoading::Force { angle, .. })
+            | Some(TangentialLoading::Sliding { angle }) => angle,
+            None => 0.0,
+        };
+        plot_atomic(dir, TANGENTIAL_FILES[1], |p| {
+            plot::stick_slip_map(
+                p,
+                grid,
+                &sol.pressure,
+                &s.stick,
+                hertz.zip(ratio),
+                &case.title,
+            )
+        })?;
+        let (c, sn) = (angle.cos(), angle.sin());
+        let along: Vec<f64> = s
+            .traction_x
+            .iter()
+            .zip(&s.traction_y)
+            .map(|(qx, qy)| c * qx + sn * qy)
+            .collect();
+        let k = ratio.unwrap_or(0.0);
+        let closed = |x: f64, y: f64| match hertz {
+            Some(h) if k > 0.0 => f * (h.pressure(x, y) - k * h.pressure(x / k, y / k)),
+            Some(h) => f * h.pressure(x, y),
+            None => 0.0,
+        };
+        let label = if ratio.is_some() {
+            "Cattaneo-Mindlin"
+        } else {
+            "f p (Hertz)"
+        };
+        let reference: Option<plot::Reference<'_>> =
+            hertz.map(|_| (&closed as &dyn Fn(f64, f64) -> f64, label));
+        plot_atomic(dir, TANGENTIAL_FILES[2], |p| {
+            plot::traction_profiles(p, grid, &along, reference, &case.title)
+        })?;
+    }
+    if let (Some((vti, arrays)), Some(st)) = (&stress_out, &out.stress) {
+        write_atomic(dir, STRESS_FILES[0], vti.as_bytes())?;
+        let g = &st.field.grid;
+        let get = |name: &str| arrays.iter().find(|a| a.0 == name).map(|a| &a.1[..]);
+        let (Some(sxx), Some(vm)) = (get("sigma_xx"), get("von_mises")) else {
+            return Err(CliError::Output {
+                what: "stress sections".into(),
+                detail: "missing arrays".into(),
+            });
+        };
+        let iy0 = stress::nearest(&g.y, 0.0);
+        let a = out.prepared.hertz.as_ref().map(|h| h.contact.semi_major);
+        let z_target = 0.5 * a.unwrap_or(g.z.last().copied().unwrap_or(0.0) / 3.0);
+        let iz = stress::nearest(&g.z, z_target);
+        let y0 = format!("plane y = {:.4} mm", 1e3 * g.y[iy0]);
+        plot_atomic(dir, STRESS_FILES[1], |p| {
+            plot::section(
+                p,
+                (&g.x, "x"),
+                (&g.z, "z"),
+                &stress::plane_y(st, sxx, iy0),
+                true,
+                "sigma_xx",
+                &format!("{y0}, {}", case.title),
+            )
+        })?;
+        plot_atomic(dir, STRESS_FILES[2], |p| {
+            plot::section(
+                p,
+                (&g.x, "x"),
+                (&g.y, "y"),
+                &stress::plane_z(st, sxx, iz),
+                false,
+                "sigma_xx",
+                &format!(
+                    "layer z = {:.4} mm nearest {}, {}",
+                    1e3 * g.z[iz],
+                    if a.is_some() { "0.5a" } else { "depth/6" },
+                    case.title
+                ),
+            )
+        })?;
+        plot_atomic(dir, STRESS_FILES[3], |p| {
+            plot::section(
+                p,
+                (&g.x, "x"),
+                (&g.z, "z"),
+                &stress::plane_y(st, vm, iy0),
+                true,
+                "von Mises",
+                &format!("{y0}, {}", case.title),
+            )
         })?;
     }
     // Last: a summary.json in the directory means the whole run was written.

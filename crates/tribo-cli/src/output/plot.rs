@@ -369,6 +369,307 @@ pub fn back_effect(
     Ok(())
 }
 
+/// A reference curve q(x, y) (Pa) and its legend label.
+pub type Reference<'a> = (&'a dyn Fn(f64, f64) -> f64, &'a str);
+
+fn legend_box<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font((FAMILY, 14))
+        .draw()
+        .map_err(e)
+}
+
+/// Map of the stick zone, the slip zone and the elements out of contact, with the
+/// Cattaneo-Mindlin stick ellipse (the Hertz ellipse scaled by `stick_ratio` = c/a) drawn over
+/// it where given.
+pub fn stick_slip_map(
+    path: &Path,
+    grid: &SurfaceGrid,
+    pressure: &[f64],
+    stick: &[bool],
+    hertz: Option<(&HertzContact, f64)>,
+    title: &str,
+) -> Result<(), String> {
+    register_font()?;
+    let root = BitMapBackend::new(path, (900, 800)).into_drawing_area();
+    root.fill(&WHITE).map_err(e)?;
+    let (hx, hy) = grid.half_widths();
+    let (hx, hy) = (1e3 * hx, 1e3 * hy);
+    let mut chart = ChartBuilder::on(&root)
+        .caption(format!("Stick and slip: {title}"), (FAMILY, 20))
+        .margin(15)
+        .x_label_area_size(50)
+        .y_label_area_size(70)
+        .build_cartesian_2d(-hx..hx, -hy..hy)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x, mm")
+        .y_desc("y, mm")
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
+        .label_style((FAMILY, 15))
+        .axis_desc_style((FAMILY, 17))
+        .draw()
+        .map_err(e)?;
+    let (dx, dy) = (1e3 * grid.dx(), 1e3 * grid.dy());
+    let stick_c = RGBColor(33, 144, 141);
+    let slip_c = RGBColor(253, 174, 97);
+    let none_c = RGBColor(235, 235, 235);
+    chart
+        .draw_series((0..grid.ny()).flat_map(|iy| {
+            (0..grid.nx()).map(move |ix| {
+                let (x, y) = (1e3 * grid.x(ix), 1e3 * grid.y(iy));
+                let k = grid.index(ix, iy);
+                let c = if stick[k] {
+                    stick_c
+                } else if pressure[k] > 0.0 {
+                    slip_c
+                } else {
+                    none_c
+                };
+                Rectangle::new(
+                    [(x - 0.5 * dx, y - 0.5 * dy), (x + 0.5 * dx, y + 0.5 * dy)],
+                    c.filled(),
+                )
+            })
+        }))
+        .map_err(e)?;
+    for (label, c) in [("stick", stick_c), ("slip", slip_c), ("no contact", none_c)] {
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            .map_err(e)?
+            .label(label)
+            .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 14, y + 6)], c.filled()));
+    }
+    if let Some((h, k)) = hertz {
+        chart
+            .draw_series(LineSeries::new(
+                ellipse_mm(h).into_iter().map(|(x, y)| (k * x, k * y)),
+                RED.stroke_width(2),
+            ))
+            .map_err(e)?
+            .label(format!("Cattaneo-Mindlin stick ellipse, c/a = {k:.4}"))
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(2)));
+        chart
+            .draw_series(LineSeries::new(ellipse_mm(h), BLACK.stroke_width(1)))
+            .map_err(e)?
+            .label("Hertz contact ellipse")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(1)));
+    }
+    legend_box(&mut chart)?;
+    root.present().map_err(e)?;
+    Ok(())
+}
+
+/// The tangential traction along the load direction (q . e) along x through the row nearest
+/// y = 0 and along y through the column nearest x = 0, against a closed form where given.
+pub fn traction_profiles(
+    path: &Path,
+    grid: &SurfaceGrid,
+    traction: &[f64],
+    reference: Option<Reference<'_>>,
+    title: &str,
+) -> Result<(), String> {
+    register_font()?;
+    let root = BitMapBackend::new(path, (1200, 560)).into_drawing_area();
+    root.fill(&WHITE).map_err(e)?;
+    let root = root
+        .titled(
+            &format!("Tangential traction profiles: {title}"),
+            (FAMILY, 20),
+        )
+        .map_err(e)?;
+    let panels = root.split_evenly((1, 2));
+    let nearest = |n: usize, c: &dyn Fn(usize) -> f64| {
+        (0..n)
+            .min_by(|&a, &b| c(a).abs().total_cmp(&c(b).abs()))
+            .unwrap_or(0)
+    };
+    let iy0 = nearest(grid.ny(), &|i| grid.y(i));
+    let ix0 = nearest(grid.nx(), &|i| grid.x(i));
+    let qmax = traction.iter().fold(0.0f64, |m, q| m.max(q.abs()));
+    let top = 1.15 * qmax.max(f64::MIN_POSITIVE) / 1e9;
+    for (k, panel) in panels.iter().enumerate() {
+        let along_x = k == 0;
+        let (n, half, fixed) = if along_x {
+            (grid.nx(), grid.half_widths().0, grid.y(iy0))
+        } else {
+            (grid.ny(), grid.half_widths().1, grid.x(ix0))
+        };
+        let half_mm = 1e3 * half;
+        let (axis, other) = if along_x { ("x", "y") } else { ("y", "x") };
+        let mut chart = ChartBuilder::on(panel)
+            .caption(
+                format!("along {axis} at {other} = {:.4} mm", 1e3 * fixed),
+                (FAMILY, 17),
+            )
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(60)
+            .build_cartesian_2d(-half_mm..half_mm, -top..top)
+            .map_err(e)?;
+        chart
+            .configure_mesh()
+            .x_desc(format!("{axis}, mm"))
+            .y_desc("q along the load direction, GPa")
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
+            .label_style((FAMILY, 14))
+            .axis_desc_style((FAMILY, 16))
+            .light_line_style(WHITE.mix(0.0))
+            .draw()
+            .map_err(e)?;
+        if let Some((f, label)) = reference {
+            let samples = 600;
+            let curve = (0..=samples).map(|s| {
+                let t = -half + 2.0 * half * s as f64 / samples as f64;
+                let q = if along_x { f(t, fixed) } else { f(fixed, t) };
+                (1e3 * t, q / 1e9)
+            });
+            chart
+                .draw_series(LineSeries::new(curve, BLUE.stroke_width(2)))
+                .map_err(e)?
+                .label(label.to_string())
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
+        }
+        let points: Vec<(f64, f64)> = (0..n)
+            .map(|i| {
+                let (t, idx) = if along_x {
+                    (grid.x(i), grid.index(i, iy0))
+                } else {
+                    (grid.y(i), grid.index(ix0, i))
+                };
+                (1e3 * t, traction[idx] / 1e9)
+            })
+            .collect();
+        chart
+            .draw_series(
+                points
+                    .iter()
+                    .map(|&(x, q)| Circle::new((x, q), 4, RED.filled())),
+            )
+            .map_err(e)?
+            .label("tribo (element centres)")
+            .legend(|(x, y)| Circle::new((x + 10, y), 4, RED.filled()));
+        legend_box(&mut chart)?;
+    }
+    root.present().map_err(e)?;
+    Ok(())
+}
+
+/// A colour map of a scalar on a plane section: `values[iv * nh + ih]` at (h[ih], v[iv])
+/// (m), axes in mm; with `depth_down` the vertical axis is the depth z, drawn downward.
+pub fn section(
+    path: &Path,
+    h: (&[f64], &str),
+    v: (&[f64], &str),
+    values: &[f64],
+    depth_down: bool,
+    quantity: &str,
+    title: &str,
+) -> Result<(), String> {
+    register_font()?;
+    let (hs, hname) = h;
+    let (vs, vname) = v;
+    let (nh, nv) = (hs.len(), vs.len());
+    if nh < 2 || nv < 2 || values.len() != nh * nv {
+        return Err(format!(
+            "section: {} values for {nh} x {nv} points",
+            values.len()
+        ));
+    }
+    let root = BitMapBackend::new(path, (1040, 800)).into_drawing_area();
+    root.fill(&WHITE).map_err(e)?;
+    let (main, bar) = root.split_horizontally(860);
+    let sgn = if depth_down { -1.0 } else { 1.0 };
+    let (h0, h1) = (1e3 * hs[0], 1e3 * hs[nh - 1]);
+    let (va, vb) = (sgn * 1e3 * vs[0], sgn * 1e3 * vs[nv - 1]);
+    let (v0, v1) = (va.min(vb), va.max(vb));
+    let lo = values.iter().cloned().fold(f64::INFINITY, f64::min) / 1e9;
+    let hi = values.iter().cloned().fold(f64::NEG_INFINITY, f64::max) / 1e9;
+    let (lo, hi) = if hi > lo {
+        (lo, hi)
+    } else {
+        (lo - 1.0, lo + 1.0)
+    };
+    let vlabel = move |x: &f64| tick(&(sgn * x));
+    let mut chart = ChartBuilder::on(&main)
+        .caption(format!("{quantity}: {title}"), (FAMILY, 20))
+        .margin(15)
+        .x_label_area_size(50)
+        .y_label_area_size(70)
+        .build_cartesian_2d(h0..h1, v0..v1)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc(format!("{hname}, mm"))
+        .y_desc(if depth_down {
+            format!("{vname} (depth, downward), mm")
+        } else {
+            format!("{vname}, mm")
+        })
+        .x_label_formatter(&tick)
+        .y_label_formatter(&vlabel)
+        .label_style((FAMILY, 15))
+        .axis_desc_style((FAMILY, 17))
+        .draw()
+        .map_err(e)?;
+    let dh = 1e3 * (hs[nh - 1] - hs[0]) / (nh - 1) as f64;
+    let dv = 1e3 * (vs[nv - 1] - vs[0]) / (nv - 1) as f64;
+    chart
+        .draw_series((0..nv).flat_map(|iv| {
+            (0..nh).map(move |ih| {
+                let (x, y) = (1e3 * hs[ih], sgn * 1e3 * vs[iv]);
+                let t = (values[iv * nh + ih] / 1e9 - lo) / (hi - lo);
+                Rectangle::new(
+                    [(x - 0.5 * dh, y - 0.5 * dv), (x + 0.5 * dh, y + 0.5 * dv)],
+                    viridis(t).filled(),
+                )
+            })
+        }))
+        .map_err(e)?;
+    let mut cb = ChartBuilder::on(&bar)
+        .margin_top(50)
+        .margin_bottom(65)
+        .margin_left(10)
+        .margin_right(25)
+        .right_y_label_area_size(80)
+        .build_cartesian_2d(0.0..1.0, lo..hi)
+        .map_err(e)?;
+    cb.configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_desc(format!("{quantity}, GPa"))
+        .y_label_formatter(&tick)
+        .label_style((FAMILY, 15))
+        .axis_desc_style((FAMILY, 17))
+        .draw()
+        .map_err(e)?;
+    let levels = 256;
+    cb.draw_series((0..levels).map(|k| {
+        let (t0, t1) = (k as f64 / levels as f64, (k + 1) as f64 / levels as f64);
+        Rectangle::new(
+            [(0.0, lo + t0 * (hi - lo)), (1.0, lo + t1 * (hi - lo))],
+            viridis(0.5 * (t0 + t1)).filled(),
+        )
+    }))
+    .map_err(e)?;
+    root.present().map_err(e)?;
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

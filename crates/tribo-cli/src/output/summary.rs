@@ -31,6 +31,12 @@ pub struct Summary {
     /// The back effect of bulk loading (cases with `[bulk]`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub back_effect: Option<BackEffectSummary>,
+    /// The tangential contact (cases with `contact.friction`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tangential: Option<TangentialSummary>,
+    /// The subsurface stress field (cases with `[field]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stress: Option<StressSummary>,
     /// Files written (names within the output directory).
     pub outputs: Vec<String>,
 }
@@ -427,6 +433,11 @@ impl Summary {
                 .back_effect
                 .as_ref()
                 .and_then(|b| BackEffectSummary::new(case, b)),
+            tangential: out
+                .tangential
+                .as_ref()
+                .and_then(|t| TangentialSummary::new(case, out, t)),
+            stress: out.stress.as_ref().map(StressSummary::new),
             outputs,
         }
     }
@@ -535,6 +546,40 @@ impl Summary {
                 }
             }
         }
+        if let Some(t) = &self.tangential {
+            let _ = writeln!(
+                o,
+                "  tangential    {} f = {}: Q = [{:.5e}, {:.5e}] N, stick {:.4e} m^2, slip {:.4e} \
+                 m^2, max |q| {:.4e} Pa, {} iterations, residual {:.2e}",
+                t.mode,
+                t.friction,
+                t.tangential_force[0],
+                t.tangential_force[1],
+                t.stick_area,
+                t.slip_area,
+                t.max_traction,
+                t.iterations,
+                t.residual
+            );
+            if let Some(c) = &t.coupling {
+                let _ = writeln!(o, "                coupling {c}");
+            }
+        }
+        if let Some(st) = &self.stress {
+            let loc = |l: [f64; 3]| format!("[{:.3e}, {:.3e}, {:.3e}] m", l[0], l[1], l[2]);
+            let _ = writeln!(
+                o,
+                "  stress ({})  max von Mises {:.4e} Pa at {}, max shear {:.4e} Pa at {}, \
+                 max principal {:.4e} Pa at {}",
+                st.body,
+                st.max_von_mises.value,
+                loc(st.max_von_mises.location),
+                st.max_shear.value,
+                loc(st.max_shear.location),
+                st.max_principal.value,
+                loc(st.max_principal.location)
+            );
+        }
         let _ = writeln!(
             o,
             "  wrote         {}/{{{}}}",
@@ -542,5 +587,184 @@ impl Summary {
             self.outputs.join(", ")
         );
         o
+    }
+}
+
+/// The tangential contact in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct TangentialSummary {
+    /// "partial_slip" or "sliding".
+    pub mode: &'static str,
+    /// Coulomb friction coefficient.
+    pub friction: f64,
+    /// (Q_x, Q_y) on body 1, N.
+    pub tangential_force: [f64; 2],
+    /// Stick area, m^2.
+    pub stick_area: f64,
+    /// Slip area, m^2.
+    pub slip_area: f64,
+    /// Largest |q|, Pa.
+    pub max_traction: f64,
+    /// Rigid shift of body 2 relative to body 1 along the load direction, m.
+    pub shift: f64,
+    /// Iterations.
+    pub iterations: usize,
+    /// Final residual.
+    pub residual: f64,
+    /// Equivalent stick radius sqrt(stick_area / (pi a b) ) a, m (Hertzian partial slip).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stick_semi_major: Option<f64>,
+    /// Cattaneo-Mindlin c = a (1 - Q/(f P))^(1/3), m (Hertzian partial slip).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stick_semi_major_cattaneo_mindlin: Option<f64>,
+    /// "neglected (Dundurs beta = ...)" for dissimilar materials.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coupling: Option<String>,
+    /// Wall time, s.
+    pub time_s: f64,
+}
+
+impl TangentialSummary {
+    /// From the run's tangential solution.
+    pub fn new(case: &Case, out: &Outcome, t: &crate::run::Tangential) -> Option<Self> {
+        let fr = case.friction.as_ref()?;
+        let s = &t.solution;
+        let (stick_semi_major, cm) = match (&fr.loading, case_hertz(out)) {
+            (
+                tribo::solvers::tangential::TangentialLoading::Force { magnitude, .. },
+                Some((a, b, load)),
+            ) => {
+                let c = a * (1.0 - magnitude / (fr.coefficient * load)).max(0.0).cbrt();
+                let equiv = a * (s.stick_area / (std::f64::consts::PI * a * b)).sqrt();
+                (Some(equiv), Some(c))
+            }
+            _ => (None, None),
+        };
+        Some(Self {
+            mode: fr.mode(),
+            friction: fr.coefficient,
+            tangential_force: [s.tangential_force.0 + 0.0, s.tangential_force.1 + 0.0],
+            stick_area: s.stick_area,
+            slip_area: s.slip_area,
+            max_traction: s.max_traction,
+            shift: s.shift + 0.0,
+            iterations: s.iterations,
+            residual: s.residual,
+            stick_semi_major,
+            stick_semi_major_cattaneo_mindlin: cm,
+            coupling: t
+                .dundurs_beta
+                .map(|b| format!("neglected (Dundurs beta = {b:.4})")),
+            time_s: t.time.as_secs_f64(),
+        })
+    }
+
+    /// Every number, for the finiteness check.
+    pub fn scalars(&self) -> Vec<f64> {
+        let mut v = vec![
+            self.friction,
+            self.tangential_force[0],
+            self.tangential_force[1],
+            self.stick_area,
+            self.slip_area,
+            self.max_traction,
+            self.shift,
+            self.residual,
+        ];
+        v.extend(self.stick_semi_major);
+        v.extend(self.stick_semi_major_cattaneo_mindlin);
+        v
+    }
+}
+
+/// (a, b, F_N) of the run's Hertz reference (Hertzian gaps).
+fn case_hertz(out: &Outcome) -> Option<(f64, f64, f64)> {
+    out.prepared.hertz.as_ref().map(|h| {
+        (
+            h.contact.semi_major,
+            h.contact.semi_minor,
+            out.solution.normal_load,
+        )
+    })
+}
+
+/// A maximum and where it is.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Located {
+    /// The value, Pa (J/m^3 for energy).
+    pub value: f64,
+    /// [x, y, z] m, z the depth into the body.
+    pub location: [f64; 3],
+}
+
+/// The subsurface stress field in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct StressSummary {
+    /// The body the field is computed in.
+    pub body: &'static str,
+    /// Points [nx, ny, nz].
+    pub points: [usize; 3],
+    /// Half width (x, y) and depth of the field, m.
+    pub half_width: f64,
+    /// Depth of the field, m.
+    pub depth: f64,
+    /// "direct sum".
+    pub method: &'static str,
+    /// The bulk stress superposed (kind, operating stress Pa), if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bulk: Option<(&'static str, f64)>,
+    /// Maximum von Mises stress.
+    pub max_von_mises: Located,
+    /// Maximum shear tau_1 = (s1 - s3)/2.
+    pub max_shear: Located,
+    /// Maximum (most tensile) principal stress.
+    pub max_principal: Located,
+    /// Maximum hydrostatic stress (tr sigma / 3).
+    pub max_hydrostatic: Located,
+    /// Maximum strain energy density, J/m^3.
+    pub max_energy_density: Located,
+    /// Wall time, s.
+    pub time_s: f64,
+}
+
+impl StressSummary {
+    /// From the run's stress field.
+    pub fn new(st: &crate::run::Stress) -> Self {
+        let f = &st.field;
+        let loc = |(value, location): (f64, [f64; 3])| Located { value, location };
+        let m = st.material;
+        let half = f.grid.x.last().copied().unwrap_or(0.0);
+        Self {
+            body: st.body,
+            points: [f.grid.x.len(), f.grid.y.len(), f.grid.z.len()],
+            half_width: half,
+            depth: f.grid.z.last().copied().unwrap_or(0.0),
+            method: "direct sum",
+            bulk: st.bulk.map(|(k, s)| (k.name(), s)),
+            max_von_mises: loc(f.max_of(|s| s.von_mises())),
+            max_shear: loc(f.max_of(|s| s.max_shear())),
+            max_principal: loc(f.max_of(|s| s.principal()[0])),
+            max_hydrostatic: loc(f.max_of(|s| s.hydrostatic())),
+            max_energy_density: loc(
+                f.max_of(|s| tribo::analysis::stress_field::energy_density(s, &m).total)
+            ),
+            time_s: st.time.as_secs_f64(),
+        }
+    }
+
+    /// Every number, for the finiteness check.
+    pub fn scalars(&self) -> Vec<f64> {
+        let mut v = vec![self.half_width, self.depth];
+        for l in [
+            &self.max_von_mises,
+            &self.max_shear,
+            &self.max_principal,
+            &self.max_hydrostatic,
+            &self.max_energy_density,
+        ] {
+            v.push(l.value);
+            v.extend(l.location);
+        }
+        v
     }
 }
