@@ -16,6 +16,9 @@
 //! angle_deg = 0.0                  # angle from body 1's first principal plane to body 2's, deg
 //! [contact]
 //! load = 2000.0                    # N; or approach = 2.723e-5 (m); exactly one
+//! # friction = 0.2                 # optional Coulomb f > 0, then exactly one of:
+//! # tangential_load = 300.0        #   partial slip, |Q| on body 1, N (tangential_angle_deg, from x)
+//! # sliding = true                 #   full sliding q = f p (sliding_angle_deg, from x)
 //! [grid]                           # optional
 //! n = 21                           # elements per side, or [nx, ny]; default 64
 //! extent = 1.5                     # window half width / Hertz long semi-axis (radii only; default 1.5)
@@ -31,6 +34,11 @@
 //! stress_max = 6.4e8               # sigma_a,max, Pa: the curve spans sigma/sigma_max in [-1, 1]
 //! points = 21                      # points per curve, odd, 3 ... 1001 (default 21)
 //! # stress = 3.2e8                 # optional operating bulk stress, Pa: F_N reported there
+//! [field]                          # optional: the subsurface stress field (direct sum)
+//! n = [39, 39, 20]                 # points along x, y, z (default the paper's)
+//! extent = 1.5                     # x, y half width / Hertz a (or half_width, m)
+//! depth = 1.5                      # depth / Hertz a (or depth_m, m); z down into the body
+//! body = "body2"                   # the body the field is in (default body2)
 //! ```
 
 use crate::error::{CliError, CliResult};

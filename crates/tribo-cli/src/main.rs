@@ -44,6 +44,7 @@ Examples:
   tribo run s.toml -o out               run a case file, write out/
   tribo example crowned-roller | tribo run - -o roller --json
   tribo example roller-shaft-bending | tribo run - -o fig2a   the back effect (Fig. 2a)
+  tribo example roller-shaft-friction | tribo run - -o fig5   friction and the stress field
   tribo validate                        the verification table";
 
 #[derive(Debug, Parser)]
@@ -75,6 +76,21 @@ Fig. 2a) also:
                          normal_load_N, force_ratio, force_ratio_hertz
   back_effect.png        F_N / F_N(0) against sigma / sigma_max at the fixed rigid approach,
                          numerical points and the Hertz estimate, for each load kind
+
+With contact.friction (tangential_load: partial slip, or sliding = true; q acts on body 1,
+angles in degrees from x) also:
+
+  traction.csv           x_m, y_m, q_x_Pa, q_y_Pa, stick (1/0); fields.vti gains
+                         traction_x_Pa, traction_y_Pa, stick
+  stick_slip.png         stick / slip / no contact, with the Cattaneo-Mindlin stick ellipse
+  traction_profiles.png  q along the load direction against Cattaneo-Mindlin
+
+With a [field] section (the subsurface stress field, direct sum; z the depth, downward):
+
+  stress.vti             VTK image data, point arrays: stress components, von Mises,
+                         max shear, principal stresses, hydrostatic, octahedral shear,
+                         strain energy density (and parts), strains
+  sigma_xx_y0.png, sigma_xx_z05a.png, von_mises_y0.png   sections
 
 A short summary goes to stdout (--json: the summary JSON instead); progress to stderr.
 Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3).")]
