@@ -608,6 +608,7 @@ pub fn back_effect_rows() -> Result<Vec<ValidationRow>> {
         let kind = match p.load {
             BulkLoad::TensionCompression { .. } => "tension-compression",
             BulkLoad::Bending { .. } => "bending",
+            BulkLoad::Torsion { .. } => "torsion",
         };
         let case = format!("Fig. 2a, {kind}, sigma = {:+.1e} Pa, 41x41", p.stress);
         // Issue 3: the numerical curve within 0.5 percentage points of Hertz.

@@ -140,14 +140,14 @@ pub struct StressField {
 
 impl StressField {
     /// Superpose the bulk stress of the shaft (the direct effect, the paper's Fig. 5): the
-    /// axial stress sigma_xx of `load` at each point's depth (uniform for tension, linear
-    /// through the section for bending, [`BulkLoad::axial_stress_at_depth`]).
+    /// stress of `load` at each point's depth (uniform for tension, linear through the
+    /// section for bending and torsion, [`BulkLoad::stress_at_depth`]).
     pub fn add_bulk(&mut self, load: &BulkLoad, shaft_radius: f64) {
         let (nx, ny) = (self.grid.x.len(), self.grid.y.len());
         for (iz, &z) in self.grid.z.iter().enumerate() {
-            let sigma = load.axial_stress_at_depth(z, shaft_radius);
+            let bulk = load.stress_at_depth(z, shaft_radius);
             for s in &mut self.stress[iz * nx * ny..(iz + 1) * nx * ny] {
-                s.xx += sigma;
+                *s = *s + bulk;
             }
         }
     }
@@ -416,6 +416,34 @@ mod tests {
                 "z/a = {zeta}: {} vs {sigma_r}",
                 s.xx / p0
             );
+        }
+    }
+
+    #[test]
+    fn bulk_stress_superposes_linearly_through_the_depth() {
+        let grid = SurfaceGrid::centred(4, 4, 1e-3, 1e-3).unwrap();
+        let zero = vec![0.0; 16];
+        let tractions = SurfaceTractions {
+            grid: &grid,
+            pressure: &zero,
+            shear_x: None,
+            shear_y: None,
+        };
+        let field = FieldGrid::uniform(3, 3, 5, 1e-3, 1e-3, 4e-3).unwrap();
+        let mut bent = stress_field_direct(&tractions, 0.3, &field).unwrap();
+        bent.add_bulk(
+            &BulkLoad::Bending {
+                surface_stress: 4e8,
+            },
+            0.01,
+        );
+        bent.add_bulk(&BulkLoad::Torsion { surface_shear: 1e8 }, 0.01);
+        for iz in 0..5 {
+            let s = bent.stress[field.index(1, 2, iz)];
+            let z = field.z[iz];
+            assert!((s.xx - 4e8 * (1.0 - z / 0.01)).abs() < 1e-6);
+            assert!((s.xy - 1e8 * (1.0 - z / 0.01)).abs() < 1e-6);
+            assert_eq!((s.yy, s.zz, s.yz, s.xz), (0.0, 0.0, 0.0, 0.0));
         }
     }
 

@@ -9,6 +9,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
+use crate::kernels::subsurface::StressTensor;
 use crate::material::ElasticMaterial;
 
 /// A bulk load of the shaft, given by the stress it produces at the shaft surface under the
@@ -26,22 +27,57 @@ pub enum BulkLoad {
         /// Axial bending stress at the contact, Pa.
         surface_stress: f64,
     },
+    /// Torsion: shear stress sigma_xy (axial-circumferential) at the shaft surface, Pa;
+    /// linear through the radius, zero on the axis. It does not change the shaft radius
+    /// (no back effect).
+    Torsion {
+        /// Shear stress at the shaft surface, Pa.
+        surface_shear: f64,
+    },
 }
 
 impl BulkLoad {
-    /// The axial stress at the shaft surface under the contact, Pa.
+    /// The axial stress at the shaft surface under the contact, Pa (0 for torsion).
     pub fn surface_stress(&self) -> f64 {
         match *self {
             BulkLoad::TensionCompression { stress } => stress,
             BulkLoad::Bending { surface_stress } => surface_stress,
+            BulkLoad::Torsion { .. } => 0.0,
         }
     }
 
-    /// The factor kappa of the paper's (18): 1 for tension-compression, 1/2 for bending.
+    /// The bulk stress tensor at depth `depth` (m) below the shaft surface under the
+    /// contact, Pa (x axial, y circumferential, z radial inward): sigma_xx from
+    /// [`BulkLoad::axial_stress_at_depth`], or for torsion sigma_xy = tau (1 - depth / R)
+    /// (Coulomb's torsion of a circular shaft, Timoshenko & Gere ch. 3).
+    pub fn stress_at_depth(&self, depth: f64, shaft_radius: f64) -> StressTensor {
+        match *self {
+            BulkLoad::Torsion { surface_shear } => StressTensor::new(
+                0.0,
+                0.0,
+                0.0,
+                surface_shear * (1.0 - depth / shaft_radius),
+                0.0,
+                0.0,
+            ),
+            _ => StressTensor::new(
+                self.axial_stress_at_depth(depth, shaft_radius),
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+            ),
+        }
+    }
+
+    /// The factor kappa of the paper's (18): 1 for tension-compression, 1/2 for bending,
+    /// 0 for torsion (which keeps the radius).
     pub fn back_effect_factor(&self) -> f64 {
         match self {
             BulkLoad::TensionCompression { .. } => 1.0,
             BulkLoad::Bending { .. } => 0.5,
+            BulkLoad::Torsion { .. } => 0.0,
         }
     }
 
@@ -53,6 +89,7 @@ impl BulkLoad {
         match *self {
             BulkLoad::TensionCompression { stress } => stress,
             BulkLoad::Bending { surface_stress } => surface_stress * (1.0 - depth / shaft_radius),
+            BulkLoad::Torsion { .. } => 0.0,
         }
     }
 
@@ -79,7 +116,10 @@ impl BulkLoad {
                 "must be finite and > 0 (m)",
             ));
         }
-        let sigma = self.surface_stress();
+        let sigma = match *self {
+            BulkLoad::Torsion { surface_shear } => surface_shear,
+            _ => self.surface_stress(),
+        };
         if !sigma.is_finite() {
             return Err(Error::invalid("bulk.stress", sigma, "must be finite (Pa)"));
         }
@@ -176,5 +216,11 @@ mod tests {
         .approach_change(&ElasticMaterial::new(1.0, 0.3).unwrap(), 0.0)
         .is_err());
         assert_eq!(hertz_force_ratio(-2.0, 1.0), 0.0);
+        let t = BulkLoad::Torsion { surface_shear: 2e8 };
+        assert_eq!(t.stress_at_depth(0.0025, 0.01).xy, 1.5e8);
+        assert_eq!(t.stress_at_depth(0.0025, 0.01).xx, 0.0);
+        let steel = ElasticMaterial::new(2.0e11, 0.3).unwrap();
+        assert_eq!(t.approach_change(&steel, 0.01).unwrap(), 0.0);
+        assert_eq!(b.stress_at_depth(0.005, 0.01).xx, 5e7);
     }
 }

@@ -259,7 +259,30 @@ pub fn solve_tangential_with(
     problem: &TangentialProblem<'_>,
     params: &TangentialParams,
 ) -> Result<TangentialSolution> {
+    solve_tangential_with_offset(operator, workspace, problem, params, None)
+}
+
+/// [`solve_tangential_with`] with a prescribed relative tangential displacement `offset`
+/// along the load direction (m, grid layout) added to `C_ee tau`: the stick condition becomes
+/// `C_ee tau + offset = W`. Used for the normal-tangential coupling of dissimilar materials
+/// ([`crate::solvers::coupled`]), where the pressure moves the surfaces tangentially.
+pub fn solve_tangential_with_offset(
+    operator: &ConvolutionOperator,
+    workspace: &mut ConvolutionWorkspace,
+    problem: &TangentialProblem<'_>,
+    params: &TangentialParams,
+    offset: Option<&[f64]>,
+) -> Result<TangentialSolution> {
     validate(problem, params)?;
+    if let Some(o) = offset {
+        if o.len() != problem.grid.len() || o.iter().any(|v| !v.is_finite()) {
+            return Err(Error::invalid(
+                "offset",
+                format!("{} values", o.len()),
+                "must hold one finite value per element",
+            ));
+        }
+    }
     let grid = problem.grid;
     let n = grid.len();
     let area = grid.element_area();
@@ -304,6 +327,11 @@ pub fn solve_tangential_with(
 
     for iteration in 0..=params.max_iterations {
         operator.apply_into(&tau, &mut displacement, workspace);
+        if let Some(o) = offset {
+            for (u, d) in displacement.iter_mut().zip(o) {
+                *u += d;
+            }
+        }
         // Stick zone (strictly inside the box) and the shift W = mean of C tau over it.
         let mut n_free = 0usize;
         let mut shift = 0.0;

@@ -1,0 +1,303 @@
+//! Normal and tangential contact of dissimilar materials, coupled (the paper's (8) with
+//! (16)): where the Dundurs constant beta != 0 a tangential traction changes the gap and the
+//! pressure moves the surfaces tangentially (Johnson 1985 sec. 5.4). Solved by alternating
+//! the normal solver (with the gap changed by the current traction) and the tangential
+//! solver (with the tangential displacement of the current pressure) until both stop
+//! changing. For beta = 0 the coupling vanishes and one pass is exact.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::grid::SurfaceGrid;
+use crate::kernels::love;
+use crate::material::ElasticMaterial;
+use crate::operators::ConvolutionOperator;
+use crate::solvers::normal::{
+    normal_compliance_operator, solve_normal_cg_with, NormalContactParams, NormalContactSolution,
+    NormalLoading,
+};
+use crate::solvers::tangential::{
+    solve_tangential_with_offset, tangential_compliance_operator, TangentialLoading,
+    TangentialParams, TangentialProblem, TangentialSolution,
+};
+
+/// Dundurs' second constant beta = [(1 - 2 nu1)/G1 - (1 - 2 nu2)/G2] /
+/// (2 [(1 - nu1)/G1 + (1 - nu2)/G2]) (Johnson 1985 eq. (5.4b)); 0 for equal materials.
+pub fn dundurs_beta(body1: &ElasticMaterial, body2: &ElasticMaterial) -> f64 {
+    let (g1, g2) = (body1.shear_modulus(), body2.shear_modulus());
+    let (n1, n2) = (body1.poisson_ratio(), body2.poisson_ratio());
+    ((1.0 - 2.0 * n1) / g1 - (1.0 - 2.0 * n2) / g2) / (2.0 * ((1.0 - n1) / g1 + (1.0 - n2) / g2))
+}
+
+/// The coefficient of the coupling kernels, m^2/N: c = (1 - 2 nu1)/(4 pi G1) -
+/// (1 - 2 nu2)/(4 pi G2) (HALFSPACE.md 1.1: a shear q on body 1 in +x moves its surface by
+/// +(1 - 2 nu1) q H_x / (4 pi G1) into it; body 2 carries -q).
+pub fn coupling_coefficient(body1: &ElasticMaterial, body2: &ElasticMaterial) -> f64 {
+    let four_pi = 4.0 * std::f64::consts::PI;
+    (1.0 - 2.0 * body1.poisson_ratio()) / (four_pi * body1.shear_modulus())
+        - (1.0 - 2.0 * body2.poisson_ratio()) / (four_pi * body2.shear_modulus())
+}
+
+/// The gap change per unit shear along the direction `angle` on an element:
+/// `K_pq(di, dj) = c [cos(angle) H_x + sin(angle) H_y](di dx, dj dy)`, m/Pa. The
+/// tangential displacement along that direction per unit pressure is `-K_pq` at the mirrored
+/// offset, i.e. `K_qp = K_pq^T` (Betti's reciprocity).
+pub fn coupling_operator(
+    grid: &SurfaceGrid,
+    body1: &ElasticMaterial,
+    body2: &ElasticMaterial,
+    angle: f64,
+) -> ConvolutionOperator {
+    let c = coupling_coefficient(body1, body2);
+    let (dx, dy) = (grid.dx(), grid.dy());
+    let (hx, hy) = (0.5 * dx, 0.5 * dy);
+    let (sin, cos) = angle.sin_cos();
+    ConvolutionOperator::new(grid, move |di, dj| {
+        let (x, y) = (di as f64 * dx, dj as f64 * dy);
+        c * (cos * love::rectangle_integral_h_x(x, y, hx, hy)
+            + sin * love::rectangle_integral_h_y(x, y, hx, hy))
+    })
+}
+
+/// The coupled solution with its record.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CoupledSolution {
+    /// The normal solution of the last pass.
+    pub normal: NormalContactSolution,
+    /// The tangential solution of the last pass.
+    pub tangential: TangentialSolution,
+    /// Alternation passes done (1 when the coupling vanishes).
+    pub passes: usize,
+    /// Largest relative change of pressure or traction in the last pass.
+    pub change: f64,
+    /// Dundurs' beta of the pair.
+    pub beta: f64,
+}
+
+/// Solve the coupled normal-tangential problem by alternation (force control normal,
+/// partial slip or sliding tangential), to the relative change `tolerance` in at most
+/// `max_passes` passes.
+#[allow(clippy::too_many_arguments)]
+pub fn solve_coupled(
+    grid: &SurfaceGrid,
+    initial_gap: &[f64],
+    body1: &ElasticMaterial,
+    body2: &ElasticMaterial,
+    normal_loading: NormalLoading,
+    friction: f64,
+    tangential_loading: TangentialLoading,
+    normal_params: &NormalContactParams,
+    tangential_params: &TangentialParams,
+    tolerance: f64,
+    max_passes: usize,
+) -> Result<CoupledSolution> {
+    if !(tolerance.is_finite() && tolerance > 0.0) || max_passes == 0 {
+        return Err(Error::invalid(
+            "coupling",
+            format!("tolerance {tolerance}, max_passes {max_passes}"),
+            "tolerance > 0 and at least one pass",
+        ));
+    }
+    let angle = match tangential_loading {
+        TangentialLoading::Force { angle, .. } | TangentialLoading::Sliding { angle } => angle,
+    };
+    let e_star = crate::material::composite_modulus(body1, body2);
+    let normal_op = normal_compliance_operator(grid, e_star);
+    let tangential_op = tangential_compliance_operator(grid, body1, body2, angle);
+    let coupling = coupling_operator(grid, body1, body2, angle);
+    let uncoupled = coupling_coefficient(body1, body2) == 0.0;
+    let mut workspace = normal_op.workspace();
+    let n = grid.len();
+    let mut gap = initial_gap.to_vec();
+    let mut tau = vec![0.0; n];
+    let mut offset = vec![0.0; n];
+    let mut previous: Option<(Vec<f64>, Vec<f64>)> = None;
+    let mut last_change = f64::INFINITY;
+    for pass in 1..=max_passes {
+        // Normal problem with the gap changed by the current traction along e.
+        coupling.apply_into(&tau, &mut offset, &mut workspace);
+        for i in 0..n {
+            gap[i] = initial_gap[i] + offset[i];
+        }
+        let normal = solve_normal_cg_with(
+            &normal_op,
+            &mut workspace,
+            &gap,
+            normal_loading,
+            normal_params,
+            &mut |_, _| {},
+        )?;
+        // Tangential problem with the tangential displacement of the pressure, K_qp p with
+        // K_qp = K_pq^T; K_pq is odd in the offsets, so K_pq^T p = -(K_pq * p).
+        coupling.apply_into(&normal.pressure, &mut offset, &mut workspace);
+        for o in offset.iter_mut() {
+            *o = -*o;
+        }
+        let problem = TangentialProblem {
+            grid,
+            pressure: &normal.pressure,
+            friction,
+            body1: *body1,
+            body2: *body2,
+            loading: tangential_loading,
+        };
+        let tangential = solve_tangential_with_offset(
+            &tangential_op,
+            &mut workspace,
+            &problem,
+            tangential_params,
+            if uncoupled { None } else { Some(&offset) },
+        )?;
+        let (sin, cos) = angle.sin_cos();
+        for (t, (qx, qy)) in tau
+            .iter_mut()
+            .zip(tangential.traction_x.iter().zip(&tangential.traction_y))
+        {
+            *t = qx * cos + qy * sin;
+        }
+        let change = match &previous {
+            None => f64::INFINITY,
+            Some((p_old, t_old)) => {
+                let p_max = normal.max_pressure();
+                let dp = normal
+                    .pressure
+                    .iter()
+                    .zip(p_old)
+                    .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+                let dt = tau
+                    .iter()
+                    .zip(t_old)
+                    .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+                (dp / p_max).max(dt / (friction * p_max))
+            }
+        };
+        if uncoupled || change <= tolerance {
+            return Ok(CoupledSolution {
+                normal,
+                tangential,
+                passes: pass,
+                change: if uncoupled { 0.0 } else { change },
+                beta: dundurs_beta(body1, body2),
+            });
+        }
+        last_change = change;
+        previous = Some((normal.pressure.clone(), tau.clone()));
+    }
+    Err(Error::NotConverged {
+        solver: "normal-tangential alternation",
+        iterations: max_passes,
+        residual: last_change,
+        tolerance,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(body2: ElasticMaterial) -> CoupledSolution {
+        let steel = ElasticMaterial::new(2.1e11, 0.3).unwrap();
+        let e_star = crate::material::composite_modulus(&steel, &body2);
+        let a = (3.0 * 1000.0 * 0.01 / (4.0 * e_star)).cbrt();
+        let grid = SurfaceGrid::centred(48, 48, 1.3 * a, 1.3 * a).unwrap();
+        let gap = grid.sample(|x, y| (x * x + y * y) / 0.02);
+        solve_coupled(
+            &grid,
+            &gap,
+            &steel,
+            &body2,
+            NormalLoading::Force(1000.0),
+            0.3,
+            TangentialLoading::Force {
+                magnitude: 150.0,
+                angle: 0.0,
+            },
+            &NormalContactParams::default(),
+            &TangentialParams::default(),
+            1e-8,
+            50,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn equal_materials_need_one_pass() {
+        let s = run(ElasticMaterial::new(2.1e11, 0.3).unwrap());
+        assert_eq!(s.passes, 1);
+        assert_eq!(s.beta, 0.0);
+    }
+
+    #[test]
+    fn dissimilar_materials_converge_and_keep_the_loads() {
+        // Steel on aluminium: beta ~ 0.1 (Johnson 1985 table 5.1 order); the alternation
+        // contracts by about beta per pass.
+        let aluminium = ElasticMaterial::new(7.0e10, 0.33).unwrap();
+        let s = run(aluminium);
+        let steel = ElasticMaterial::new(2.1e11, 0.3).unwrap();
+        assert!((dundurs_beta(&steel, &aluminium) - s.beta).abs() < 1e-15);
+        assert!(s.beta.abs() > 0.05 && s.beta.abs() < 0.2, "{}", s.beta);
+        assert!(s.passes >= 2 && s.passes <= 15, "{}", s.passes);
+        assert!((s.normal.normal_load - 1000.0).abs() < 1e-9 * 1000.0);
+        assert!((s.tangential.tangential_force.0 - 150.0).abs() < 1e-8 * 150.0);
+        // The coupling makes the pressure asymmetric in x (uncoupled it is symmetric).
+        let grid_n = 48;
+        let p = &s.normal.pressure;
+        let asym = (0..grid_n * grid_n).fold(0.0f64, |m, k| {
+            let (ix, iy) = (k % grid_n, k / grid_n);
+            m.max((p[k] - p[iy * grid_n + (grid_n - 1 - ix)]).abs())
+        });
+        assert!(asym > 1e-6 * s.normal.max_pressure(), "{asym}");
+    }
+
+    #[test]
+    fn coupling_kernel_is_the_difference_of_the_bodies_cross_displacements() {
+        // Against the Pohrt-Li surface displacements (tested on HALFSPACE.md 1.1's vectors):
+        // gap change per q_x = u_z1(q_x) - u_z2(q_x) (body 2 carries -q_x in its mirrored
+        // frame), tangential displacement per p = u_x1(p) - u_x2(p) = -K_pq (reciprocity).
+        let b1 = ElasticMaterial::new(2.1e11, 0.3).unwrap();
+        let b2 = ElasticMaterial::new(7.0e10, 0.33).unwrap();
+        let grid = SurfaceGrid::centred(8, 6, 4e-4, 3e-4).unwrap();
+        let op = coupling_operator(&grid, &b1, &b2, 0.0);
+        let (hx, hy) = (0.5 * grid.dx(), 0.5 * grid.dy());
+        let mut unit = vec![0.0; 48];
+        unit[grid.index(3, 2)] = 1.0;
+        let gap_change = op.apply(&unit);
+        // FFT round-off relative to the largest coefficient.
+        let scale = gap_change.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for iy in 0..6 {
+            for ix in 0..8 {
+                let (x, y) = (grid.x(ix) - grid.x(3), grid.y(iy) - grid.y(2));
+                let uz = |m: &ElasticMaterial| {
+                    love::shear_x_displacement(x, y, hx, hy, m.shear_modulus(), m.poisson_ratio())
+                        [2]
+                };
+                let ux = |m: &ElasticMaterial| {
+                    love::pressure_displacement(x, y, hx, hy, m.shear_modulus(), m.poisson_ratio())
+                        [0]
+                };
+                let k = gap_change[grid.index(ix, iy)];
+                assert!(
+                    (k - (uz(&b1) - uz(&b2))).abs() <= 1e-12 * scale,
+                    "{ix} {iy}: {k:e} vs {:e} ({:e}, {:e})",
+                    uz(&b1) - uz(&b2),
+                    uz(&b1),
+                    uz(&b2)
+                );
+                assert!((-k - (ux(&b1) - ux(&b2))).abs() <= 1e-12 * scale);
+            }
+        }
+    }
+
+    #[test]
+    fn dundurs_beta_values() {
+        let steel = ElasticMaterial::new(2.0e11, 0.3).unwrap();
+        assert_eq!(dundurs_beta(&steel, &steel), 0.0);
+        // A rigid body against an incompressible one... : nu = 0.5 makes (1 - 2 nu) = 0;
+        // beta(rigid, nu2) = -(1 - 2 nu2) / (2 (1 - nu2)) (Johnson eq. 5.4b with G1 -> inf).
+        let rigid = ElasticMaterial::new(2.0e20, 0.3).unwrap();
+        let soft = ElasticMaterial::new(1.0e9, 0.25).unwrap();
+        let expected = -(1.0 - 0.5) / (2.0 * 0.75);
+        assert!((dundurs_beta(&rigid, &soft) - expected).abs() < 1e-9);
+        assert!((dundurs_beta(&soft, &rigid) + expected).abs() < 1e-9);
+    }
+}
