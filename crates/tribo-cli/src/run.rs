@@ -13,6 +13,7 @@ use tribo::analysis::stress_field::{
 use tribo::geometry::initial_gap;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
 use tribo::solvers::back_effect::{back_effect_curve_observed, BackEffectPoint};
+use tribo::solvers::coupled::solve_coupled;
 use tribo::solvers::tangential::TangentialSolution;
 use tribo::solvers::tangential::{solve_tangential, TangentialParams, TangentialProblem};
 use tribo::solvers::{
@@ -69,10 +70,28 @@ pub struct Outcome {
 pub struct Tangential {
     /// The library's solution.
     pub solution: TangentialSolution,
-    /// Dundurs' beta where the materials differ (the coupling is then neglected).
+    /// Dundurs' beta where the materials differ.
     pub dundurs_beta: Option<f64>,
+    /// The coupled solution's record (dissimilar materials).
+    pub coupling: Option<Coupling>,
     /// Wall time of the solve.
     pub time: Duration,
+}
+
+/// Relative change at which the normal-tangential alternation stops.
+pub const COUPLING_TOLERANCE: f64 = 1e-8;
+/// Most alternation passes.
+pub const COUPLING_MAX_PASSES: usize = 100;
+
+/// The normal-tangential coupling of dissimilar materials, solved by alternation.
+#[derive(Debug, Clone)]
+pub struct Coupling {
+    /// The normal solution of the coupled problem (replaces the uncoupled one).
+    pub normal: NormalContactSolution,
+    /// Alternation passes.
+    pub passes: usize,
+    /// Largest relative change in the last pass.
+    pub change: f64,
 }
 
 /// The subsurface stress field of a case with `[field]`.
@@ -245,6 +264,21 @@ pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome>
         stress: None,
     };
     outcome.tangential = tangential(case, &outcome, quiet)?;
+    if let Some(c) = outcome
+        .tangential
+        .as_ref()
+        .and_then(|t| t.coupling.as_ref())
+    {
+        // The coupled normal solution replaces the uncoupled one (pressure, approach, ...).
+        outcome.solution = c.normal.clone();
+        if let Some(h) = &outcome.prepared.hertz {
+            outcome.error = Some(pressure_errors(
+                &outcome.prepared.grid,
+                &outcome.solution.pressure,
+                &h.contact,
+            ));
+        }
+    }
     outcome.back_effect = back_effect(case, &outcome, quiet)?;
     outcome.stress = stress(case, &outcome, quiet)?;
     Ok(outcome)
@@ -360,8 +394,8 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
     if let Some(beta) = dundurs_beta {
         if !quiet {
             eprintln!(
-                "warning: dissimilar materials (Dundurs beta = {beta:.4}): the tangential \
-                 problem is solved for the normal pressure without the normal-tangential coupling"
+                "note: dissimilar materials (Dundurs beta = {beta:.4}): the normal and \
+                 tangential problems are coupled and solved by alternation"
             );
         }
     }
@@ -380,14 +414,6 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
             ));
         }
     }
-    let problem = TangentialProblem {
-        grid: &out.prepared.grid,
-        pressure: &out.solution.pressure,
-        friction: fr.coefficient,
-        body1: *m1,
-        body2: *m2,
-        loading: fr.loading,
-    };
     let params = TangentialParams {
         tolerance: case.params.tolerance.max(1e-12),
         max_iterations: case.params.max_iterations,
@@ -395,18 +421,59 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
     let pb = spinner(
         quiet,
         format!(
-            "solving tangential contact ({}, f = {})",
+            "solving tangential contact ({}, f = {}{})",
             fr.mode(),
-            fr.coefficient
+            fr.coefficient,
+            if dissimilar {
+                ", coupled to the normal problem by alternation"
+            } else {
+                ""
+            }
         ),
     );
     let start = Instant::now();
-    let result = solve_tangential(&problem, &params);
+    let (result, coupled) = if dissimilar {
+        let p = &out.prepared;
+        match solve_coupled(
+            &p.grid,
+            &p.initial_gap,
+            m1,
+            m2,
+            case.loading,
+            fr.coefficient,
+            fr.loading,
+            &case.params,
+            &params,
+            COUPLING_TOLERANCE,
+            COUPLING_MAX_PASSES,
+        ) {
+            Ok(c) => (
+                Ok(c.tangential),
+                Some(Coupling {
+                    normal: c.normal,
+                    passes: c.passes,
+                    change: c.change,
+                }),
+            ),
+            Err(e) => (Err(e), None),
+        }
+    } else {
+        let problem = TangentialProblem {
+            grid: &out.prepared.grid,
+            pressure: &out.solution.pressure,
+            friction: fr.coefficient,
+            body1: *m1,
+            body2: *m2,
+            loading: fr.loading,
+        };
+        (solve_tangential(&problem, &params), None)
+    };
     let time = start.elapsed();
     pb.finish_and_clear();
     Ok(Some(Tangential {
         solution: result?,
         dundurs_beta,
+        coupling: coupled,
         time,
     }))
 }

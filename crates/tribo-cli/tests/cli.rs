@@ -779,7 +779,7 @@ fn bad_friction_input_exits_2_names_the_field_and_writes_nothing() {
 }
 
 #[test]
-fn dissimilar_materials_warn_that_the_coupling_is_neglected() {
+fn dissimilar_materials_are_coupled_by_alternation() {
     let text = SPHERE.replace(
         "E = 2.1e11\nnu = 0.3\nradii = [\"inf\"",
         "E = 7e10\nnu = 0.33\nradii = [\"inf\"",
@@ -789,9 +789,15 @@ fn dissimilar_materials_warn_that_the_coupling_is_neglected() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let s = read_json(&out.join("summary.json"));
     let c = s["tangential"]["coupling"].as_str().unwrap();
-    assert!(c.starts_with("neglected (Dundurs beta = "), "{c}");
-    // --quiet silences the warning.
-    assert!(!stderr(&o).contains("warning"));
+    assert!(c.starts_with("alternation (Dundurs beta = "), "{c}");
+    let q = s["tangential"]["tangential_force"][0].as_f64().unwrap();
+    assert!((q / 10.0 - 1.0).abs() < 1e-6, "Q_x = {q}");
+    let load = s["contact"]["normal_load"].as_f64().unwrap();
+    assert!((load / 100.0 - 1.0).abs() < 1e-6, "F_N = {load}");
+    // --quiet silences the note; without it stderr says the problems are coupled.
+    assert!(!stderr(&o).contains("note"));
+    let o = tribo(&["run", "-", "--dry-run"], Some(&text));
+    assert_eq!(o.status.code(), Some(0));
 }
 
 #[test]

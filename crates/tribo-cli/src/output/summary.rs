@@ -617,7 +617,7 @@ pub struct TangentialSummary {
     /// Cattaneo-Mindlin c = a (1 - Q/(f P))^(1/3), m (Hertzian partial slip).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stick_semi_major_cattaneo_mindlin: Option<f64>,
-    /// "neglected (Dundurs beta = ...)" for dissimilar materials.
+    /// "alternation (Dundurs beta = ...): N passes, ..." for dissimilar materials.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub coupling: Option<String>,
     /// Wall time, s.
@@ -652,9 +652,13 @@ impl TangentialSummary {
             residual: s.residual,
             stick_semi_major,
             stick_semi_major_cattaneo_mindlin: cm,
-            coupling: t
-                .dundurs_beta
-                .map(|b| format!("neglected (Dundurs beta = {b:.4})")),
+            coupling: t.dundurs_beta.map(|b| match &t.coupling {
+                Some(c) => format!(
+                    "alternation (Dundurs beta = {b:.4}): {} passes, last relative change {:.2e}",
+                    c.passes, c.change
+                ),
+                None => format!("neglected (Dundurs beta = {b:.4})"),
+            }),
             time_s: t.time.as_secs_f64(),
         })
     }
