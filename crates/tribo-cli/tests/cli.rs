@@ -859,3 +859,22 @@ fn the_friction_example_runs() {
     assert!((q[1].as_f64().unwrap() / 400.0 - 1.0).abs() < 1e-9);
     assert!(s["stress"]["max_von_mises"]["value"].as_f64().unwrap() > 0.0);
 }
+
+#[test]
+fn the_field_superposes_the_operating_bulk_stress() {
+    let bulk = "[bulk]\nkind = \"bending\"\nstress_max = 6.4e8\npoints = 3\nstress = 3.2e8\n";
+    let field = "[field]\nn = [9, 9, 5]\n";
+    let (o, out, _d) = run_case(&format!("{PAPER}{bulk}{field}"), &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    assert_eq!(s["stress"]["bulk"][0], "bending");
+    assert_eq!(s["stress"]["bulk"][1].as_f64(), Some(3.2e8));
+    // Far from the contact the surface carries the bending stress.
+    let top = s["stress"]["max_principal"]["value"].as_f64().unwrap();
+    assert!(top > 3.0e8, "max principal {top}");
+    // In body 1 (not the shaft) nothing is superposed.
+    let (o, out, _d) = run_case(&format!("{PAPER}{bulk}{field}body = \"body1\"\n"), &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    assert!(s["stress"].get("bulk").is_none());
+}
