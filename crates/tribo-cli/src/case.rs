@@ -309,6 +309,8 @@ impl Friction {
 pub const DEFAULT_FIELD_N: [usize; 3] = [39, 39, 20];
 /// Most field points per direction.
 pub const MAX_FIELD_N: usize = 512;
+/// Most field points in all (nx ny nz).
+pub const MAX_FIELD_POINTS: usize = 2_000_000;
 /// Default field half width and depth in units of the Hertz long semi-axis.
 pub const DEFAULT_FIELD_EXTENT: f64 = 1.5;
 
@@ -909,6 +911,17 @@ fn field_spec(f: RawField, hertzian: bool) -> CliResult<FieldSpec> {
             ))
         }
     };
+    let total = n[0] * n[1] * n[2];
+    if total > MAX_FIELD_POINTS {
+        return Err(CliError::field(
+            "field.n",
+            format!("[{}, {}, {}]", n[0], n[1], n[2]),
+            format!(
+                "{total} points; at most {MAX_FIELD_POINTS} (the ASCII stress.vti holds 22 \
+                 arrays over every point)"
+            ),
+        ));
+    }
     let half_width = field_length(
         "field.extent",
         f.extent.as_ref(),

@@ -769,6 +769,7 @@ fn bad_friction_input_exits_2_names_the_field_and_writes_nothing() {
     for (extra, field) in [
         ("[field]\nn = [39, 39]", "field.n"),
         ("[field]\nn = [39, 39, 1]", "field.n[2]"),
+        ("[field]\nn = [512, 512, 20]", "field.n"),
         ("[field]\nextent = 0", "field.extent"),
         ("[field]\ndepth = -1", "field.depth"),
         ("[field]\ndepth = 1\ndepth_m = 1e-4", "field.depth"),
