@@ -1047,13 +1047,19 @@ mod tests {
             let x = if snap & 1 == 0 { ix as f64 * hx } else { fx * 4.0 * hx };
             let y = if snap & 2 == 0 { iy as f64 * hy } else { fy * 4.0 * hy };
             let z = match zi { 0 => 0.0, 1 => 1e-300, 2 => zr * 1e-9 * hx, _ => zr * hx };
-            for t in [
+            let mut tensors = vec![
                 pressure_stress(x, y, z, hx, hy, nu),
                 shear_x_stress(x, y, z, hx, hy, nu),
                 shear_y_stress(x, y, z, hx, hy, nu),
-                boussinesq_stress(x, y, z, nu),
-                cerruti_stress(x, y, z, nu),
-            ] {
+            ];
+            // The point-load solutions are singular like 1/rho^2 and overflow for rho below
+            // ~1e-154 (e.g. on the axis at z = 1e-300): they are finite only away from the
+            // load point, which is all the rectangle formulas and the far field use.
+            if (x * x + y * y + z * z).sqrt() > 1e-100 {
+                tensors.push(boussinesq_stress(x, y, z, nu));
+                tensors.push(cerruti_stress(x, y, z, nu));
+            }
+            for t in tensors {
                 proptest::prop_assert!(t.is_finite(), "{x} {y} {z} {hx} {hy}: {t:?}");
                 proptest::prop_assert!(t.von_mises().is_finite() && t.max_shear().is_finite());
             }
