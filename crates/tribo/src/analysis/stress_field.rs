@@ -420,6 +420,59 @@ mod tests {
     }
 
     #[test]
+    fn equilibrium_of_a_deep_plane() {
+        // The integral of sigma_zz over the plane z = a equals -F_N, of sigma_xz equals -Q
+        // (equilibrium of the layer above the plane). Midpoint rule (spacing a/4) over the
+        // disc r <= R = 9.9a, plus the tail r > R of a point load (Boussinesq / Cerruti, Johnson
+        // 1985 sec. 3.2-3.3, integrated in closed form):
+        //   sigma_zz: z^3 / (R^2 + z^2)^(3/2) of F;  sigma_xz: (3z/2)(R^2+z^2)^(-1/2) -
+        //   (z^3/2)(R^2+z^2)^(-3/2) of Q (15 % of Q here: it decays only like z/R).
+        // The tail of the spread load differs from the point load's by O((a/R)^2) ~ 1 % of the
+        // tail; with the disc edge cut by square cells, tolerance 5e-3.
+        let (grid, p, hertz) = hertz_circle_tractions(16);
+        let a = hertz.semi_major;
+        let q: Vec<f64> = p.iter().map(|v| 0.2 * v).collect();
+        let tractions = SurfaceTractions {
+            grid: &grid,
+            pressure: &p,
+            shear_x: Some(&q),
+            shear_y: None,
+        };
+        let spacing = 0.25 * a;
+        let line: Vec<f64> = (0..80).map(|i| (i as f64 - 39.5) * spacing).collect();
+        let plane = FieldGrid {
+            x: line.clone(),
+            y: line,
+            z: vec![a],
+        };
+        let field = stress_field_direct(&tractions, 0.3, &plane).unwrap();
+        let radius = 9.9 * a;
+        let (mut fz, mut fx) = (0.0, 0.0);
+        for iy in 0..80 {
+            for ix in 0..80 {
+                if plane.x[ix].hypot(plane.y[iy]) <= radius {
+                    let s = field.stress[plane.index(ix, iy, 0)];
+                    fz += s.zz * spacing * spacing;
+                    fx += s.xz * spacing * spacing;
+                }
+            }
+        }
+        let load: f64 = p.iter().sum::<f64>() * grid.element_area();
+        let (z, r2) = (a, radius * radius + a * a);
+        let tail_z = z.powi(3) / r2.powf(1.5);
+        let tail_x = 1.5 * z / r2.sqrt() - 0.5 * z.powi(3) / r2.powf(1.5);
+        assert!(
+            (fz - tail_z * load + load).abs() < 5e-3 * load,
+            "{fz} vs {load}"
+        );
+        assert!(
+            (fx - tail_x * 0.2 * load + 0.2 * load).abs() < 5e-3 * 0.2 * load,
+            "{fx} vs {}",
+            0.2 * load
+        );
+    }
+
+    #[test]
     fn bulk_stress_superposes_linearly_through_the_depth() {
         let grid = SurfaceGrid::centred(4, 4, 1e-3, 1e-3).unwrap();
         let zero = vec![0.0; 16];
