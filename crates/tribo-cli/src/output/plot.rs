@@ -181,12 +181,39 @@ pub fn pressure_profiles(
     hertz: Option<&HertzContact>,
     title: &str,
 ) -> Result<(), String> {
+    let pmax = pressure.iter().cloned().fold(0.0, f64::max);
+    let p0 = hertz.map_or(0.0, |h| h.max_pressure);
+    let top = 1.1 * pmax.max(p0).max(f64::MIN_POSITIVE) / 1e9;
+    let hertz_pressure = hertz.map(|h| move |x: f64, y: f64| h.pressure(x, y));
+    let reference: Option<Reference<'_>> = hertz_pressure
+        .as_ref()
+        .map(|f| (f as &dyn Fn(f64, f64) -> f64, "Hertz"));
+    profiles(
+        path,
+        grid,
+        pressure,
+        reference,
+        &format!("Pressure profiles: {title}"),
+        "p, GPa",
+        (0.0, top),
+    )
+}
+
+/// A field along x through the row nearest y = 0 and along y through the column nearest
+/// x = 0 (two panels): element-centre values (markers, GPa) against a reference curve.
+fn profiles(
+    path: &Path,
+    grid: &SurfaceGrid,
+    field: &[f64],
+    reference: Option<Reference<'_>>,
+    title: &str,
+    y_desc: &str,
+    y_range: (f64, f64),
+) -> Result<(), String> {
     register_font()?;
     let root = BitMapBackend::new(path, (1200, 560)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
-    let root = root
-        .titled(&format!("Pressure profiles: {title}"), (FAMILY, 20))
-        .map_err(e)?;
+    let root = root.titled(title, (FAMILY, 20)).map_err(e)?;
     let panels = root.split_evenly((1, 2));
     let nearest = |n: usize, c: &dyn Fn(usize) -> f64| {
         (0..n)
@@ -195,9 +222,6 @@ pub fn pressure_profiles(
     };
     let iy0 = nearest(grid.ny(), &|i| grid.y(i));
     let ix0 = nearest(grid.nx(), &|i| grid.x(i));
-    let pmax = pressure.iter().cloned().fold(0.0, f64::max);
-    let p0 = hertz.map_or(0.0, |h| h.max_pressure);
-    let ptop = 1.1 * pmax.max(p0).max(f64::MIN_POSITIVE) / 1e9;
     for (k, panel) in panels.iter().enumerate() {
         let along_x = k == 0;
         let (n, half, fixed) = if along_x {
@@ -215,12 +239,12 @@ pub fn pressure_profiles(
             .margin(15)
             .x_label_area_size(45)
             .y_label_area_size(60)
-            .build_cartesian_2d(-half_mm..half_mm, 0.0..ptop)
+            .build_cartesian_2d(-half_mm..half_mm, y_range.0..y_range.1)
             .map_err(e)?;
         chart
             .configure_mesh()
             .x_desc(format!("{axis}, mm"))
-            .y_desc("p, GPa")
+            .y_desc(y_desc)
             .x_label_formatter(&tick)
             .y_label_formatter(&tick)
             .label_style((FAMILY, 14))
@@ -228,21 +252,17 @@ pub fn pressure_profiles(
             .light_line_style(WHITE.mix(0.0))
             .draw()
             .map_err(e)?;
-        if let Some(h) = hertz {
+        if let Some((f, label)) = reference {
             let samples = 600;
             let curve = (0..=samples).map(|s| {
                 let t = -half + 2.0 * half * s as f64 / samples as f64;
-                let p = if along_x {
-                    h.pressure(t, fixed)
-                } else {
-                    h.pressure(fixed, t)
-                };
-                (1e3 * t, p / 1e9)
+                let v = if along_x { f(t, fixed) } else { f(fixed, t) };
+                (1e3 * t, v / 1e9)
             });
             chart
                 .draw_series(LineSeries::new(curve, BLUE.stroke_width(2)))
                 .map_err(e)?
-                .label("Hertz")
+                .label(label.to_string())
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
         }
         let points: Vec<(f64, f64)> = (0..n)
@@ -252,26 +272,19 @@ pub fn pressure_profiles(
                 } else {
                     (grid.y(i), grid.index(ix0, i))
                 };
-                (1e3 * t, pressure[idx] / 1e9)
+                (1e3 * t, field[idx] / 1e9)
             })
             .collect();
         chart
             .draw_series(
                 points
                     .iter()
-                    .map(|&(x, p)| Circle::new((x, p), 4, RED.filled())),
+                    .map(|&(x, v)| Circle::new((x, v), 4, RED.filled())),
             )
             .map_err(e)?
             .label("tribo (element centres)")
             .legend(|(x, y)| Circle::new((x + 10, y), 4, RED.filled()));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font((FAMILY, 14))
-            .draw()
-            .map_err(e)?;
+        legend_box(&mut chart)?;
     }
     root.present().map_err(e)?;
     Ok(())
@@ -481,91 +494,17 @@ pub fn traction_profiles(
     reference: Option<Reference<'_>>,
     title: &str,
 ) -> Result<(), String> {
-    register_font()?;
-    let root = BitMapBackend::new(path, (1200, 560)).into_drawing_area();
-    root.fill(&WHITE).map_err(e)?;
-    let root = root
-        .titled(
-            &format!("Tangential traction profiles: {title}"),
-            (FAMILY, 20),
-        )
-        .map_err(e)?;
-    let panels = root.split_evenly((1, 2));
-    let nearest = |n: usize, c: &dyn Fn(usize) -> f64| {
-        (0..n)
-            .min_by(|&a, &b| c(a).abs().total_cmp(&c(b).abs()))
-            .unwrap_or(0)
-    };
-    let iy0 = nearest(grid.ny(), &|i| grid.y(i));
-    let ix0 = nearest(grid.nx(), &|i| grid.x(i));
     let qmax = traction.iter().fold(0.0f64, |m, q| m.max(q.abs()));
     let top = 1.15 * qmax.max(f64::MIN_POSITIVE) / 1e9;
-    for (k, panel) in panels.iter().enumerate() {
-        let along_x = k == 0;
-        let (n, half, fixed) = if along_x {
-            (grid.nx(), grid.half_widths().0, grid.y(iy0))
-        } else {
-            (grid.ny(), grid.half_widths().1, grid.x(ix0))
-        };
-        let half_mm = 1e3 * half;
-        let (axis, other) = if along_x { ("x", "y") } else { ("y", "x") };
-        let mut chart = ChartBuilder::on(panel)
-            .caption(
-                format!("along {axis} at {other} = {:.4} mm", 1e3 * fixed),
-                (FAMILY, 17),
-            )
-            .margin(15)
-            .x_label_area_size(45)
-            .y_label_area_size(60)
-            .build_cartesian_2d(-half_mm..half_mm, -top..top)
-            .map_err(e)?;
-        chart
-            .configure_mesh()
-            .x_desc(format!("{axis}, mm"))
-            .y_desc("q along the load direction, GPa")
-            .x_label_formatter(&tick)
-            .y_label_formatter(&tick)
-            .label_style((FAMILY, 14))
-            .axis_desc_style((FAMILY, 16))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()
-            .map_err(e)?;
-        if let Some((f, label)) = reference {
-            let samples = 600;
-            let curve = (0..=samples).map(|s| {
-                let t = -half + 2.0 * half * s as f64 / samples as f64;
-                let q = if along_x { f(t, fixed) } else { f(fixed, t) };
-                (1e3 * t, q / 1e9)
-            });
-            chart
-                .draw_series(LineSeries::new(curve, BLUE.stroke_width(2)))
-                .map_err(e)?
-                .label(label.to_string())
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(2)));
-        }
-        let points: Vec<(f64, f64)> = (0..n)
-            .map(|i| {
-                let (t, idx) = if along_x {
-                    (grid.x(i), grid.index(i, iy0))
-                } else {
-                    (grid.y(i), grid.index(ix0, i))
-                };
-                (1e3 * t, traction[idx] / 1e9)
-            })
-            .collect();
-        chart
-            .draw_series(
-                points
-                    .iter()
-                    .map(|&(x, q)| Circle::new((x, q), 4, RED.filled())),
-            )
-            .map_err(e)?
-            .label("tribo (element centres)")
-            .legend(|(x, y)| Circle::new((x + 10, y), 4, RED.filled()));
-        legend_box(&mut chart)?;
-    }
-    root.present().map_err(e)?;
-    Ok(())
+    profiles(
+        path,
+        grid,
+        traction,
+        reference,
+        &format!("Tangential traction profiles: {title}"),
+        "q along the load direction, GPa",
+        (-top, top),
+    )
 }
 
 /// A colour map of a scalar on a plane section: `values[iv * nh + ih]` at (h[ih], v[iv])
