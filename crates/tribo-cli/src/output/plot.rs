@@ -95,24 +95,7 @@ pub fn pressure_map(
     let (hx, hy) = (1e3 * hx, 1e3 * hy);
     let pmax = pressure.iter().cloned().fold(0.0, f64::max);
     let pmax_gpa = if pmax > 0.0 { pmax / 1e9 } else { 1.0 };
-    let mut chart = ChartBuilder::on(&main)
-        .caption(format!("Contact pressure: {title}"), (FAMILY, 20))
-        .margin(15)
-        .x_label_area_size(50)
-        .y_label_area_size(70)
-        .build_cartesian_2d(-hx..hx, -hy..hy)
-        .map_err(e)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc("x, mm")
-        .y_desc("y, mm")
-        .x_label_formatter(&tick)
-        .y_label_formatter(&tick)
-        .label_style((FAMILY, 15))
-        .axis_desc_style((FAMILY, 17))
-        .draw()
-        .map_err(e)?;
+    let mut chart = surface_chart(&main, hx, hy, &format!("Contact pressure: {title}"))?;
     let (dx, dy) = (1e3 * grid.dx(), 1e3 * grid.dy());
     chart
         .draw_series((0..grid.ny()).flat_map(|iy| {
@@ -169,6 +152,41 @@ pub fn pressure_map(
     .map_err(e)?;
     root.present().map_err(e)?;
     Ok(())
+}
+
+/// Axes in mm over the surface window |x| <= `hx`, |y| <= `hy` (mm) for the surface maps.
+fn surface_chart<'a, 'b>(
+    area: &'a DrawingArea<BitMapBackend<'b>, plotters::coord::Shift>,
+    hx: f64,
+    hy: f64,
+    caption: &str,
+) -> Result<
+    ChartContext<
+        'a,
+        BitMapBackend<'b>,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    String,
+> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, (FAMILY, 20))
+        .margin(15)
+        .x_label_area_size(50)
+        .y_label_area_size(70)
+        .build_cartesian_2d(-hx..hx, -hy..hy)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x, mm")
+        .y_desc("y, mm")
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
+        .label_style((FAMILY, 15))
+        .axis_desc_style((FAMILY, 17))
+        .draw()
+        .map_err(e)?;
+    Ok(chart)
 }
 
 /// Pressure along x through the row nearest y = 0 and along y through the column nearest
@@ -417,24 +435,7 @@ pub fn stick_slip_map(
     root.fill(&WHITE).map_err(e)?;
     let (hx, hy) = grid.half_widths();
     let (hx, hy) = (1e3 * hx, 1e3 * hy);
-    let mut chart = ChartBuilder::on(&root)
-        .caption(format!("Stick and slip: {title}"), (FAMILY, 20))
-        .margin(15)
-        .x_label_area_size(50)
-        .y_label_area_size(70)
-        .build_cartesian_2d(-hx..hx, -hy..hy)
-        .map_err(e)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc("x, mm")
-        .y_desc("y, mm")
-        .x_label_formatter(&tick)
-        .y_label_formatter(&tick)
-        .label_style((FAMILY, 15))
-        .axis_desc_style((FAMILY, 17))
-        .draw()
-        .map_err(e)?;
+    let mut chart = surface_chart(&root, hx, hy, &format!("Stick and slip: {title}"))?;
     let (dx, dy) = (1e3 * grid.dx(), 1e3 * grid.dy());
     let stick_c = RGBColor(33, 144, 141);
     let slip_c = RGBColor(253, 174, 97);
