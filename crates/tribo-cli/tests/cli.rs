@@ -904,3 +904,71 @@ fn the_field_superposes_the_operating_bulk_stress() {
     let s = read_json(&out.join("summary.json"));
     assert!(s["stress"].get("bulk").is_none());
 }
+
+/// `[field] points = "centres"` (FFT on the contact grid's element centres) gives the same
+/// stresses as the direct sum on uniform points placed on those centres: on 21 x 21 elements
+/// over |x|, |y| <= 1.5a the centres are the uniform points over |x|, |y| <= 1.5a (20/21).
+/// Same kernels, window narrower than the graded far field's switch: round-off only; the
+/// locations of the maxima agree to rounding of the point coordinates (1e-12 relative).
+#[test]
+fn the_fft_field_on_element_centres_equals_the_direct_sum() {
+    let friction = "friction = 0.2\nsliding = true\n";
+    let paper = PAPER.replacen("load = 2000.0\n", &format!("load = 2000.0\n{friction}"), 1);
+    let uniform = format!(
+        "{paper}[field]\nn = [21, 21, 4]\nextent = {}\ndepth = 0.9\n",
+        1.5 * 20.0 / 21.0
+    );
+    let centres = format!("{paper}[field]\npoints = \"centres\"\nlayers = 4\ndepth = 0.9\n");
+    let mut summaries = Vec::new();
+    for text in [&uniform, &centres] {
+        let (o, out, _d) = run_case(text, &[], &[]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        summaries.push(read_json(&out.join("summary.json"))["stress"].clone());
+    }
+    assert_eq!(summaries[0]["method"], "direct sum");
+    assert_eq!(summaries[1]["method"], "FFT on the element centres");
+    assert_eq!(summaries[1]["points"], serde_json::json!([21, 21, 4]));
+    for key in [
+        "max_von_mises",
+        "max_shear",
+        "max_principal",
+        "max_hydrostatic",
+    ] {
+        let (a, b) = (&summaries[0][key], &summaries[1][key]);
+        let (va, vb) = (a["value"].as_f64().unwrap(), b["value"].as_f64().unwrap());
+        assert!((va - vb).abs() <= 1e-10 * va.abs(), "{key}: {va} vs {vb}");
+        for k in 0..3 {
+            let (la, lb) = (
+                a["location"][k].as_f64().unwrap(),
+                b["location"][k].as_f64().unwrap(),
+            );
+            assert!(
+                (la - lb).abs() <= 1e-12 + 1e-9 * la.abs(),
+                "{key} at {a} vs {b}"
+            );
+        }
+    }
+}
+
+#[test]
+fn bad_field_points_exit_2_and_name_the_field() {
+    for (section, field) in [
+        ("[field]\npoints = \"nodes\"\n", "field.points"),
+        ("[field]\npoints = \"centres\"\nn = [9, 9, 5]\n", "field.n"),
+        (
+            "[field]\npoints = \"centres\"\nextent = 1.0\n",
+            "field.extent",
+        ),
+        ("[field]\nlayers = 5\n", "field.layers"),
+        (
+            "[field]\npoints = \"centres\"\nlayers = 1\n",
+            "field.layers",
+        ),
+        (
+            "[field]\npoints = \"centres\"\ndepth = -1.0\n",
+            "field.depth",
+        ),
+    ] {
+        assert_bad_input(&format!("{PAPER}{section}"), &[], field);
+    }
+}
