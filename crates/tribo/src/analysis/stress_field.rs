@@ -39,7 +39,7 @@ pub struct SurfaceTractions<'a> {
 }
 
 impl SurfaceTractions<'_> {
-    fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         let n = self.grid.len();
         for (name, field) in [
             ("pressure", Some(self.pressure)),
