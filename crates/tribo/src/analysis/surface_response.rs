@@ -134,15 +134,19 @@ mod tests {
         let (hx, hy) = (0.5 * grid.dx(), 0.5 * grid.dy());
         let mut expected = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
         for i in 0..n {
+            let mut sums = [0.0; 3];
             for j in 0..n {
                 let x = grid.x(i % nx) - grid.x(j % nx);
                 let y = grid.y(i / nx) - grid.y(j / nx);
                 let up = love::pressure_displacement(x, y, hx, hy, g, nu);
                 let ux = love::shear_x_displacement(x, y, hx, hy, g, nu);
                 let uy = love::shear_y_displacement(x, y, hx, hy, g, nu);
-                for c in 0..3 {
-                    expected[c][i] += up[c] * p[j] + ux[c] * qx[j] + uy[c] * qy[j];
+                for (c, sum) in sums.iter_mut().enumerate() {
+                    *sum += up[c] * p[j] + ux[c] * qx[j] + uy[c] * qy[j];
                 }
+            }
+            for (e, sum) in expected.iter_mut().zip(sums) {
+                e[i] = sum;
             }
         }
         let scale = expected
