@@ -34,6 +34,10 @@
 //! stress_max = 6.4e8               # sigma_a,max, Pa: the curve spans sigma/sigma_max in [-1, 1]
 //! points = 21                      # points per curve, odd, 3 ... 1001 (default 21)
 //! # stress = 3.2e8                 # optional operating bulk stress, Pa: F_N reported there
+//! # bending_force = 5e3            # or, with kind = "bending": the operating bending stress
+//! # span = 0.2                     #   4 M/(pi R^3) from a force (N), a span (m) and the
+//! # support = "simply-supported"   #   support (M = F L/4; "cantilever": M = F L), with
+//! # bending_side = "tension"       #   the contact on the tension or compression side
 //! [field]                          # optional: the subsurface stress field
 //! n = [39, 39, 20]                 # points along x, y, z (default the paper's)
 //! extent = 1.5                     # x, y half width / Hertz a (or half_width, m)
@@ -52,6 +56,7 @@ use tribo::geometry::{
     Crown, HeightMap, LogarithmicCrown, QuadraticProfile, Roller, SurfaceProfile,
 };
 use tribo::grid::MAX_ELEMENTS_PER_SIDE;
+use tribo::kernels::bulk::{bending_moment, bending_stress, BeamSupport};
 use tribo::solvers::{NormalContactParams, NormalLoading};
 use tribo::ElasticMaterial;
 
@@ -160,6 +165,10 @@ struct RawBulk {
     stress_max: Option<Value>,
     points: Option<Value>,
     stress: Option<Value>,
+    bending_force: Option<Value>,
+    span: Option<Value>,
+    support: Option<Value>,
+    bending_side: Option<Value>,
 }
 
 // ---------------------------------------------------------------- validated layer
@@ -713,6 +722,73 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
             }
             Some(x)
         }
+    };
+    // The operating bending stress from a force, a span and the shaft section (beam theory).
+    let from_force = b.bending_force.is_some()
+        || b.span.is_some()
+        || b.support.is_some()
+        || b.bending_side.is_some();
+    let stress = if from_force {
+        if let Some(v) = &b.stress {
+            return Err(CliError::field(
+                "bulk.stress",
+                show(v),
+                "give either bulk.stress or bulk.bending_force with bulk.span, not both",
+            ));
+        }
+        if kinds != [LoadKind::Bending] {
+            return Err(CliError::field(
+                "bulk.bending_force",
+                "given",
+                "needs kind = \"bending\" (the force bends the shaft)",
+            ));
+        }
+        let required = |key: &str, v: &Option<Value>| {
+            v.clone().ok_or_else(|| {
+                CliError::field(
+                    format!("bulk.{key}"),
+                    "(missing)",
+                    "required with a bending force: bending_force (N), span (m), and \
+                     optionally support and bending_side",
+                )
+            })
+        };
+        let force = quantity(
+            "bulk.bending_force",
+            &required("bending_force", &b.bending_force)?,
+            Dim::Force,
+        )?;
+        let span = quantity("bulk.span", &required("span", &b.span)?, Dim::Length)?;
+        let support = match &b.support {
+            None => BeamSupport::SimplySupported,
+            Some(Value::String(s)) if s == "simply-supported" => BeamSupport::SimplySupported,
+            Some(Value::String(s)) if s == "cantilever" => BeamSupport::Cantilever,
+            Some(v) => {
+                return Err(CliError::field(
+                    "bulk.support",
+                    show(v),
+                    "must be \"simply-supported\" (force at mid-span, M = F L/4) or \
+                     \"cantilever\" (force at the free end, M = F L)",
+                ))
+            }
+        };
+        let sign = match &b.bending_side {
+            None => 1.0,
+            Some(Value::String(s)) if s == "tension" => 1.0,
+            Some(Value::String(s)) if s == "compression" => -1.0,
+            Some(v) => {
+                return Err(CliError::field(
+                    "bulk.bending_side",
+                    show(v),
+                    "must be \"tension\" or \"compression\" (the side of the shaft the \
+                     contact is on)",
+                ))
+            }
+        };
+        let moment = bending_moment(force, span, support, "bulk.")?;
+        Some(sign * bending_stress(moment, shaft_radius))
+    } else {
+        stress
     };
     Ok(Bulk {
         shaft,

@@ -972,3 +972,52 @@ fn bad_field_points_exit_2_and_name_the_field() {
         assert_bad_input(&format!("{PAPER}{section}"), &[], field);
     }
 }
+
+/// The operating bending stress from a force, a span and the shaft section: 5 kN at the
+/// mid-span of a 200 mm simply supported shaft of R = 10 mm gives M = 250 N m and
+/// sigma = 4 M / (pi R^3) = 318.31 MPa (beam theory), superposed at the field's surface.
+#[test]
+fn bending_stress_from_force_span_and_section() {
+    let bulk = "[bulk]\nkind = \"bending\"\nstress_max = 6.4e8\npoints = 3\n\
+                bending_force = \"5 kN\"\nspan = \"200 mm\"\n";
+    let field = "[field]\nn = [5, 5, 3]\n";
+    let (o, out, _d) = run_case(&format!("{PAPER}{bulk}{field}"), &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let sigma = s["stress"]["bulk"][1].as_f64().unwrap();
+    assert!(
+        (sigma / 3.183_098_861_837_907e8 - 1.0).abs() < 1e-12,
+        "{sigma}"
+    );
+    let side =
+        format!("{PAPER}{bulk}bending_side = \"compression\"\nsupport = \"cantilever\"\n{field}");
+    let (o, out, _d) = run_case(&side, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let sigma = read_json(&out.join("summary.json"))["stress"]["bulk"][1]
+        .as_f64()
+        .unwrap();
+    assert!(
+        (sigma / -1.273_239_544_735_163e9 - 1.0).abs() < 1e-12,
+        "{sigma}"
+    );
+    for (extra, field) in [
+        ("stress = 1e8\n", "bulk.stress"),
+        ("span = 0.0\n", "bulk.span"),
+        ("support = \"pinned\"\n", "bulk.support"),
+        ("bending_side = \"top\"\n", "bulk.bending_side"),
+    ] {
+        let text = format!("{PAPER}{bulk}{extra}").replacen(
+            "span = \"200 mm\"\n",
+            "",
+            usize::from(extra.starts_with("span")),
+        );
+        assert_bad_input(&text, &[], field);
+    }
+    let both = format!(
+        "{PAPER}[bulk]\nkind = \"both\"\nstress_max = 6.4e8\nbending_force = 5e3\nspan = 0.2\n"
+    );
+    assert_bad_input(&both, &[], "bulk.bending_force");
+    let missing =
+        format!("{PAPER}[bulk]\nkind = \"bending\"\nstress_max = 6.4e8\nbending_force = 5e3\n");
+    assert_bad_input(&missing, &[], "bulk.span");
+}
