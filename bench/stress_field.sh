@@ -56,7 +56,8 @@ mib() { python3 -c "import sys; v=sys.argv[1]; print(f'{float(v)/2**20:.0f}' if 
         for f in 0 0.2; do
             r="$("$bin/tribo-bench-stress" --n "$n" --friction "$f")"
             echo "   $r" >&2
-            echo "| $n | tribo | p, q_x = $f p | exact (non-periodic) | $(fmt "$(json_field "$r" seconds)") | $(fmt "$(json_field "$r" von_mises_error_axis)") | $(mib "$(json_field "$r" peak_rss_bytes)") |"
+            if [ "$f" = 0 ]; then traction="p"; else traction="p, q_x = $f p"; fi
+            echo "| $n | tribo | $traction | exact (non-periodic) | $(fmt "$(json_field "$r" seconds)") | $(fmt "$(json_field "$r" von_mises_error_axis)") | $(mib "$(json_field "$r" peak_rss_bytes)") |"
         done
         if [ "$skip_tamaas" != 1 ]; then
             for pad in $paddings; do
