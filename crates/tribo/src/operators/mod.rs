@@ -1,5 +1,6 @@
 //! Layer 2: discretized influence operators on surface grids.
 
+pub mod bem2d;
 pub mod convolution;
 pub mod dense;
 
