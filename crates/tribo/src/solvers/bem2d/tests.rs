@@ -204,6 +204,7 @@ fn lame_cylinder_converges() {
     for n in [2, 4, 8] {
         let (sol, _) = lame(n);
         let (eu, es, ei) = lame_errors(&sol);
+        eprintln!("lame n = {n}: u_r {eu:.2e}, boundary hoop {es:.2e}, interior hoop {ei:.2e}");
         if let Some((pu, ps, pi)) = prev {
             let (ou, os, oi) = ((pu / eu).log2(), (ps / es).log2(), (pi / ei).log2());
             assert!(
@@ -396,6 +397,7 @@ fn cantilever(n: usize) -> f64 {
 #[test]
 fn cantilever_tip_deflection_converges() {
     let e: Vec<f64> = [1, 2, 4].iter().map(|&n| cantilever(n)).collect();
+    eprintln!("cantilever tip errors {e:?}");
     for k in 1..e.len() {
         let o = (e[k - 1] / e[k]).log2();
         assert!(o > 2.0 || e[k] < 1e-8, "errors {e:?}, order {o:.2}");
@@ -509,6 +511,7 @@ fn bonded_two_material_annulus_matches_closed_form() {
     let (u2, s2) = run(4);
     let (u3, s3) = run(8);
     let (ou, os) = ((u2 / u3).log2(), (s2 / s3).log2());
+    eprintln!("compound: u {u1:.2e} {u2:.2e} {u3:.2e}; hoop {s1:.2e} {s2:.2e} {s3:.2e}");
     // Same rates as the Lame cylinder (order ~3 for u, >= 2 for interior stress).
     assert!(
         ou > 2.5 && os > 1.5,
@@ -693,7 +696,7 @@ fn bad_boundary_conditions_are_reported_by_name() {
 #[test]
 #[ignore]
 fn bem2d_timing() {
-    for n in [125, 250, 500] {
+    for n in [62, 125, 250] {
         let model = BemModel::new(
             PlaneCondition::Strain,
             vec![Region::new(
@@ -727,3 +730,8 @@ fn bem2d_timing() {
         );
     }
 }
+
+// Timing note (bem2d_timing above, release build, 2 cores shared with three other builds,
+// load average ~5): DOF 1000: assembly 0.09 s, system + LU 0.04 s; DOF 2008: 0.48 s,
+// 0.30 s; DOF 4008: 1.97 s, 1.43 s. Both grow ~4-5x per doubling (O(N^2) assembly; the
+// O(N^3) LU is still below the assembly here). Re-measure on a quiet machine.
