@@ -2,3 +2,4 @@
 
 pub mod hertz_error;
 pub mod stress_field;
+pub mod surface_response;

@@ -25,8 +25,9 @@
 //! re-enter the stick zone, the conjugate direction is reset when the zones change.
 //!
 //! Scope: for bodies of equal elastic constants (Dundurs beta = 0) the tangential traction
-//! does not act back on the pressure; for dissimilar materials the problems couple (not yet
-//! implemented: the pressure is taken as given).
+//! does not act back on the pressure; for dissimilar materials the problems couple, and
+//! [`crate::solvers::coupled`] alternates this solver (through
+//! [`solve_tangential_with_offset`]) with the normal one.
 
 use serde::{Deserialize, Serialize};
 
