@@ -1,5 +1,6 @@
-//! Layer 2: discretized influence operators on surface grids.
+//! Layer 2: discretized influence operators on surface grids and 2D boundary meshes.
 
+pub mod bem2d;
 pub mod convolution;
 pub mod dense;
 pub mod spectral;
