@@ -1,7 +1,8 @@
 //! The 2D elastostatic boundary element solver: boundary conditions per named segment and
 //! direction, bonded interfaces between regions (zonal homogeneity), the dense solve, and the
 //! interior displacement, stress and strain (the paper's (1), (2), (7), (9)-(11) for one body
-//! made of bonded homogeneous zones; contact pairs (4), (5), (8) are not handled here).
+//! made of bonded homogeneous zones; contact pairs (4), (5), (8) between bodies are in
+//! [`contact`]).
 //!
 //! System. Each region r gives `H_r u_r = G_r t_r` (see [`crate::operators::bem2d::assemble`]).
 //! At every node and direction either u or t is prescribed; on a bonded interface both
@@ -771,6 +772,8 @@ fn nearest_xi(e: &Element, p: [f64; 2]) -> f64 {
     }
     xi
 }
+
+pub mod contact;
 
 #[cfg(test)]
 mod tests;

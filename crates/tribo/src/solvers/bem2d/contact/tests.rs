@@ -1,0 +1,751 @@
+//! Verification of the 2D BEM contact solver against closed forms (Johnson 1985 ch. 4 and 7;
+//! BEM2D.md A4-A6).
+
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use super::*;
+use crate::kernels::kelvin2d::PlaneCondition;
+use crate::material::ElasticMaterial;
+use crate::operators::bem2d::{Grading, Region, Segment};
+
+fn steel() -> ElasticMaterial {
+    ElasticMaterial::new(210e9, 0.3).unwrap()
+}
+
+/// A block [-l, l] x [-d, 0] whose top has a contact segment `name` over |x| <= c with `nc`
+/// elements, the rest of the top graded toward it; bottom named `{name}_bottom`.
+fn block(name: &str, mat: ElasticMaterial, l: f64, d: f64, c: f64, nc: usize) -> Region {
+    block_graded(name, mat, l, d, c, nc, Grading::Uniform)
+}
+
+fn block_graded(
+    name: &str,
+    mat: ElasticMaterial,
+    l: f64,
+    d: f64,
+    c: f64,
+    nc: usize,
+    grading: Grading,
+) -> Region {
+    let ratio = (l - c) / (c / nc as f64) / 4.0;
+    Region::new(
+        name,
+        mat,
+        vec![
+            Segment::line(&format!("{name}_bottom"), [-l, -d], [l, -d], 12),
+            Segment::line(&format!("{name}_right"), [l, -d], [l, 0.0], 10),
+            Segment::line(&format!("{name}_top_right"), [l, 0.0], [c, 0.0], 24)
+                .graded(Grading::End(ratio.max(1.0))),
+            Segment::line(&format!("{name}_contact"), [c, 0.0], [-c, 0.0], nc).graded(grading),
+            Segment::line(&format!("{name}_top_left"), [-c, 0.0], [-l, 0.0], 24)
+                .graded(Grading::Start(ratio.max(1.0))),
+            Segment::line(&format!("{name}_left"), [-l, 0.0], [-l, -d], 10),
+        ],
+    )
+}
+
+/// A half cylinder of radius r touching y = 0 at the origin from above (`up`) or from
+/// below; its contact arc spans |x| <= c (about) with `nc` elements; its flat face (through
+/// the centre) is `{name}_face`.
+fn half_cylinder(name: &str, mat: ElasticMaterial, r: f64, c: f64, nc: usize, up: bool) -> Region {
+    let th = c / r;
+    let ratio = (r * FRAC_PI_2) / (c / nc as f64) / 4.0;
+    let (cy, mid) = if up { (r, -FRAC_PI_2) } else { (-r, FRAC_PI_2) };
+    let segs = if up {
+        vec![
+            Segment::arc(
+                &format!("{name}_contact"),
+                [0.0, cy],
+                r,
+                mid - th,
+                mid + th,
+                nc,
+            ),
+            Segment::arc(&format!("{name}_right"), [0.0, cy], r, mid + th, 0.0, 24)
+                .graded(Grading::Start(ratio)),
+            Segment::line(&format!("{name}_face"), [r, cy], [-r, cy], 12),
+            Segment::arc(
+                &format!("{name}_left"),
+                [0.0, cy],
+                r,
+                PI,
+                2.0 * PI + mid - th,
+                24,
+            )
+            .graded(Grading::End(ratio)),
+        ]
+    } else {
+        vec![
+            Segment::arc(
+                &format!("{name}_contact"),
+                [0.0, cy],
+                r,
+                mid - th,
+                mid + th,
+                nc,
+            ),
+            Segment::arc(&format!("{name}_left"), [0.0, cy], r, mid + th, PI, 24)
+                .graded(Grading::Start(ratio)),
+            Segment::line(&format!("{name}_face"), [-r, cy], [r, cy], 12),
+            Segment::arc(&format!("{name}_right"), [0.0, cy], r, 0.0, mid - th, 24)
+                .graded(Grading::End(ratio)),
+        ]
+    };
+    Region::new(name, mat, segs)
+}
+
+/// Least-squares fit of p^2 = A - B x^2 over the nodes with p > 0.3 max p (Hertz: A = p0^2,
+/// A / B = b^2): returns (p0, b).
+fn fit_semi_ellipse(xs: &[f64], ps: &[f64]) -> (f64, f64) {
+    let pm = ps.iter().cloned().fold(0.0_f64, f64::max);
+    let (mut s1, mut sx, mut sxx, mut sy, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (&x, &p) in xs.iter().zip(ps) {
+        if p > 0.3 * pm {
+            let (u, v) = (x * x, p * p);
+            s1 += 1.0;
+            sx += u;
+            sxx += u * u;
+            sy += v;
+            sxy += u * v;
+        }
+    }
+    let slope = (s1 * sxy - sx * sy) / (s1 * sxx - sx * sx);
+    let a = (sy - slope * sx) / s1;
+    (a.sqrt(), (a / -slope).sqrt())
+}
+
+const R: f64 = 0.010;
+const P: f64 = 1e5; // N/m (100 N/mm)
+
+/// Hertz: b = sqrt(4 P R / (pi E*)), p0 = 2 P / (pi b) (Johnson 1985 eq. 4.43-4.45).
+fn hertz(r: f64, estar: f64, p: f64) -> (f64, f64) {
+    let b = (4.0 * p * r / (PI * estar)).sqrt();
+    (b, 2.0 * p / (PI * b))
+}
+
+fn cylinder_on_block(friction: f64, nc_slave: usize, nc_master: usize) -> ContactProblem {
+    cylinder_on_block_rule(friction, nc_slave, nc_master, GapRule::NodeToSegment)
+}
+
+fn cylinder_on_block_rule(
+    friction: f64,
+    nc_slave: usize,
+    nc_master: usize,
+    rule: GapRule,
+) -> ContactProblem {
+    let estar = 210e9 / (2.0 * (1.0 - 0.09));
+    let (b, _) = hertz(R, estar, P);
+    let c = 2.0 * b;
+    let model = BemModel::new(
+        PlaneCondition::Strain,
+        vec![
+            block("block", steel(), 0.010, 0.010, c, nc_master),
+            half_cylinder("cyl", steel(), R, c, nc_slave, true),
+        ],
+    );
+    let bcs = BoundaryConditions::new().set("block_bottom", SegmentBc::fixed());
+    ContactProblem::new(
+        &model,
+        &bcs,
+        &[ContactPair::new("cyl_contact", "block_contact", friction).with_rule(rule)],
+        &["cyl_face"],
+    )
+    .unwrap()
+}
+
+fn press(p: f64) -> LoadStep {
+    LoadStep {
+        external: 1.0,
+        rigid: vec![RigidControl::new(
+            "cyl_face",
+            Control::Displacement(0.0),
+            Control::Force(-p),
+        )],
+    }
+}
+
+fn pressure_error(pr: &PairResult, b: f64, p0: f64, within: f64) -> f64 {
+    let mut emax = 0.0_f64;
+    for n in &pr.nodes {
+        let x = n.position[0];
+        if x.abs() < within * b {
+            let ph = p0 * (1.0 - x * x / (b * b)).sqrt();
+            emax = emax.max((n.pressure - ph).abs() / p0);
+        }
+    }
+    emax
+}
+
+fn fit_pair(pr: &PairResult) -> (f64, f64) {
+    let xs: Vec<f64> = pr.nodes.iter().map(|n| n.position[0]).collect();
+    let ps: Vec<f64> = pr.nodes.iter().map(|n| n.pressure).collect();
+    fit_semi_ellipse(&xs, &ps)
+}
+
+/// Frictionless Hertz, steel half cylinder R = 10 mm on a steel block, P = 100 N/mm
+/// (BEM2D.md A4: b = 0.10505 mm, p0 = 606.04 MPa). Slave: 48 elements over |x| <= 2b
+/// (24 across the contact), master: 40 (20 across). Measured (weighted rule): b and p0 from
+/// the least-squares semi-ellipse within 0.3 %, max |p - p_H| / p0 = 0.97 % over |x| < 0.9 b
+/// (the largest next to the edge, where the sqrt profile is not polynomial); the collocated
+/// node-to-segment rule gives the same to 0.1 %. Tolerances: 1 % on b and p0, 1.5 % on
+/// p(x) (the brief's "about 1 %" with the edge element's interpolation error).
+#[test]
+fn hertz_cylinder_on_block() {
+    let estar = 210e9 / (2.0 * (1.0 - 0.09));
+    let (b, p0) = hertz(R, estar, P);
+    assert!((b - 0.10505e-3).abs() < 1e-7 && (p0 - 606.04e6).abs() < 0.1e6);
+    for rule in [GapRule::Weighted, GapRule::NodeToSegment] {
+        let mut cp = cylinder_on_block_rule(0.0, 48, 40, rule);
+        let res = cp
+            .solve_steps(&[press(P)], &ContactOptions::default())
+            .unwrap();
+        let step = &res[0];
+        let pr = &step.pairs[0];
+        let (p0f, bf) = fit_pair(pr);
+        let ep = pressure_error(pr, b, p0, 0.9);
+        eprintln!(
+            "Hertz cylinder/block {rule:?}: b {:+.2e}, p0 {:+.2e}, max |p - pH|/p0 {ep:.2e}, \
+             iterations {}, residual {:.1e}",
+            bf / b - 1.0,
+            p0f / p0 - 1.0,
+            step.iterations,
+            step.residual
+        );
+        assert!((bf / b - 1.0).abs() < 0.01, "b {bf:e} vs {b:e}");
+        assert!((p0f / p0 - 1.0).abs() < 0.01, "p0 {p0f:e} vs {p0:e}");
+        assert!(ep < 0.015, "p(x) error {ep:.3e}");
+        assert!(step.residual < 1e-10);
+        assert!(pr.nodes.iter().all(|n| n.shear == 0.0));
+        // Equilibrium: the rigid face carries the applied force (a solved equation: round-off),
+        // the master receives exactly the slave's force (the transfer conserves it: round-off),
+        // and the cylinder's BEM equilibrium (contact force vs face force) holds to the
+        // discretization error (measured 9e-6).
+        let f = step.rigid[0].force;
+        assert!(
+            (f[1] + P).abs() < 1e-10 * P && f[0].abs() < 1e-10 * P,
+            "{f:?}"
+        );
+        for d in 0..2 {
+            assert!((pr.slave_force[d] + pr.master_force[d]).abs() < 1e-10 * P);
+        }
+        assert!(
+            (pr.slave_force[1] - P).abs() < 1e-4 * P,
+            "{:?}",
+            pr.slave_force
+        );
+    }
+    // Refinement: 96 / 80 elements (measured 0.23 %).
+    let mut cp = cylinder_on_block(0.0, 96, 80);
+    let res = cp
+        .solve_steps(&[press(P)], &ContactOptions::default())
+        .unwrap();
+    let ep = pressure_error(&res[0].pairs[0], b, p0, 0.9);
+    eprintln!("Hertz cylinder/block 96/80: max |p - pH|/p0 {ep:.2e}");
+    assert!(ep < 0.005, "refined p(x) error {ep:.3e}");
+}
+
+/// Two steel half cylinders R1 = R2 = 10 mm, P = 100 N/mm (BEM2D.md A4: b = 0.07428 mm,
+/// p0 = 857.07 MPa), 48 / 40 elements over |x| <= 2 b. Same tolerances as above.
+#[test]
+fn hertz_two_cylinders() {
+    let estar = 210e9 / (2.0 * (1.0 - 0.09));
+    let (b, p0) = hertz(R / 2.0, estar, P);
+    assert!((b - 0.07428e-3).abs() < 1e-7 && (p0 - 857.07e6).abs() < 0.1e6);
+    let c = 2.0 * b;
+    let model = BemModel::new(
+        PlaneCondition::Strain,
+        vec![
+            half_cylinder("lower", steel(), R, c, 40, false),
+            half_cylinder("upper", steel(), R, c, 48, true),
+        ],
+    );
+    let bcs = BoundaryConditions::new().set("lower_face", SegmentBc::fixed());
+    let mut cp = ContactProblem::new(
+        &model,
+        &bcs,
+        &[ContactPair::new("upper_contact", "lower_contact", 0.0)],
+        &["upper_face"],
+    )
+    .unwrap();
+    let step = LoadStep {
+        external: 1.0,
+        rigid: vec![RigidControl::new(
+            "upper_face",
+            Control::Displacement(0.0),
+            Control::Force(-P),
+        )],
+    };
+    let res = cp.solve_steps(&[step], &ContactOptions::default()).unwrap();
+    let pr = &res[0].pairs[0];
+    let (p0f, bf) = fit_pair(pr);
+    let ep = pressure_error(pr, b, p0, 0.9);
+    eprintln!(
+        "Hertz two cylinders: b {:+.2e}, p0 {:+.2e}, max |p - pH|/p0 {ep:.2e}, iterations {}",
+        bf / b - 1.0,
+        p0f / p0 - 1.0,
+        res[0].iterations
+    );
+    assert!((bf / b - 1.0).abs() < 0.01);
+    assert!((p0f / p0 - 1.0).abs() < 0.01);
+    assert!(ep < 0.015, "p(x) error {ep:.3e}");
+}
+
+/// Flat punch (Johnson 1985 sec. 5.2, eq. 5.31 with 2D plane strain; BEM2D.md A6): a block
+/// 1000 times stiffer than the base, half-width a = 1 mm, pressed with P = 100 N/mm on a
+/// steel block 40 a x 20 a. Frictionless: p = P / (pi sqrt(a^2 - x^2)). Both contact
+/// segments span exactly |x| <= a and are graded toward the punch corners (ratio 4; with
+/// uniform, non-matching elements the singular edge makes the pressure oscillate by 5-20 %
+/// over the outer 20 %). Measured: 0.52 % over |x| <= 0.8 a, p(0) pi a / P = 1.0043, 1.5 %
+/// over |x| <= 0.9 a. The FEM reference of BEM2D.md reaches 0.3-0.5 % at 0.5 a and 2.2 % at
+/// 0.9 a with h = a/100. Tolerances: 1 % (0.8 a) and 2 % (0.9 a), the finite block and the
+/// punch's finite stiffness (1e-3) adding a few 0.1 %.
+#[test]
+fn flat_punch_edge_singularity() {
+    let a = 1e-3;
+    let stiff = ElasticMaterial::new(210e12, 0.3).unwrap();
+    let punch = Region::new(
+        "punch",
+        stiff,
+        vec![
+            Segment::line("punch_bottom", [-a, 0.0], [a, 0.0], 48).graded(Grading::BothEnds(4.0)),
+            Segment::line("punch_right", [a, 0.0], [a, a], 8),
+            Segment::line("punch_top", [a, a], [-a, a], 8),
+            Segment::line("punch_left", [-a, a], [-a, 0.0], 8),
+        ],
+    );
+    let model = BemModel::new(
+        PlaneCondition::Strain,
+        vec![
+            block_graded(
+                "base",
+                steel(),
+                20.0 * a,
+                20.0 * a,
+                a,
+                40,
+                Grading::BothEnds(4.0),
+            ),
+            punch,
+        ],
+    );
+    let bcs = BoundaryConditions::new().set("base_bottom", SegmentBc::fixed());
+    let mut cp = ContactProblem::new(
+        &model,
+        &bcs,
+        &[ContactPair::new("punch_bottom", "base_contact", 0.0)],
+        &["punch_top"],
+    )
+    .unwrap();
+    let step = LoadStep {
+        external: 1.0,
+        rigid: vec![RigidControl::new(
+            "punch_top",
+            Control::Displacement(0.0),
+            Control::Force(-P),
+        )],
+    };
+    let res = cp.solve_steps(&[step], &ContactOptions::default()).unwrap();
+    let pr = &res[0].pairs[0];
+    let mut emax = 0.0_f64;
+    let mut emax9 = 0.0_f64;
+    for n in &pr.nodes {
+        let x = n.position[0];
+        let exact = P / (PI * (a * a - x * x).sqrt());
+        if x.abs() <= 0.8 * a {
+            emax = emax.max((n.pressure / exact - 1.0).abs());
+        }
+        if x.abs() <= 0.9 * a {
+            emax9 = emax9.max((n.pressure / exact - 1.0).abs());
+        }
+    }
+    let p_mid = pr.nodes[pr.nodes.len() / 2].pressure * PI * a / P;
+    eprintln!(
+        "flat punch: max |p/p_exact - 1| over |x| <= 0.8a {emax:.2e}, 0.9a {emax9:.2e}, p(0) pi a / P = {p_mid:.4}, \
+         touches the slave end {}, iterations {}",
+        pr.touches_slave_end, res[0].iterations
+    );
+    assert!(pr.nodes.iter().all(|n| n.state == ContactState::Stick));
+    assert!(emax < 0.01, "punch pressure error {emax:.3e}");
+    assert!(emax9 < 0.02, "punch pressure error {emax9:.3e} (0.9 a)");
+}
+
+/// Least-squares fit of the stick-zone profile d(x) = f p - |q| = f p0 (c/a) sqrt(1 -
+/// (x - x0)^2 / c^2) over the stick nodes with d > 0.3 max d; returns (c, x0) using the
+/// centroid of d^2 for x0.
+fn stick_zone(pr: &PairResult, f: f64) -> (f64, f64) {
+    let stick: Vec<&ContactNode> = pr
+        .nodes
+        .iter()
+        .filter(|n| n.state == ContactState::Stick)
+        .collect();
+    let d: Vec<f64> = stick
+        .iter()
+        .map(|n| f * n.pressure - n.shear.abs())
+        .collect();
+    let w: f64 = d.iter().map(|v| v * v).sum();
+    let x0 = stick
+        .iter()
+        .zip(&d)
+        .map(|(n, v)| n.position[0] * v * v)
+        .sum::<f64>()
+        / w;
+    let xs: Vec<f64> = stick.iter().map(|n| n.position[0] - x0).collect();
+    let (_, c) = fit_semi_ellipse(&xs, &d);
+    (c, x0)
+}
+
+/// 2D Cattaneo-Mindlin (Johnson 1985 sec. 7.1, eq. 7.7-7.9): P then Q = 0.5 f P with
+/// f = 0.3, same material: stick zone c = a sqrt(1 - Q/(f P)) = 0.7071 a, centred. Two
+/// steps (friction is path dependent: the normal load first). Measured: c/a = 0.7124
+/// (+0.74 %), centre -0.002 a, q(x) within 1 % of f p0 except the nodes next to the
+/// stick/slip boundary (4 %: the sqrt kink of q there). Tolerance 3 % on c (a node spacing
+/// is 4 % of a; the semi-ellipse fit of f p - |q| interpolates between nodes).
+#[test]
+fn cattaneo_mindlin_partial_slip() {
+    let estar = 210e9 / (2.0 * (1.0 - 0.09));
+    let (a, _) = hertz(R, estar, P);
+    let f = 0.3;
+    let q = 0.5 * f * P;
+    let mut cp = cylinder_on_block(f, 48, 40);
+    let steps = [
+        LoadStep {
+            external: 1.0,
+            rigid: vec![RigidControl::new(
+                "cyl_face",
+                Control::Force(0.0),
+                Control::Force(-P),
+            )],
+        },
+        LoadStep {
+            external: 1.0,
+            rigid: vec![RigidControl::new(
+                "cyl_face",
+                Control::Force(q),
+                Control::Force(-P),
+            )],
+        },
+    ];
+    let res = cp.solve_steps(&steps, &ContactOptions::default()).unwrap();
+    let pr = &res[1].pairs[0];
+    let (c, x0) = stick_zone(pr, f);
+    let c_exact = a * (1.0 - q / (f * P)).sqrt();
+    let nslip = pr
+        .nodes
+        .iter()
+        .filter(|n| {
+            matches!(
+                n.state,
+                ContactState::SlipPositive | ContactState::SlipNegative
+            )
+        })
+        .count();
+    eprintln!(
+        "Cattaneo-Mindlin: c/a {:.4} (exact {:.4}, error {:+.2e}), centre {:+.2e} a, slip nodes \
+         {nslip}, iterations {} / {}, residual {:.1e}",
+        c / a,
+        c_exact / a,
+        c / c_exact - 1.0,
+        x0 / a,
+        res[0].iterations,
+        res[1].iterations,
+        res[1].residual
+    );
+    assert!(
+        (c / c_exact - 1.0).abs() < 0.03,
+        "c = {c:e}, exact {c_exact:e}"
+    );
+    assert!(x0.abs() < 0.03 * a);
+    assert!(nslip > 0);
+    // The tangential resultant is the applied Q (solved equation) and the slip zones obey
+    // |q| = f p to round-off.
+    assert!((res[1].rigid[0].force[0] - q).abs() < 1e-9 * P);
+    for n in &pr.nodes {
+        if matches!(
+            n.state,
+            ContactState::SlipPositive | ContactState::SlipNegative
+        ) {
+            assert!((n.shear.abs() - f * n.pressure).abs() < 1e-9 * f * n.pressure.max(1.0));
+        }
+        if n.state == ContactState::Stick {
+            assert!(n.shear.abs() <= f * n.pressure * (1.0 + 1e-12));
+            assert!(n.slip_increment.abs() < 1e-12 * a);
+        }
+    }
+}
+
+/// f = 0 is the frictionless problem exactly: all q = 0, complementarity holds to
+/// round-off, and the result is path independent (one step or four give the same state to
+/// round-off); a tiny friction coefficient changes the pressure continuously.
+#[test]
+fn zero_friction_is_frictionless_and_path_independent() {
+    let mut one = cylinder_on_block(0.0, 32, 24);
+    let r1 = one
+        .solve_steps(&[press(P)], &ContactOptions::default())
+        .unwrap();
+    let mut four = cylinder_on_block(0.0, 32, 24);
+    let steps: Vec<LoadStep> = (1..=4).map(|k| press(P * k as f64 / 4.0)).collect();
+    let r4 = four
+        .solve_steps(&steps, &ContactOptions::default())
+        .unwrap();
+    let (a, b) = (&r1[0].pairs[0], &r4[3].pairs[0]);
+    let pmax = a.nodes.iter().map(|n| n.pressure).fold(0.0, f64::max);
+    for (x, y) in a.nodes.iter().zip(&b.nodes) {
+        assert_eq!(x.shear, 0.0);
+        assert!((x.pressure - y.pressure).abs() < 1e-9 * pmax);
+        assert!(x.pressure >= 0.0);
+        if x.state == ContactState::Open {
+            assert!(x.gap >= 0.0 && x.pressure == 0.0);
+        } else {
+            assert!(x.gap.abs() < 1e-12 * 1e-4, "gap {:e}", x.gap);
+        }
+    }
+    let mut tiny = cylinder_on_block(1e-9, 32, 24);
+    let steps = [LoadStep {
+        external: 1.0,
+        rigid: vec![RigidControl::new(
+            "cyl_face",
+            Control::Force(0.0),
+            Control::Force(-P),
+        )],
+    }];
+    let rt = tiny
+        .solve_steps(&steps, &ContactOptions::default())
+        .unwrap();
+    let dmax = rt[0].pairs[0]
+        .nodes
+        .iter()
+        .zip(&a.nodes)
+        .map(|(x, y)| (x.pressure - y.pressure).abs())
+        .fold(0.0, f64::max);
+    eprintln!(
+        "f = 1e-9 vs f = 0: max pressure difference {:.2e} p0",
+        dmax / pmax
+    );
+    assert!(dmax < 1e-6 * pmax);
+}
+
+/// The solver stops with NotConverged and its residual when the iteration limit is hit
+/// (the Hertz case needs about 10 active-set iterations from the single initial contact
+/// node).
+#[test]
+fn iteration_limit_is_not_converged_with_residual() {
+    let mut cp = cylinder_on_block(0.0, 32, 24);
+    let opts = ContactOptions {
+        max_iterations: 2,
+        ..ContactOptions::default()
+    };
+    match cp.solve_steps(&[press(P)], &opts) {
+        Err(Error::NotConverged {
+            iterations,
+            residual,
+            ..
+        }) => {
+            assert_eq!(iterations, 2);
+            assert!(residual.is_finite() && residual > 1e-9, "{residual:e}");
+        }
+        other => panic!("expected NotConverged, got {other:?}"),
+    }
+}
+
+fn err_text<T: std::fmt::Debug>(r: Result<T>) -> String {
+    format!("{}", r.unwrap_err())
+}
+
+#[test]
+fn bad_contact_input_is_reported() {
+    let estar = 210e9 / (2.0 * (1.0 - 0.09));
+    let (b, _) = hertz(R, estar, P);
+    let c = 2.0 * b;
+    let model = BemModel::new(
+        PlaneCondition::Strain,
+        vec![
+            block("block", steel(), 0.010, 0.010, c, 10),
+            half_cylinder("cyl", steel(), R, c, 10, true),
+        ],
+    );
+    let bcs = BoundaryConditions::new().set("block_bottom", SegmentBc::fixed());
+    let pair = ContactPair::new("cyl_contact", "block_contact", 0.2);
+    let e = err_text(ContactProblem::new(
+        &model,
+        &bcs,
+        &[ContactPair::new("nope", "block_contact", 0.2)],
+        &["cyl_face"],
+    ));
+    assert!(e.contains("nope") && e.contains("no segment"), "{e}");
+    let e = err_text(ContactProblem::new(
+        &model,
+        &bcs,
+        &[ContactPair::new("cyl_contact", "block_contact", -0.1)],
+        &["cyl_face"],
+    ));
+    assert!(e.contains("friction"), "{e}");
+    let e = err_text(ContactProblem::new(
+        &model,
+        &bcs,
+        &[ContactPair::new("cyl_contact", "cyl_right", 0.1)],
+        &["cyl_face"],
+    ));
+    assert!(e.contains("same body"), "{e}");
+    let e = err_text(ContactProblem::new(
+        &model,
+        &bcs,
+        std::slice::from_ref(&pair),
+        &["cyl_contact"],
+    ));
+    assert!(e.contains("already used"), "{e}");
+    let bad = bcs.clone().set("block_contact", SegmentBc::fixed());
+    let e = err_text(ContactProblem::new(
+        &model,
+        &bad,
+        std::slice::from_ref(&pair),
+        &["cyl_face"],
+    ));
+    assert!(
+        e.contains("block_contact") && e.contains("no boundary condition"),
+        "{e}"
+    );
+    // A body held by nothing at all: a clear error before any factorization.
+    let e = err_text(ContactProblem::new(
+        &model,
+        &bcs,
+        std::slice::from_ref(&pair),
+        &[],
+    ));
+    assert!(e.contains("cyl") && e.contains("not restrained"), "{e}");
+    // Overlapping bodies.
+    let sunk = BemModel::new(
+        PlaneCondition::Strain,
+        vec![
+            block("block", steel(), 0.010, 0.010, c, 10),
+            Region::new(
+                "cyl",
+                steel(),
+                half_cylinder("cyl", steel(), R, c, 10, true).loops[0]
+                    .iter()
+                    .map(|it| match it {
+                        crate::operators::bem2d::LoopItem::Segment(s) => {
+                            let mut s = s.clone();
+                            s.shape = match s.shape {
+                                crate::operators::bem2d::SegmentShape::Arc {
+                                    center,
+                                    radius,
+                                    start_angle,
+                                    end_angle,
+                                } => crate::operators::bem2d::SegmentShape::Arc {
+                                    center: [center[0], center[1] - 1e-5],
+                                    radius,
+                                    start_angle,
+                                    end_angle,
+                                },
+                                crate::operators::bem2d::SegmentShape::Line { start, end } => {
+                                    crate::operators::bem2d::SegmentShape::Line {
+                                        start: [start[0], start[1] - 1e-5],
+                                        end: [end[0], end[1] - 1e-5],
+                                    }
+                                }
+                            };
+                            s
+                        }
+                        _ => unreachable!(),
+                    })
+                    .collect(),
+            ),
+        ],
+    );
+    let e = err_text(ContactProblem::new(
+        &sunk,
+        &bcs,
+        std::slice::from_ref(&pair),
+        &["cyl_face"],
+    ));
+    assert!(e.contains("overlap"), "{e}");
+    // Steps: a missing rigid control, and a frictionless pair pushed sideways by a force
+    // (the x mode held by nothing: a singular step system, reported).
+    let mut cp = ContactProblem::new(
+        &model,
+        &bcs,
+        &[ContactPair::new("cyl_contact", "block_contact", 0.0)],
+        &["cyl_face"],
+    )
+    .unwrap();
+    let e = err_text(cp.solve_steps(
+        &[LoadStep {
+            external: 1.0,
+            rigid: vec![],
+        }],
+        &ContactOptions::default(),
+    ));
+    assert!(e.contains("cyl_face") && e.contains("control"), "{e}");
+    let e = err_text(cp.solve_steps(
+        &[LoadStep {
+            external: 1.0,
+            rigid: vec![RigidControl::new(
+                "cyl_face",
+                Control::Force(1e3),
+                Control::Force(-P),
+            )],
+        }],
+        &ContactOptions::default(),
+    ));
+    assert!(
+        e.contains("singular") || e.contains("did not converge"),
+        "{e}"
+    );
+    // Pulling the bodies apart under force control: no contact.
+    cp.reset();
+    let e = err_text(cp.solve_steps(
+        &[LoadStep {
+            external: 1.0,
+            rigid: vec![RigidControl::new(
+                "cyl_face",
+                Control::Displacement(0.0),
+                Control::Force(P),
+            )],
+        }],
+        &ContactOptions::default(),
+    ));
+    assert!(e.contains("no contact") || e.contains("singular"), "{e}");
+}
+
+/// Timing of condensation vs one contact step (cylinder on block). Run with
+/// `cargo test --release -p tribo --lib contact_timing -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn contact_timing() {
+    for (ns, nm) in [(48, 40), (96, 80), (192, 160)] {
+        let t0 = std::time::Instant::now();
+        let mut cp = cylinder_on_block(0.3, ns, nm);
+        let tc = t0.elapsed().as_secs_f64();
+        let q = 0.5 * 0.3 * P;
+        let steps = [
+            LoadStep {
+                external: 1.0,
+                rigid: vec![RigidControl::new(
+                    "cyl_face",
+                    Control::Force(0.0),
+                    Control::Force(-P),
+                )],
+            },
+            LoadStep {
+                external: 1.0,
+                rigid: vec![RigidControl::new(
+                    "cyl_face",
+                    Control::Force(q),
+                    Control::Force(-P),
+                )],
+            },
+        ];
+        let t1 = std::time::Instant::now();
+        let res = cp.solve_steps(&steps, &ContactOptions::default()).unwrap();
+        let ts = t1.elapsed().as_secs_f64() / 2.0;
+        println!(
+            "BEM DOF {:5}, contact unknowns {:4}: mesh + assembly + condensation {tc:.3} s, \
+             per step {ts:.4} s (iterations {} and {}), threads {}",
+            cp.bem().dof(),
+            cp.contact_unknowns(),
+            res[0].iterations,
+            res[1].iterations,
+            rayon::current_num_threads()
+        );
+    }
+}
