@@ -900,28 +900,28 @@ impl ContactProblem {
             }
             let lu = a.partial_piv_lu();
             let x = lu.solve(&rhs);
-            let res = &a * &x - &rhs;
+            // Accuracy check on the external-load column and two parameter columns (a
+            // full check would cost as much as the solves), plus finiteness of all.
+            let k = rhs.ncols().min(3);
+            let xs = Mat::from_fn(rows, k, |i, j| x[(i, j)]);
+            let bs = Mat::from_fn(rows, k, |i, j| rhs[(i, j)]);
+            let res = &a * &xs - &bs;
+            let na = (0..rows)
+                .map(|i| (0..rows).map(|c| a[(i, c)].abs()).sum::<f64>())
+                .fold(0.0_f64, f64::max);
             let mut worst = 0.0_f64;
-            for j in 0..rhs.ncols() {
+            for j in 0..k {
                 let (mut nr_, mut nx, mut nb) = (0.0_f64, 0.0_f64, 0.0_f64);
                 for i in 0..rows {
                     nr_ = nr_.max(res[(i, j)].abs());
-                    nx = nx.max(x[(i, j)].abs());
-                    nb = nb.max(rhs[(i, j)].abs());
+                    nx = nx.max(xs[(i, j)].abs());
+                    nb = nb.max(bs[(i, j)].abs());
                 }
-                let na = (0..rows)
-                    .map(|i| (0..rows).map(|c| a[(i, c)].abs()).sum::<f64>())
-                    .fold(0.0_f64, f64::max);
-                let rel = nr_ / (na * nx + nb).max(f64::MIN_POSITIVE);
-                if !rel.is_finite() {
-                    worst = f64::INFINITY;
-                    break;
-                }
-                worst = worst.max(rel);
-                // One column is representative for the norm of A; stop recomputing it.
-                if j >= 2 {
-                    break;
-                }
+                worst = worst.max(nr_ / (na * nx + nb).max(f64::MIN_POSITIVE));
+            }
+            let finite = (0..x.ncols()).all(|j| (0..rows).all(|i| x[(i, j)].is_finite()));
+            if !finite {
+                worst = f64::INFINITY;
             }
             if worst.is_nan() || worst >= 1e-8 {
                 let names: Vec<&str> = members
@@ -1365,25 +1365,34 @@ impl ContactProblem {
                     }
                 }
             }
-            // Equilibrate: columns by the unknowns' scales, rows by their largest entry.
-            let mut am = Mat::<f64>::zeros(nz, nz);
-            let mut bm = Mat::<f64>::zeros(nz, 1);
-            for r in 0..nz {
+            // Open and outside nodes have p = q = 0: only the unknowns of contact nodes and the
+            // rigid translations enter the solve. Equilibrate: columns by the unknowns'
+            // scales, rows by their largest entry.
+            let act: Vec<usize> = (0..nz)
+                .filter(|&c| {
+                    c >= 2 * n
+                        || !matches!(states[c % n], ContactState::Open | ContactState::Outside)
+                })
+                .collect();
+            let m = act.len();
+            let mut am = Mat::<f64>::zeros(m, m);
+            let mut bm = Mat::<f64>::zeros(m, 1);
+            for (r, &ra) in act.iter().enumerate() {
                 let mut rmax = 0.0_f64;
-                for c in 0..nz {
-                    rmax = rmax.max((a[(r, c)] * colscale[c]).abs());
+                for &c in &act {
+                    rmax = rmax.max((a[(ra, c)] * colscale[c]).abs());
                 }
                 let rs = if rmax > 0.0 { 1.0 / rmax } else { 1.0 };
-                for c in 0..nz {
-                    am[(r, c)] = a[(r, c)] * colscale[c] * rs;
+                for (cc, &c) in act.iter().enumerate() {
+                    am[(r, cc)] = a[(ra, c)] * colscale[c] * rs;
                 }
-                bm[(r, 0)] = rhs[r] * rs;
+                bm[(r, 0)] = rhs[ra] * rs;
             }
             let y = am.partial_piv_lu().solve(&bm);
             let chk = &am * &y - &bm;
             let mut bad = false;
             let (mut rn, mut yn) = (0.0_f64, 0.0_f64);
-            for r in 0..nz {
+            for r in 0..m {
                 if !y[(r, 0)].is_finite() {
                     bad = true;
                 }
@@ -1409,8 +1418,9 @@ impl ContactProblem {
                     ),
                 });
             }
-            for c in 0..nz {
-                z[c] = y[(c, 0)] * colscale[c];
+            z.iter_mut().for_each(|v| *v = 0.0);
+            for (r, &c) in act.iter().enumerate() {
+                z[c] = y[(r, 0)] * colscale[c];
             }
             if let Some(j) = (0..nz - 2 * n).find(|&j| z[2 * n + j].abs() > self.length) {
                 return Err(Error::Numerical {
