@@ -34,11 +34,17 @@
 //! stress_max = 6.4e8               # sigma_a,max, Pa: the curve spans sigma/sigma_max in [-1, 1]
 //! points = 21                      # points per curve, odd, 3 ... 1001 (default 21)
 //! # stress = 3.2e8                 # optional operating bulk stress, Pa: F_N reported there
-//! [field]                          # optional: the subsurface stress field (direct sum)
+//! # bending_force = 5e3            # or, with kind = "bending": the operating bending stress
+//! # span = 0.2                     #   4 M/(pi R^3) from a force (N), a span (m) and the
+//! # support = "simply-supported"   #   support (M = F L/4; "cantilever": M = F L), with
+//! # bending_side = "tension"       #   the contact on the tension or compression side
+//! [field]                          # optional: the subsurface stress field
 //! n = [39, 39, 20]                 # points along x, y, z (default the paper's)
 //! extent = 1.5                     # x, y half width / Hertz a (or half_width, m)
 //! depth = 1.5                      # depth / Hertz a (or depth_m, m); z down into the body
 //! body = "body2"                   # the body the field is in (default body2)
+//! # points = "centres"             # instead of n and extent: x, y at the contact grid's
+//! # layers = 20                    # element centres (FFT, for large grids), `layers` depths
 //! ```
 
 use crate::error::{CliError, CliResult};
@@ -50,6 +56,7 @@ use tribo::geometry::{
     Crown, HeightMap, LogarithmicCrown, QuadraticProfile, Roller, SurfaceProfile,
 };
 use tribo::grid::MAX_ELEMENTS_PER_SIDE;
+use tribo::kernels::bulk::{bending_moment, bending_stress, BeamSupport};
 use tribo::solvers::{NormalContactParams, NormalLoading};
 use tribo::ElasticMaterial;
 
@@ -123,6 +130,8 @@ struct RawContact {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawField {
+    points: Option<Value>,
+    layers: Option<Value>,
     n: Option<Value>,
     extent: Option<Value>,
     half_width: Option<Value>,
@@ -156,6 +165,10 @@ struct RawBulk {
     stress_max: Option<Value>,
     points: Option<Value>,
     stress: Option<Value>,
+    bending_force: Option<Value>,
+    span: Option<Value>,
+    support: Option<Value>,
+    bending_side: Option<Value>,
 }
 
 // ---------------------------------------------------------------- validated layer
@@ -323,12 +336,25 @@ pub enum Length {
     Metres(f64),
 }
 
+/// Where the field points lie in x and y.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FieldPoints {
+    /// `n` points evenly spaced over the field's half width, end points included; the
+    /// stresses by the direct sum over the loaded elements (exact at any point).
+    Uniform,
+    /// The element centres of the contact grid; the stresses by FFT convolution per depth
+    /// (the same kernels; cost O(layers N log N), for large contact grids).
+    Centres,
+}
+
 /// The validated `[field]` section: the subsurface stress field.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FieldSpec {
-    /// Points along x, y, z.
+    /// Where the points lie in x and y.
+    pub points: FieldPoints,
+    /// Points along x, y, z (for [`FieldPoints::Centres`], the contact grid's nx, ny).
     pub n: [usize; 3],
-    /// Half width of the field in x and y.
+    /// Half width of the field in x and y (unused, zero, for [`FieldPoints::Centres`]).
     pub half_width: Length,
     /// Depth of the field.
     pub depth: Length,
@@ -560,7 +586,7 @@ fn validate(
     let friction = friction(&raw.contact)?;
     let field = match raw.field {
         None => None,
-        Some(f) => Some(field_spec(f, hertzian)?),
+        Some(f) => Some(field_spec(f, hertzian, n)?),
     };
     let title = raw.title.unwrap_or_else(|| source.to_string());
     Ok(Case {
@@ -696,6 +722,73 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
             }
             Some(x)
         }
+    };
+    // The operating bending stress from a force, a span and the shaft section (beam theory).
+    let from_force = b.bending_force.is_some()
+        || b.span.is_some()
+        || b.support.is_some()
+        || b.bending_side.is_some();
+    let stress = if from_force {
+        if let Some(v) = &b.stress {
+            return Err(CliError::field(
+                "bulk.stress",
+                show(v),
+                "give either bulk.stress or bulk.bending_force with bulk.span, not both",
+            ));
+        }
+        if kinds != [LoadKind::Bending] {
+            return Err(CliError::field(
+                "bulk.bending_force",
+                "given",
+                "needs kind = \"bending\" (the force bends the shaft)",
+            ));
+        }
+        let required = |key: &str, v: &Option<Value>| {
+            v.clone().ok_or_else(|| {
+                CliError::field(
+                    format!("bulk.{key}"),
+                    "(missing)",
+                    "required with a bending force: bending_force (N), span (m), and \
+                     optionally support and bending_side",
+                )
+            })
+        };
+        let force = quantity(
+            "bulk.bending_force",
+            &required("bending_force", &b.bending_force)?,
+            Dim::Force,
+        )?;
+        let span = quantity("bulk.span", &required("span", &b.span)?, Dim::Length)?;
+        let support = match &b.support {
+            None => BeamSupport::SimplySupported,
+            Some(Value::String(s)) if s == "simply-supported" => BeamSupport::SimplySupported,
+            Some(Value::String(s)) if s == "cantilever" => BeamSupport::Cantilever,
+            Some(v) => {
+                return Err(CliError::field(
+                    "bulk.support",
+                    show(v),
+                    "must be \"simply-supported\" (force at mid-span, M = F L/4) or \
+                     \"cantilever\" (force at the free end, M = F L)",
+                ))
+            }
+        };
+        let sign = match &b.bending_side {
+            None => 1.0,
+            Some(Value::String(s)) if s == "tension" => 1.0,
+            Some(Value::String(s)) if s == "compression" => -1.0,
+            Some(v) => {
+                return Err(CliError::field(
+                    "bulk.bending_side",
+                    show(v),
+                    "must be \"tension\" or \"compression\" (the side of the shaft the \
+                     contact is on)",
+                ))
+            }
+        };
+        let moment = bending_moment(force, span, support, "bulk.")?;
+        Some(sign * bending_stress(moment, shaft_radius))
+    } else {
+        stress
     };
     Ok(Bulk {
         shaft,
@@ -851,7 +944,8 @@ fn field_length(
                     semi_key,
                     show(v),
                     format!(
-                        "is in units of the Hertz semi-axis, defined only where both bodies are                          given by radii; give {metres_key} (m)"
+                        "is in units of the Hertz semi-axis, defined only where both bodies are \
+                         given by radii; give {metres_key} (m)"
                     ),
                 ));
             }
@@ -884,8 +978,57 @@ fn field_length(
     }
 }
 
-fn field_spec(f: RawField, hertzian: bool) -> CliResult<FieldSpec> {
+fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<FieldSpec> {
+    let points = match &f.points {
+        None => FieldPoints::Uniform,
+        Some(Value::String(s)) if s == "uniform" => FieldPoints::Uniform,
+        Some(Value::String(s)) if s == "centres" || s == "centers" => FieldPoints::Centres,
+        Some(v) => {
+            return Err(CliError::field(
+                "field.points",
+                show(v),
+                "must be \"uniform\" (n points over the extent, direct sum) or \"centres\" \
+                 (the contact grid's element centres, FFT)",
+            ))
+        }
+    };
+    if points == FieldPoints::Centres {
+        for (name, given) in [
+            ("field.n", f.n.is_some()),
+            ("field.extent", f.extent.is_some()),
+            ("field.half_width", f.half_width.is_some()),
+        ] {
+            if given {
+                return Err(CliError::field(
+                    name,
+                    "given",
+                    "with points = \"centres\" the x, y points are the contact grid's element \
+                     centres; give only field.layers and field.depth (or depth_m)",
+                ));
+            }
+        }
+    } else if f.layers.is_some() {
+        return Err(CliError::field(
+            "field.layers",
+            "given",
+            "only with points = \"centres\"; with uniform points give n = [nx, ny, nz]",
+        ));
+    }
     let n = match &f.n {
+        None if points == FieldPoints::Centres => {
+            let layers = match &f.layers {
+                None => DEFAULT_FIELD_N[2],
+                Some(v) => count("field.layers", v)?,
+            };
+            if !(2..=MAX_FIELD_N).contains(&layers) {
+                return Err(CliError::field(
+                    "field.layers",
+                    layers,
+                    format!("must be in 2 ... {MAX_FIELD_N} depths"),
+                ));
+            }
+            [contact_n[0], contact_n[1], layers]
+        }
         None => DEFAULT_FIELD_N,
         Some(Value::Array(a)) if a.len() == 3 => {
             let mut n = [0usize; 3];
@@ -922,13 +1065,17 @@ fn field_spec(f: RawField, hertzian: bool) -> CliResult<FieldSpec> {
             ),
         ));
     }
-    let half_width = field_length(
-        "field.extent",
-        f.extent.as_ref(),
-        "field.half_width",
-        f.half_width.as_ref(),
-        hertzian,
-    )?;
+    // With points at the element centres the contact grid sets x and y (no half width).
+    let half_width = match points {
+        FieldPoints::Centres => Length::Metres(0.0),
+        FieldPoints::Uniform => field_length(
+            "field.extent",
+            f.extent.as_ref(),
+            "field.half_width",
+            f.half_width.as_ref(),
+            hertzian,
+        )?,
+    };
     let depth = field_length(
         "field.depth",
         f.depth.as_ref(),
@@ -949,6 +1096,7 @@ fn field_spec(f: RawField, hertzian: bool) -> CliResult<FieldSpec> {
         }
     };
     Ok(FieldSpec {
+        points,
         n,
         half_width,
         depth,

@@ -2,13 +2,13 @@
 //! solution -> comparison with Hertz (where the gap is Hertzian) -> the back effect of bulk
 //! loading (where the case has `[bulk]`).
 
-use crate::case::{Case, Length, LoadKind, Method, Shape, Window};
+use crate::case::{Case, FieldPoints, Length, LoadKind, Method, Shape, Window};
 use crate::error::CliResult;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::time::{Duration, Instant};
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
 use tribo::analysis::stress_field::{
-    stress_field_direct, FieldGrid, StressField, SurfaceTractions,
+    stress_field_direct, stress_field_on_centres_observed, FieldGrid, StressField, SurfaceTractions,
 };
 use tribo::geometry::initial_gap;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
@@ -105,6 +105,8 @@ pub struct Stress {
     pub material: ElasticMaterial,
     /// The bulk stress superposed: kind and operating stress, Pa.
     pub bulk: Option<(LoadKind, f64)>,
+    /// How it was computed ("direct sum" or "FFT on the element centres").
+    pub method: &'static str,
     /// Wall time.
     pub time: Duration,
 }
@@ -487,17 +489,17 @@ fn resolve(length: Length, a: Option<f64>) -> f64 {
     }
 }
 
-/// The subsurface stress field of the case's `[field]` section, by the direct sum (exact at
-/// any point), layer by layer with progress; plus the bulk stress at `bulk.stress`.
+/// The subsurface stress field of the case's `[field]` section, with progress per depth: on
+/// uniform points by the direct sum (exact at any point), on the contact grid's element
+/// centres by FFT convolution (the same kernels, for large grids); plus the bulk stress at
+/// `bulk.stress`.
 pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stress>> {
     let Some(spec) = &case.field else {
         return Ok(None);
     };
     let a = out.prepared.hertz.as_ref().map(|h| h.contact.semi_major);
-    let half = resolve(spec.half_width, a);
     let depth = resolve(spec.depth, a);
     let [nx, ny, nz] = spec.n;
-    let grid = FieldGrid::uniform(nx, ny, nz, half, half, depth)?;
     let body = case.body(spec.body);
     // q acts on body 1; body 2 carries -q (in the mirrored frame, z into body 2).
     let (qx, qy) = match &out.tangential {
@@ -538,30 +540,44 @@ pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stres
     {
         pb.set_style(style.progress_chars("=> "));
     }
+    let method = match spec.points {
+        FieldPoints::Uniform => "direct sum",
+        FieldPoints::Centres => "FFT on the element centres",
+    };
     pb.set_message(format!(
-        "stress field ({nx} x {ny} x {nz} points, direct sum)"
+        "stress field ({nx} x {ny} x {nz} points, {method})"
     ));
     pb.enable_steady_tick(Duration::from_millis(100));
     let start = Instant::now();
-    let mut stress = Vec::with_capacity(grid.len());
-    for &z in &grid.z {
-        let layer = FieldGrid {
-            x: grid.x.clone(),
-            y: grid.y.clone(),
-            z: vec![z],
-        };
-        let f = stress_field_direct(&tractions, body.material.poisson_ratio(), &layer);
-        match f {
-            Ok(f) => stress.extend(f.stress),
-            Err(e) => {
-                pb.finish_and_clear();
-                return Err(e.into());
-            }
+    let nu = body.material.poisson_ratio();
+    let computed = match spec.points {
+        FieldPoints::Uniform => {
+            let half = resolve(spec.half_width, a);
+            FieldGrid::uniform(nx, ny, nz, half, half, depth).and_then(|grid| {
+                let mut stress = Vec::with_capacity(grid.len());
+                for &z in &grid.z {
+                    let layer = FieldGrid {
+                        x: grid.x.clone(),
+                        y: grid.y.clone(),
+                        z: vec![z],
+                    };
+                    stress.extend(stress_field_direct(&tractions, nu, &layer)?.stress);
+                    pb.inc(1);
+                }
+                Ok(StressField { grid, stress })
+            })
         }
-        pb.inc(1);
-    }
+        FieldPoints::Centres => {
+            let depths: Vec<f64> = (0..nz)
+                .map(|k| depth * k as f64 / (nz - 1) as f64)
+                .collect();
+            stress_field_on_centres_observed(&tractions, nu, &depths, |done| {
+                pb.set_position(done as u64)
+            })
+        }
+    };
     pb.finish_and_clear();
-    let mut field = StressField { grid, stress };
+    let mut field = computed?;
     let mut bulk_applied = None;
     if let Some(b) = &case.bulk {
         if let (Some(sigma), Some(&kind)) = (b.stress, b.kinds.first()) {
@@ -576,6 +592,7 @@ pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stres
         body: spec.body,
         material: body.material,
         bulk: bulk_applied,
+        method,
         time: start.elapsed(),
     }))
 }

@@ -743,7 +743,7 @@ impl StressSummary {
             points: [f.grid.x.len(), f.grid.y.len(), f.grid.z.len()],
             half_width: half,
             depth: f.grid.z.last().copied().unwrap_or(0.0),
-            method: "direct sum",
+            method: st.method,
             bulk: st.bulk.map(|(k, s)| (k.name(), s)),
             max_von_mises: loc(f.max_of(|s| s.von_mises())),
             max_shear: loc(f.max_of(|s| s.max_shear())),

@@ -5,3 +5,4 @@ pub mod damage;
 pub mod energy_criterion;
 pub mod hertz_error;
 pub mod stress_field;
+pub mod surface_response;

@@ -2,6 +2,8 @@
 
 pub mod convolution;
 pub mod dense;
+pub mod spectral;
 
 pub use convolution::{ConvolutionOperator, ConvolutionWorkspace};
 pub use dense::DenseInfluence;
+pub use spectral::{fill_kernel_table, Parity, SpectralConvolution, Spectrum};
