@@ -56,6 +56,7 @@ use tribo::geometry::{
     Crown, HeightMap, LogarithmicCrown, QuadraticProfile, Roller, SurfaceProfile,
 };
 use tribo::grid::MAX_ELEMENTS_PER_SIDE;
+use tribo::analysis::damage::{DamageQuantity, TensorKind};
 use tribo::kernels::bulk::{bending_moment, bending_stress, BeamSupport};
 use tribo::solvers::{NormalContactParams, NormalLoading};
 use tribo::ElasticMaterial;
@@ -82,6 +83,24 @@ struct RawCase {
     solver: Option<RawSolver>,
     bulk: Option<RawBulk>,
     field: Option<RawField>,
+    damage: Option<RawDamage>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawDamage {
+    criteria: Option<Value>,
+    limit_over_p0: Option<Value>,
+    limit_load: Option<Value>,
+    limits: Option<toml::Table>,
+    study: Option<RawStudy>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawStudy {
+    bending_over_p0: Option<Value>,
+    limit_over_p0: Option<Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -362,6 +381,38 @@ pub struct FieldSpec {
     pub body: &'static str,
 }
 
+/// Where a damage criterion's limit phi_q^lim comes from ((19)-(20)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LimitSource {
+    /// Given in `[damage.limits]` (material data), in the quantity's unit.
+    Given(f64),
+    /// A multiple of p0, the largest contact pressure of the run (stress quantities).
+    OverP0(f64),
+    /// The extreme of the field under the limiting load `damage.limit_load` (N).
+    LimitingLoad(f64),
+}
+
+/// The validated `[damage]` section: volume damageability (19)-(24).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DamageSpec {
+    /// The criteria with the source of each limit.
+    pub criteria: Vec<(DamageQuantity, LimitSource)>,
+    /// The limiting load F_lim, N, where some limit comes from it.
+    pub limit_load: Option<f64>,
+    /// The paper's Sec. 6 study (`[damage.study]`).
+    pub study: Option<StudySpec>,
+}
+
+/// The validated `[damage.study]` table: the paper's Sec. 6 loadings n, n + tau, n + tau + b
+/// over a range of bending stresses.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudySpec {
+    /// sigma_b / p0 values (>= 0, increasing).
+    pub bending_over_p0: Vec<f64>,
+    /// The intensity limit over p0 (the paper: 0.186).
+    pub limit_over_p0: f64,
+}
+
 /// A validated case, ready to run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Case {
@@ -389,6 +440,8 @@ pub struct Case {
     pub friction: Option<Friction>,
     /// The subsurface stress field, where `[field]` is given.
     pub field: Option<FieldSpec>,
+    /// Volume damageability, where `[damage]` is given.
+    pub damage: Option<DamageSpec>,
     /// The case as written (TOML converted to JSON), echoed in `summary.json`.
     pub echo: serde_json::Value,
 }
@@ -588,6 +641,20 @@ fn validate(
         None => None,
         Some(f) => Some(field_spec(f, hertzian, n)?),
     };
+    let damage = match raw.damage {
+        None => None,
+        Some(d) => {
+            if field.is_none() {
+                return Err(CliError::field(
+                    "damage",
+                    "given",
+                    "needs a [field] section: the damage measures are integrals over the \
+                     stress field's points",
+                ));
+            }
+            Some(damage_spec(d, &loading, bulk.as_ref())?)
+        }
+    };
     let title = raw.title.unwrap_or_else(|| source.to_string());
     Ok(Case {
         title,
@@ -608,8 +675,211 @@ fn validate(
         bulk,
         friction,
         field,
+        damage,
         echo,
     })
+}
+
+/// The damage quantities a case file may name (`damage.criteria`): every stress and strain
+/// quantity of (19)-(20) by its [`DamageQuantity::name`].
+pub fn damage_vocabulary() -> Vec<DamageQuantity> {
+    let mut v = DamageQuantity::standard_set(TensorKind::Stress);
+    v.extend(DamageQuantity::standard_set(TensorKind::Strain));
+    v
+}
+
+fn damage_spec(d: RawDamage, loading: &NormalLoading, bulk: Option<&Bulk>) -> CliResult<DamageSpec> {
+    let vocabulary = damage_vocabulary();
+    let known = || {
+        vocabulary
+            .iter()
+            .map(|q| q.name())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let names: Vec<String> = match &d.criteria {
+        None => vec!["sigma_int".into()],
+        Some(Value::Array(a)) if !a.is_empty() => {
+            let mut names = Vec::new();
+            for (k, v) in a.iter().enumerate() {
+                match v {
+                    Value::String(s) => names.push(s.clone()),
+                    _ => {
+                        return Err(CliError::field(
+                            format!("damage.criteria[{k}]"),
+                            show(v),
+                            "must be the name of a quantity, e.g. \"sigma_int\"",
+                        ))
+                    }
+                }
+            }
+            names
+        }
+        Some(v) => {
+            return Err(CliError::field(
+                "damage.criteria",
+                show(v),
+                "must be a non-empty list of quantity names, e.g. [\"sigma_int\", \"u\"]",
+            ))
+        }
+    };
+    let over_p0 = match &d.limit_over_p0 {
+        None => None,
+        Some(v) => Some(positive_number("damage.limit_over_p0", v)?),
+    };
+    let limit_load = match &d.limit_load {
+        None => None,
+        Some(v) => {
+            if !matches!(loading, NormalLoading::Force(_)) {
+                return Err(CliError::field(
+                    "damage.limit_load",
+                    show(v),
+                    "needs force control (contact.load): the limiting state is the same case \
+                     at the load F_lim",
+                ));
+            }
+            Some(positive("damage.limit_load", v, Dim::Force, "the limiting load F_lim (N)")?)
+        }
+    };
+    let limits = d.limits.unwrap_or_default();
+    for key in limits.keys() {
+        if !names.iter().any(|n| n == key) {
+            return Err(CliError::field(
+                format!("damage.limits.{key}"),
+                "given",
+                "is not one of damage.criteria",
+            ));
+        }
+    }
+    let mut criteria = Vec::new();
+    for (k, name) in names.iter().enumerate() {
+        let Some(quantity) = vocabulary.iter().find(|q| &q.name() == name).copied() else {
+            return Err(CliError::field(
+                format!("damage.criteria[{k}]"),
+                name,
+                format!("unknown quantity; known: {}", known()),
+            ));
+        };
+        if criteria.iter().any(|(q, _)| *q == quantity) {
+            return Err(CliError::field(
+                format!("damage.criteria[{k}]"),
+                name,
+                "is named twice",
+            ));
+        }
+        let field = format!("damage.limits.{name}");
+        let source = if let Some(v) = limits.get(name) {
+            let dim = match quantity.unit() {
+                "Pa" => Some(Dim::Pressure),
+                _ => None,
+            };
+            let x = match dim {
+                Some(dim) => crate::units::quantity(&field, v, dim)?,
+                None => number(&field, v)?,
+            };
+            tribo::analysis::damage::Limit::new(quantity, x)
+                .map_err(|e| CliError::field(&field, show(v), strip_field(&e.to_string())))?;
+            LimitSource::Given(x)
+        } else if limit_load.is_some() {
+            LimitSource::LimitingLoad(limit_load.unwrap_or(0.0))
+        } else if let Some(r) = over_p0 {
+            if quantity.unit() != "Pa" {
+                return Err(CliError::field(
+                    &field,
+                    "(missing)",
+                    format!(
+                        "damage.limit_over_p0 applies to stresses only; give the limit of \
+                         {name} ({}) here, or damage.limit_load",
+                        quantity.unit()
+                    ),
+                ));
+            }
+            if quantity.sense() == Some(tribo::analysis::damage::Sense::Compression) {
+                LimitSource::OverP0(-r)
+            } else {
+                LimitSource::OverP0(r)
+            }
+        } else {
+            return Err(CliError::field(
+                &field,
+                "(missing)",
+                "required: give the limit here (material data), or damage.limit_over_p0 \
+                 (stresses, a multiple of p0), or damage.limit_load (the field's extremes at \
+                 the limiting load, (19))",
+            ));
+        };
+        criteria.push((quantity, source));
+    }
+    let study = match d.study {
+        None => None,
+        Some(st) => {
+            let Some(b) = bulk else {
+                return Err(CliError::field(
+                    "damage.study",
+                    "given",
+                    "needs a [bulk] section for the shaft (bulk.shaft, bulk.shaft_radius)",
+                ));
+            };
+            let _ = b;
+            let values = match &st.bending_over_p0 {
+                Some(Value::Array(a)) if !a.is_empty() && a.len() <= 101 => {
+                    let mut out = Vec::new();
+                    for (k, v) in a.iter().enumerate() {
+                        let f = format!("damage.study.bending_over_p0[{k}]");
+                        let x = number(&f, v)?;
+                        if !(x.is_finite() && x >= 0.0) || out.last().is_some_and(|&l| x <= l) {
+                            return Err(CliError::field(
+                                f,
+                                show(v),
+                                "must be finite, >= 0 and increasing (sigma_b / p0; the zone \
+                                 gives the sign)",
+                            ));
+                        }
+                        out.push(x);
+                    }
+                    out
+                }
+                Some(v) => {
+                    return Err(CliError::field(
+                        "damage.study.bending_over_p0",
+                        show(v),
+                        "must be a list of 1 ... 101 values sigma_b / p0",
+                    ))
+                }
+                None => (0..=12).map(|k| 0.025 * k as f64).collect(),
+            };
+            let limit_over_p0 = match &st.limit_over_p0 {
+                None => 0.186,
+                Some(v) => positive_number("damage.study.limit_over_p0", v)?,
+            };
+            Some(StudySpec {
+                bending_over_p0: values,
+                limit_over_p0,
+            })
+        }
+    };
+    Ok(DamageSpec {
+        criteria,
+        limit_load,
+        study,
+    })
+}
+
+fn positive_number(field: &str, v: &Value) -> CliResult<f64> {
+    let x = number(field, v)?;
+    if x.is_finite() && x > 0.0 {
+        Ok(x)
+    } else {
+        Err(CliError::field(field, show(v), "must be finite and > 0"))
+    }
+}
+
+/// The rule part of a library error message "field = value: rule".
+fn strip_field(message: &str) -> String {
+    message
+        .split_once(": ")
+        .map_or(message, |(_, rule)| rule)
+        .to_string()
 }
 
 /// The default shaft radius from a body's radii: their common magnitude where both are

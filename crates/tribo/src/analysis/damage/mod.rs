@@ -84,7 +84,9 @@ pub use quantity::{
     assess, plane_strain_stress, relative_damage, Component, DamageAssessment, DamageQuantity,
     Limit, PrincipalIndex, Sense, TensorKind,
 };
-pub use study::{roller_shaft_study, RollerShaftStudy, StudyLoading, StudyResult};
+pub use study::{
+    roller_shaft_study, roller_shaft_sweep, RollerShaftStudy, StudyLoading, StudyResult,
+};
 
 /// Per unit length of a round shaft of radius `radius` (m) in pure bending with
 /// sigma_x = sigma_max y / R and the limit sigma_max / `ratio` (`ratio` = k > 1): the area of

@@ -72,6 +72,20 @@ pub struct StudyResult {
 /// nx x ny x nz grid, the bending stress superposed, and V_int, Psi_int (22), (24) of the
 /// stress intensity (von Mises) with the limit `limit_over_p0` p0 for each loading.
 pub fn roller_shaft_study(input: &RollerShaftStudy<'_>) -> Result<StudyResult> {
+    let mut results = roller_shaft_sweep(input, &[input.bending_over_p0])?;
+    results.pop().ok_or_else(|| Error::Numerical {
+        context: "roller_shaft_study",
+        detail: "no result".into(),
+    })
+}
+
+/// [`roller_shaft_study`] for several bending stresses sigma_b / p0 (`bending_over_p0`,
+/// each finite and >= 0; `input.bending_over_p0` is ignored): the contact fields of n and
+/// n + tau are computed once and the bending stress superposed for each value.
+pub fn roller_shaft_sweep(
+    input: &RollerShaftStudy<'_>,
+    bending_over_p0: &[f64],
+) -> Result<Vec<StudyResult>> {
     let p0 = input
         .tractions
         .pressure
@@ -93,12 +107,14 @@ pub fn roller_shaft_study(input: &RollerShaftStudy<'_>) -> Result<StudyResult> {
             return Err(Error::invalid(field, v, "must be finite and > 0"));
         }
     }
-    if !(input.bending_over_p0.is_finite() && input.bending_over_p0 >= 0.0) {
-        return Err(Error::invalid(
-            "study.bending_over_p0",
-            input.bending_over_p0,
-            "must be finite and >= 0 (the sign is the zone)",
-        ));
+    for &b in bending_over_p0 {
+        if !(b.is_finite() && b >= 0.0) {
+            return Err(Error::invalid(
+                "study.bending_over_p0",
+                b,
+                "must be finite and >= 0 (the sign is the zone)",
+            ));
+        }
     }
     let a = input.semi_axis;
     let [nx, ny, nz] = input.points;
@@ -118,25 +134,41 @@ pub fn roller_shaft_study(input: &RollerShaftStudy<'_>) -> Result<StudyResult> {
         },
         input.limit_over_p0 * p0,
     )?;
-    let sigma_b = input.bending_over_p0 * p0;
-    let mut fields = vec![("n", field_n), ("n+tau", field_t.clone())];
-    for (name, sign) in [("n+tau+b (tension)", 1.0), ("n+tau+b (compression)", -1.0)] {
-        let mut f = field_t.clone();
-        f.add_bulk(
-            &BulkLoad::Bending {
-                surface_stress: sign * sigma_b,
-            },
-            input.shaft_radius,
-        );
-        fields.push((name, f));
+    let mut results = Vec::with_capacity(bending_over_p0.len());
+    for &ratio in bending_over_p0 {
+        let sigma_b = ratio * p0;
+        let mut fields = vec![("n", field_n.clone()), ("n+tau", field_t.clone())];
+        for (name, sign) in [("n+tau+b (tension)", 1.0), ("n+tau+b (compression)", -1.0)] {
+            let mut f = field_t.clone();
+            f.add_bulk(
+                &BulkLoad::Bending {
+                    surface_stress: sign * sigma_b,
+                },
+                input.shaft_radius,
+            );
+            fields.push((name, f));
+        }
+        results.push(study_result(&mesh, input, &limit, p0, sigma_b, &fields)?);
     }
+    Ok(results)
+}
+
+/// V_int, Psi_int of each loading's field and the changes.
+fn study_result(
+    mesh: &DamageMesh,
+    input: &RollerShaftStudy<'_>,
+    limit: &Limit,
+    p0: f64,
+    sigma_b: f64,
+    fields: &[(&str, crate::analysis::stress_field::StressField)],
+) -> Result<StudyResult> {
     let mut regions = Vec::new();
-    for (name, f) in &fields {
+    for (name, f) in fields {
         let d = assess(
-            &mesh,
+            mesh,
             &f.stress,
             &input.material,
-            &limit,
+            limit,
             Execution::Parallel,
         )?;
         regions.push((*name, d.region));
