@@ -52,11 +52,11 @@ use crate::units::{count, number, pair, quantity, show, Dim};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use toml::Value;
+use tribo::analysis::damage::{DamageQuantity, TensorKind};
 use tribo::geometry::{
     Crown, HeightMap, LogarithmicCrown, QuadraticProfile, Roller, SurfaceProfile,
 };
 use tribo::grid::MAX_ELEMENTS_PER_SIDE;
-use tribo::analysis::damage::{DamageQuantity, TensorKind};
 use tribo::kernels::bulk::{bending_moment, bending_stress, BeamSupport};
 use tribo::solvers::{NormalContactParams, NormalLoading};
 use tribo::ElasticMaterial;
@@ -688,7 +688,11 @@ pub fn damage_vocabulary() -> Vec<DamageQuantity> {
     v
 }
 
-fn damage_spec(d: RawDamage, loading: &NormalLoading, bulk: Option<&Bulk>) -> CliResult<DamageSpec> {
+fn damage_spec(
+    d: RawDamage,
+    loading: &NormalLoading,
+    bulk: Option<&Bulk>,
+) -> CliResult<DamageSpec> {
     let vocabulary = damage_vocabulary();
     let known = || {
         vocabulary
@@ -738,7 +742,12 @@ fn damage_spec(d: RawDamage, loading: &NormalLoading, bulk: Option<&Bulk>) -> Cl
                      at the load F_lim",
                 ));
             }
-            Some(positive("damage.limit_load", v, Dim::Force, "the limiting load F_lim (N)")?)
+            Some(positive(
+                "damage.limit_load",
+                v,
+                Dim::Force,
+                "the limiting load F_lim (N)",
+            )?)
         }
     };
     let limits = d.limits.unwrap_or_default();

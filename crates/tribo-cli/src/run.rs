@@ -3,13 +3,13 @@
 //! loading (where the case has `[bulk]`).
 
 use crate::case::{Case, FieldPoints, Length, LimitSource, LoadKind, Method, Shape, Window};
-use tribo::analysis::damage::{
-    dangerous_region, relative_damage, roller_shaft_sweep, DamageAssessment, DamageMesh,
-    Execution, Limit, RollerShaftStudy, StudyResult,
-};
 use crate::error::CliResult;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::time::{Duration, Instant};
+use tribo::analysis::damage::{
+    dangerous_region, relative_damage, roller_shaft_sweep, DamageAssessment, DamageMesh, Execution,
+    Limit, RollerShaftStudy, StudyResult,
+};
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
 use tribo::analysis::stress_field::{
     stress_field_direct, stress_field_on_centres_observed, FieldGrid, StressField, SurfaceTractions,

@@ -302,6 +302,7 @@ fn the_default_run_writes_everything() {
         "sigma_xx_y0.png",
         "sigma_xx_z05a.png",
         "von_mises_y0.png",
+        "psi_sigma_int_y0.png",
     ] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
@@ -310,7 +311,7 @@ fn the_default_run_writes_everything() {
         .unwrap()
         .map(|e| e.unwrap().file_name())
         .collect();
-    assert_eq!(names.len(), 15, "{names:?}");
+    assert_eq!(names.len(), 16, "{names:?}");
 
     let s = read_json(&out.join("summary.json"));
     let c = &s["contact"];
@@ -366,6 +367,23 @@ fn the_default_run_writes_everything() {
     assert!(vm > 0.62 && vm < 0.70, "von Mises max {vm} p0");
     let z = f(&s["stress"]["max_von_mises"]["location"][2]) / 5.2964e-4;
     assert!(z < 0.45, "von Mises max at z = {z} a");
+    // Damage: sigma_int with the limit 0.186 p0 (Sec. 6): psi_max = max von Mises / limit.
+    let d = &s["damage"]["criteria"][0];
+    assert_eq!(d["name"], "sigma_int");
+    let limit = f(&d["limit"]);
+    let p_max = f(&c["max_pressure"]);
+    assert!((limit / (0.186 * p_max) - 1.0).abs() < 1e-12, "{d}");
+    let vm_max = f(&s["stress"]["max_von_mises"]["value"]);
+    assert!(
+        (f(&d["psi_max"]) - vm_max / limit).abs() < 1e-12 * vm_max / limit,
+        "{d}"
+    );
+    let v = f(&d["volume"]);
+    assert!(v > 0.0 && f(&d["volume_fraction"]) < 1.0, "{d}");
+    assert!(
+        f(&d["damageability"]) > v,
+        "Psi > V where psi >= 1 everywhere in V: {d}"
+    );
     // The back-effect curves of Fig. 2a for both load kinds.
     let b = &s["back_effect"];
     assert!(b.is_object(), "{b}");
@@ -1020,4 +1038,115 @@ fn bending_stress_from_force_span_and_section() {
     let missing =
         format!("{PAPER}[bulk]\nkind = \"bending\"\nstress_max = 6.4e8\nbending_force = 5e3\n");
     assert_bad_input(&missing, &[], "bulk.span");
+}
+
+const DAMAGE_BASE: &str = "friction = 0.2\nsliding = true\nsliding_angle_deg = 90\n";
+
+/// The limits from a second run at the limiting load (19): the Hertz problem is
+/// self-similar (gap quadratic, window and field scaled with a), so the field at F is the
+/// field at F_lim scaled by (F/F_lim)^(1/3) in stress: psi_max of sigma_int is
+/// (1/2)^(1/3) = 0.7937 and of the energy u (quadratic in stress) (1/2)^(2/3) = 0.6300, up
+/// to the solver tolerance (1e-10; 1e-8 allowed). Nothing is dangerous: V = 0.
+#[test]
+fn limits_from_a_limiting_run_scale_like_hertz() {
+    let paper = PAPER.replacen(
+        "load = 2000.0\n",
+        &format!("load = 2000.0\n{DAMAGE_BASE}"),
+        1,
+    );
+    let text = format!(
+        "{paper}[field]\nn = [9, 9, 5]\n[damage]\ncriteria = [\"sigma_int\", \"u\"]\n\
+         limit_load = 4000.0\n"
+    );
+    let (o, out, _d) = run_case(&text, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let d = &s["damage"];
+    assert_eq!(d["limit_load"].as_f64(), Some(4000.0));
+    for (k, expected) in [(0, 0.5f64.cbrt()), (1, 0.5f64.cbrt().powi(2))] {
+        let c = &d["criteria"][k];
+        assert_eq!(c["limit_source"], "limiting load");
+        let psi = c["psi_max"].as_f64().unwrap();
+        assert!((psi - expected).abs() < 1e-8, "{c}: {psi} vs {expected}");
+        assert_eq!(c["volume"].as_f64(), Some(0.0));
+        assert!(c.get("average").is_none());
+    }
+}
+
+/// The Sec. 6 study on a reduced grid: the changes have the paper's signs for friction and
+/// the tension zone, and sec6.csv / sec6.png are written.
+#[test]
+fn the_sec6_study_runs_and_has_the_papers_signs() {
+    let text = stdout(&tribo(&["example", "roller-shaft-sec6"], None))
+        .replace("n = 41 ", "n = 21 ")
+        .replace("n = [39, 39, 20]", "n = [15, 15, 8]")
+        .replace(
+            "bending_over_p0 = [0.0, 0.025, 0.05, 0.075, 0.1, 0.125, 0.15, 0.175, 0.2, 0.25, 0.3]",
+            "bending_over_p0 = [0.0, 0.05]",
+        );
+    let (o, out, _d) = run_case(&text, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let st = &s["damage"]["study"];
+    let rows = st["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    let g = |r: &serde_json::Value, k: &str, i: usize| r[k][i].as_f64().unwrap();
+    assert!(g(&rows[1], "friction", 0) > 0.0 && g(&rows[1], "friction", 1) > 0.0);
+    assert!(g(&rows[1], "tension", 0) > g(&rows[1], "friction", 0));
+    // sigma_b = 0: the bending loadings equal n + tau.
+    assert!((g(&rows[0], "tension", 0) - g(&rows[0], "friction", 0)).abs() < 1e-9);
+    assert_eq!(st["paper"][2].as_f64(), Some(20.0));
+    let csv = std::fs::read_to_string(out.join("sec6.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 3);
+    assert!(out.join("sec6.png").is_file());
+}
+
+#[test]
+fn bad_damage_input_exits_2_and_names_the_field() {
+    let paper = PAPER.replacen(
+        "load = 2000.0\n",
+        &format!("load = 2000.0\n{DAMAGE_BASE}"),
+        1,
+    );
+    let field = "[field]\nn = [5, 5, 3]\n";
+    for (section, name) in [
+        ("[damage]\nlimit_over_p0 = 0.2\n", "damage"),
+        (
+            "FIELD[damage]\ncriteria = [\"sigma_vm\"]\nlimit_over_p0 = 0.2\n",
+            "damage.criteria[0]",
+        ),
+        (
+            "FIELD[damage]\ncriteria = [\"u\"]\nlimit_over_p0 = 0.2\n",
+            "damage.limits.u",
+        ),
+        (
+            "FIELD[damage]\ncriteria = [\"sigma_int\"]\n",
+            "damage.limits.sigma_int",
+        ),
+        (
+            "FIELD[damage]\ncriteria = [\"sigma_xx-\"]\n[damage.limits]\n\"sigma_xx-\" = 1e8\n",
+            "damage.limits.sigma_xx-",
+        ),
+        (
+            "FIELD[damage]\ncriteria = [\"sigma_int\"]\n[damage.limits]\nu = 1e6\n",
+            "damage.limits.u",
+        ),
+        (
+            "FIELD[damage]\nlimit_over_p0 = -1.0\n",
+            "damage.limit_over_p0",
+        ),
+        ("FIELD[damage]\nlimit_load = 0.0\n", "damage.limit_load"),
+        (
+            "FIELD[damage]\nlimit_over_p0 = 0.2\n[damage.study]\nbending_over_p0 = [0.1]\n",
+            "damage.study",
+        ),
+        (
+            "FIELD[bulk]\nstress_max = 1e8\n[damage]\nlimit_over_p0 = 0.2\n[damage.study]\n\
+             bending_over_p0 = [0.1, 0.05]\n",
+            "damage.study.bending_over_p0[1]",
+        ),
+    ] {
+        let text = format!("{paper}{}", section.replace("FIELD", field));
+        assert_bad_input(&text, &[], name);
+    }
 }

@@ -57,7 +57,11 @@ pub fn files(out: &Outcome) -> Vec<String> {
         f.extend(STRESS_FILES.iter().map(|f| f.to_string()));
     }
     if let Some(d) = &out.damage {
-        f.extend(d.criteria.iter().map(|c| damage_plot_name(&c.assessment.name)));
+        f.extend(
+            d.criteria
+                .iter()
+                .map(|c| damage_plot_name(&c.assessment.name)),
+        );
         if d.study.is_some() {
             f.extend(STUDY_FILES.iter().map(|f| f.to_string()));
         }
@@ -271,7 +275,10 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                 .collect();
             if let Some(d) = &out.damage {
                 for c in &d.criteria {
-                    arrays.push((format!("psi_{}", safe_name(&c.assessment.name)), c.psi.clone()));
+                    arrays.push((
+                        format!("psi_{}", safe_name(&c.assessment.name)),
+                        c.psi.clone(),
+                    ));
                 }
             }
             for (name, v) in &arrays {
@@ -452,7 +459,11 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
     if let Some(study) = summary.damage.as_ref().and_then(|d| d.study.as_ref()) {
         write_atomic(dir, STUDY_FILES[0], study_csv(study).as_bytes())?;
         let pick = |f: &dyn Fn(&summary::StudyRow) -> f64| -> Vec<(f64, f64)> {
-            study.rows.iter().map(|r| (r.bending_over_p0, f(r))).collect()
+            study
+                .rows
+                .iter()
+                .map(|r| (r.bending_over_p0, f(r)))
+                .collect()
         };
         let paper = study.paper;
         let curves = vec![

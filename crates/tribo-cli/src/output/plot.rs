@@ -435,7 +435,11 @@ pub fn lines(
     if !(x0.is_finite() && x1.is_finite()) {
         return Err("lines: no points".into());
     }
-    let (x0, x1) = if x1 > x0 { (x0, x1) } else { (x0 - 1.0, x0 + 1.0) };
+    let (x0, x1) = if x1 > x0 {
+        (x0, x1)
+    } else {
+        (x0 - 1.0, x0 + 1.0)
+    };
     let pad = 0.08 * (y1 - y0).max(1.0);
     let mut chart = ChartBuilder::on(&root)
         .caption(title, (FAMILY, 20))
@@ -464,7 +468,10 @@ pub fn lines(
     for c in curves {
         let colour = c.colour;
         chart
-            .draw_series(LineSeries::new(c.points.iter().copied(), colour.stroke_width(2)))
+            .draw_series(LineSeries::new(
+                c.points.iter().copied(),
+                colour.stroke_width(2),
+            ))
             .map_err(e)?
             .label(c.name.clone())
             .legend(move |(x, y)| {

@@ -164,13 +164,7 @@ fn study_result(
 ) -> Result<StudyResult> {
     let mut regions = Vec::new();
     for (name, f) in fields {
-        let d = assess(
-            mesh,
-            &f.stress,
-            &input.material,
-            limit,
-            Execution::Parallel,
-        )?;
+        let d = assess(mesh, &f.stress, &input.material, limit, Execution::Parallel)?;
         regions.push((*name, d.region));
     }
     let pct = |x: f64, base: f64| {
