@@ -395,8 +395,7 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                 (&g.z, "z"),
                 &stress::plane_y(st, sxx, iy0),
                 true,
-                "sigma_xx",
-                (1e9, "GPa"),
+                ("sigma_xx", 1e9, "GPa"),
                 &format!("{y0}, {}", case.title),
             )
         })?;
@@ -407,8 +406,7 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                 (&g.y, "y"),
                 &stress::plane_z(st, sxx, iz),
                 false,
-                "sigma_xx",
-                (1e9, "GPa"),
+                ("sigma_xx", 1e9, "GPa"),
                 &format!(
                     "layer z = {:.4} mm nearest {}, {}",
                     1e3 * g.z[iz],
@@ -424,8 +422,7 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                 (&g.z, "z"),
                 &stress::plane_y(st, vm, iy0),
                 true,
-                "von Mises",
-                (1e9, "GPa"),
+                ("von Mises", 1e9, "GPa"),
                 &format!("{y0}, {}", case.title),
             )
         })?;
@@ -443,8 +440,7 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                     (&g.z, "z"),
                     &stress::plane_y(st, &c.psi, iy0),
                     true,
-                    &format!("psi_{name}"),
-                    (1.0, "1 (dangerous where >= 1)"),
+                    (&format!("psi_{name}"), 1.0, "1 (dangerous where >= 1)"),
                     &format!(
                         "y = {:.3} mm, V = {:.3e} m^3, Psi = {:.3e} m^3, max {:.3}",
                         1e3 * g.y[iy0],

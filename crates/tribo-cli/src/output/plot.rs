@@ -607,19 +607,18 @@ pub fn traction_profiles(
 
 /// A colour map of a scalar on a plane section: `values[iv * nh + ih]` at (h[ih], v[iv])
 /// (m), axes in mm; with `depth_down` the vertical axis is the depth z, drawn downward.
-/// `unit` = (divisor, name): values are shown divided by the divisor, e.g. (1e9, "GPa"),
-/// or (1.0, "1") for a dimensionless field.
+/// `quantity` = (name, divisor, unit): values are shown divided by the divisor, e.g.
+/// ("sigma_xx", 1e9, "GPa"), or ("psi", 1.0, "1") for a dimensionless field.
 pub fn section(
     path: &Path,
     h: (&[f64], &str),
     v: (&[f64], &str),
     values: &[f64],
     depth_down: bool,
-    quantity: &str,
-    unit: (f64, &str),
+    quantity: (&str, f64, &str),
     title: &str,
 ) -> Result<(), String> {
-    let (divisor, unit_name) = unit;
+    let (quantity, divisor, unit_name) = quantity;
     register_font()?;
     let (hs, hname) = h;
     let (vs, vname) = v;
