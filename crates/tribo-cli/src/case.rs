@@ -94,6 +94,19 @@ struct RawDamage {
     limit_load: Option<Value>,
     limits: Option<toml::Table>,
     study: Option<RawStudy>,
+    cycle: Option<RawCycle>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCycle {
+    kind: Option<Value>,
+    amplitude: Option<Value>,
+    amplitude_over_p0: Option<Value>,
+    speed: Option<Value>,
+    period: Option<Value>,
+    steps: Option<Value>,
+    cycles: Option<Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -401,6 +414,46 @@ pub struct DamageSpec {
     pub limit_load: Option<f64>,
     /// The paper's Sec. 6 study (`[damage.study]`).
     pub study: Option<StudySpec>,
+    /// Accumulation over a load cycle (`[damage.cycle]`), (23), (24), (36).
+    pub cycle: Option<CycleSpec>,
+}
+
+/// The load history of one cycle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CycleKind {
+    /// A rotating bent shaft under the fixed roller: sigma_b(t) = sigma_a cos(2 pi t / T)
+    /// superposed on the contact field; the amplitude in Pa.
+    RotatingBending {
+        /// sigma_a, Pa (> 0 starts in the tension zone).
+        amplitude: CycleAmplitude,
+    },
+    /// Rolling: the contact field moves along y at `speed` (m/s).
+    Rolling {
+        /// v, m/s.
+        speed: f64,
+    },
+}
+
+/// A bending amplitude in Pa or as a multiple of p0.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CycleAmplitude {
+    /// Pa.
+    Pascal(f64),
+    /// sigma_a / p0.
+    OverP0(f64),
+}
+
+/// The validated `[damage.cycle]` table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CycleSpec {
+    /// The history.
+    pub kind: CycleKind,
+    /// Duration of one cycle (one revolution), s.
+    pub period: f64,
+    /// Time steps per cycle.
+    pub steps: usize,
+    /// Number of cycles N for the totals.
+    pub cycles: f64,
 }
 
 /// The validated `[damage.study]` table: the paper's Sec. 6 loadings n, n + tau, n + tau + b
@@ -867,10 +920,143 @@ fn damage_spec(
             })
         }
     };
+    let cycle = match d.cycle {
+        None => None,
+        Some(c) => Some(cycle_spec(c, bulk)?),
+    };
     Ok(DamageSpec {
         criteria,
         limit_load,
         study,
+        cycle,
+    })
+}
+
+fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
+    let kind = match &c.kind {
+        Some(Value::String(k)) if k == "rotating-bending" => {
+            if bulk.is_none() {
+                return Err(CliError::field(
+                    "damage.cycle.kind",
+                    k,
+                    "rotating bending needs a [bulk] section (the shaft and its radius)",
+                ));
+            }
+            let amplitude = match (&c.amplitude, &c.amplitude_over_p0) {
+                (Some(v), None) => {
+                    let x = crate::units::quantity("damage.cycle.amplitude", v, Dim::Pressure)?;
+                    if !(x.is_finite() && x != 0.0) {
+                        return Err(CliError::field(
+                            "damage.cycle.amplitude",
+                            show(v),
+                            "must be finite and non-zero (Pa; > 0 starts in the tension zone)",
+                        ));
+                    }
+                    CycleAmplitude::Pascal(x)
+                }
+                (None, Some(v)) => {
+                    let x = number("damage.cycle.amplitude_over_p0", v)?;
+                    if !(x.is_finite() && x != 0.0) {
+                        return Err(CliError::field(
+                            "damage.cycle.amplitude_over_p0",
+                            show(v),
+                            "must be finite and non-zero (sigma_a / p0)",
+                        ));
+                    }
+                    CycleAmplitude::OverP0(x)
+                }
+                _ => {
+                    return Err(CliError::field(
+                        "damage.cycle.amplitude",
+                        "(missing or doubled)",
+                        "give exactly one of amplitude (Pa) and amplitude_over_p0",
+                    ))
+                }
+            };
+            if c.speed.is_some() {
+                return Err(CliError::field(
+                    "damage.cycle.speed",
+                    "given",
+                    "only for kind = \"rolling\"",
+                ));
+            }
+            CycleKind::RotatingBending { amplitude }
+        }
+        Some(Value::String(k)) if k == "rolling" => {
+            if c.amplitude.is_some() || c.amplitude_over_p0.is_some() {
+                return Err(CliError::field(
+                    "damage.cycle.amplitude",
+                    "given",
+                    "only for kind = \"rotating-bending\"",
+                ));
+            }
+            let speed = match &c.speed {
+                Some(v) => number("damage.cycle.speed", v)?,
+                None => {
+                    return Err(CliError::field(
+                        "damage.cycle.speed",
+                        "(missing)",
+                        "required for rolling: the speed of the contact along y, m/s",
+                    ))
+                }
+            };
+            if !(speed.is_finite() && speed != 0.0) {
+                return Err(CliError::field(
+                    "damage.cycle.speed",
+                    speed,
+                    "must be finite and non-zero (m/s)",
+                ));
+            }
+            CycleKind::Rolling { speed }
+        }
+        other => {
+            return Err(CliError::field(
+                "damage.cycle.kind",
+                other.as_ref().map_or("(missing)".to_string(), show),
+                "must be \"rotating-bending\" (a bent shaft turning under the roller) or \
+                 \"rolling\" (the contact moving along y)",
+            ))
+        }
+    };
+    let period = match &c.period {
+        Some(v) => positive_number("damage.cycle.period", v)?,
+        None => {
+            return Err(CliError::field(
+                "damage.cycle.period",
+                "(missing)",
+                "required: the duration of one cycle (one revolution), s",
+            ))
+        }
+    };
+    let steps = match &c.steps {
+        None => 36,
+        Some(v) => {
+            let k = count("damage.cycle.steps", v)?;
+            if !(2..=3600).contains(&k) {
+                return Err(CliError::field(
+                    "damage.cycle.steps",
+                    k,
+                    "must be in 2 ... 3600 time steps per cycle",
+                ));
+            }
+            k
+        }
+    };
+    let cycles = match &c.cycles {
+        None => 1.0,
+        Some(v) => positive_number("damage.cycles", v).map_err(|_| {
+            CliError::field(
+                "damage.cycle.cycles",
+                show(v),
+                "must be finite and > 0 (the number of cycles N)",
+            )
+        })?,
+    };
+    Ok(CycleSpec {
+        kind,
+        period,
+        steps,
+        cycles,
     })
 }
 

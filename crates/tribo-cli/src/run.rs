@@ -1,14 +1,19 @@
 //! The pipeline of `tribo run`: validated case -> grid and initial gap -> normal contact
 //! solution -> comparison with Hertz (where the gap is Hertzian) -> the back effect of bulk
-//! loading (where the case has `[bulk]`).
+//! loading (where the case has `[bulk]`) -> tangential contact (friction) -> the stress
+//! field (`[field]`) -> volume damageability (`[damage]`).
 
-use crate::case::{Case, FieldPoints, Length, LimitSource, LoadKind, Method, Shape, Window};
+use crate::case::{
+    Case, CycleAmplitude, CycleKind, FieldPoints, Length, LimitSource, LoadKind, Method, Shape,
+    Window,
+};
 use crate::error::CliResult;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::time::{Duration, Instant};
 use tribo::analysis::damage::{
-    dangerous_region, relative_damage, roller_shaft_sweep, DamageAssessment, DamageMesh, Execution,
-    Limit, RollerShaftStudy, StudyResult,
+    accumulate, dangerous_region, relative_damage, roller_shaft_sweep, CycleDamage, CyclesDamage,
+    DamageAssessment, DamageMesh, Execution, Limit, RollerShaftStudy, RollingContact,
+    RotatingBentShaft, StudyResult,
 };
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
 use tribo::analysis::stress_field::{
@@ -126,6 +131,8 @@ pub struct DamageCriterion {
     pub source: &'static str,
     /// psi_q (21) at every field point.
     pub psi: Vec<f64>,
+    /// Accumulation over the load cycle and over N cycles, with `[damage.cycle]`.
+    pub cycle: Option<(CycleDamage, CyclesDamage)>,
 }
 
 /// Volume damageability of a case with `[damage]`.
@@ -689,6 +696,67 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
         };
         let psi = relative_damage(&limit, &st.field.stress, &st.material)?;
         let region = dangerous_region(&mesh, &psi, Execution::Parallel)?;
+        let cycle = match &spec.cycle {
+            None => None,
+            Some(c) => {
+                pb.set_message(format!(
+                    "{}: accumulation over a cycle ({} steps)",
+                    quantity.name(),
+                    c.steps
+                ));
+                let one = match c.kind {
+                    CycleKind::RotatingBending { amplitude } => {
+                        let sigma_a = match amplitude {
+                            CycleAmplitude::Pascal(v) => v,
+                            CycleAmplitude::OverP0(r) => r * p0,
+                        };
+                        let radius = case.bulk.as_ref().map_or(0.0, |b| b.shaft_radius);
+                        let history = RotatingBentShaft::new(
+                            st.field.clone(),
+                            sigma_a,
+                            radius,
+                            c.period,
+                            c.steps,
+                        )?;
+                        accumulate(&mesh, &history, &limit, &st.material, Execution::Parallel)?
+                    }
+                    CycleKind::Rolling { speed } => {
+                        let bulk = match (&case.bulk, &st.bulk) {
+                            (Some(b), Some((kind, sigma))) => {
+                                Some((kind.load(*sigma), b.shaft_radius))
+                            }
+                            _ => None,
+                        };
+                        // The contact field alone moves; the bulk stress stays.
+                        let mut contact = st.field.clone();
+                        if let Some((load, radius)) = &bulk {
+                            let negative = match *load {
+                                tribo::kernels::bulk::BulkLoad::TensionCompression { stress } => {
+                                    tribo::kernels::bulk::BulkLoad::TensionCompression {
+                                        stress: -stress,
+                                    }
+                                }
+                                tribo::kernels::bulk::BulkLoad::Bending { surface_stress } => {
+                                    tribo::kernels::bulk::BulkLoad::Bending {
+                                        surface_stress: -surface_stress,
+                                    }
+                                }
+                                tribo::kernels::bulk::BulkLoad::Torsion { surface_shear } => {
+                                    tribo::kernels::bulk::BulkLoad::Torsion {
+                                        surface_shear: -surface_shear,
+                                    }
+                                }
+                            };
+                            contact.add_bulk(&negative, *radius);
+                        }
+                        let history = RollingContact::new(contact, speed, c.period, c.steps, bulk)?;
+                        accumulate(&mesh, &history, &limit, &st.material, Execution::Parallel)?
+                    }
+                };
+                let total = one.over_cycles(c.cycles)?;
+                Some((one, total))
+            }
+        };
         criteria.push(DamageCriterion {
             assessment: DamageAssessment {
                 name: quantity.name(),
@@ -698,6 +766,7 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
             },
             source: label,
             psi,
+            cycle,
         });
     }
     let study = match &spec.study {

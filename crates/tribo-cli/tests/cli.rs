@@ -1150,3 +1150,94 @@ fn bad_damage_input_exits_2_and_names_the_field() {
         assert_bad_input(&text, &[], name);
     }
 }
+
+/// Accumulation over a revolution of a bent shaft under the roller (23), (24): the state at
+/// t = 0 is the tension zone, and equals the plain damage of the same case with the operating
+/// bending stress sigma_a superposed (an independent path: the field with `bulk.stress`);
+/// the state at T/2 equals the compression zone; the totals over N cycles are N times one.
+#[test]
+fn rotating_bending_accumulates_over_a_revolution() {
+    let paper = PAPER.replacen(
+        "load = 2000.0\n",
+        &format!("load = 2000.0\n{DAMAGE_BASE}"),
+        1,
+    );
+    let sigma_a = 3.0e8;
+    let bulk = "[bulk]\nkind = \"bending\"\nstress_max = 6.4e8\npoints = 3\n";
+    let field = "[field]\nn = [9, 9, 5]\n";
+    let damage = "[damage]\nlimit_over_p0 = 0.186\n";
+    let cycle = format!(
+        "[damage.cycle]\nkind = \"rotating-bending\"\namplitude = {sigma_a}\nperiod = 0.02\n\
+         steps = 8\ncycles = 1e6\n"
+    );
+    let (o, out, _d) = run_case(&format!("{paper}{bulk}{field}{damage}{cycle}"), &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let c = &s["damage"]["criteria"][0];
+    let one = &c["cycle"];
+    let states = one["states"].as_array().unwrap();
+    assert_eq!(states.len(), 9);
+    let v = |k: usize| states[k]["volume"].as_f64().unwrap();
+    let f = |x: &serde_json::Value| x.as_f64().unwrap();
+    for (sign, k) in [(1.0, 0), (-1.0, 4)] {
+        let with = format!("{paper}{bulk}stress = {}\n{field}{damage}", sign * sigma_a);
+        let (o, out, _d) = run_case(&with, &[], &[]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let plain = read_json(&out.join("summary.json"))["damage"]["criteria"][0]["volume"]
+            .as_f64()
+            .unwrap();
+        assert!(
+            (v(k) - plain).abs() <= 1e-12 * plain,
+            "state {k}: {} vs {plain}",
+            v(k)
+        );
+    }
+    // Trapezoid rule over the states, and the mean.
+    let dt = 0.02 / 8.0;
+    let integral: f64 = (0..8).map(|k| 0.5 * dt * (v(k) + v(k + 1))).sum();
+    assert!((f(&one["volume_time_integral"]) - integral).abs() <= 1e-12 * integral);
+    assert!((f(&one["mean_volume"]) - integral / 0.02).abs() <= 1e-12 * integral / 0.02);
+    let n = &c["cycles"];
+    assert_eq!(f(&n["cycles"]), 1e6);
+    let ratio = f(&n["damageability_time_integral"]) / f(&one["damageability_time_integral"]);
+    assert!((ratio - 1e6).abs() < 1e-6, "{ratio}");
+}
+
+#[test]
+fn bad_cycle_input_exits_2_and_names_the_field() {
+    let paper = PAPER.replacen(
+        "load = 2000.0\n",
+        &format!("load = 2000.0\n{DAMAGE_BASE}"),
+        1,
+    );
+    let base = format!(
+        "{paper}[bulk]\nkind = \"bending\"\nstress_max = 6.4e8\n[field]\nn = [5, 5, 3]\n\
+         [damage]\nlimit_over_p0 = 0.186\n[damage.cycle]\n"
+    );
+    for (extra, name) in [
+        ("kind = \"spinning\"\nperiod = 1.0\n", "damage.cycle.kind"),
+        (
+            "kind = \"rotating-bending\"\nperiod = 1.0\n",
+            "damage.cycle.amplitude",
+        ),
+        (
+            "kind = \"rotating-bending\"\namplitude = 1e8\n",
+            "damage.cycle.period",
+        ),
+        (
+            "kind = \"rotating-bending\"\namplitude = 1e8\nperiod = 1.0\nsteps = 1\n",
+            "damage.cycle.steps",
+        ),
+        (
+            "kind = \"rotating-bending\"\namplitude = 1e8\nperiod = 1.0\ncycles = 0\n",
+            "damage.cycle.cycles",
+        ),
+        ("kind = \"rolling\"\nperiod = 1.0\n", "damage.cycle.speed"),
+        (
+            "kind = \"rolling\"\nspeed = 0.0\nperiod = 1.0\n",
+            "damage.cycle.speed",
+        ),
+    ] {
+        assert_bad_input(&format!("{base}{extra}"), &[], name);
+    }
+}

@@ -3,6 +3,7 @@
 use crate::case::{Case, LoadKind, Window};
 use crate::run::{BackEffect, Outcome};
 use serde::Serialize;
+use tribo::analysis::damage::{CycleDamage, CyclesDamage};
 use tribo::analysis::hertz_error::PressureErrors;
 use tribo::solvers::back_effect::BackEffectPoint;
 use tribo::solvers::NormalLoading;
@@ -602,6 +603,21 @@ impl Summary {
                     100.0 * c.volume_fraction,
                     c.damageability
                 );
+                if let (Some(one), Some(n)) = (&c.cycle, &c.cycles) {
+                    let _ = writeln!(
+                        o,
+                        "         per cycle ({:.4e} s): mean V {:.4e} m^3, int V dt {:.4e} m^3 s, \
+                         Psi^(V,t) {:.4e} m^3 s, max int psi dt {:.4e} s; over N = {:e}: \
+                         Psi^(V,t) {:.4e} m^3 s",
+                        one.period,
+                        one.mean_volume,
+                        one.volume_time_integral,
+                        one.damageability_time_integral,
+                        one.node_time_integral_max,
+                        n.cycles,
+                        n.damageability_time_integral
+                    );
+                }
             }
             if let Some(study) = &d.study {
                 let _ = writeln!(
@@ -844,6 +860,12 @@ pub struct DamageCriterionSummary {
     /// Psi_q / V_q (24), the mean psi over the dangerous volume (absent when V_q = 0).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub average: Option<f64>,
+    /// Accumulation over one load cycle (23), (24), (36), with `[damage.cycle]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cycle: Option<CycleDamage>,
+    /// The same over N cycles.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cycles: Option<CyclesDamage>,
 }
 
 /// One sigma_b / p0 of the Sec. 6 study: changes against the loading n, %.
@@ -918,6 +940,8 @@ impl DamageSummary {
                     volume_fraction: r.volume / d.total_volume,
                     damageability: r.damageability,
                     average: r.average,
+                    cycle: c.cycle.as_ref().map(|c| c.0.clone()),
+                    cycles: c.cycle.as_ref().map(|c| c.1),
                 }
             })
             .collect();
@@ -968,6 +992,25 @@ impl DamageSummary {
             v.extend([c.limit, c.psi_max, c.volume, c.damageability]);
             v.extend(c.psi_max_location);
             v.extend(c.average);
+            if let (Some(one), Some(n)) = (&c.cycle, &c.cycles) {
+                v.extend([
+                    one.period,
+                    one.volume_time_integral,
+                    one.mean_volume,
+                    one.damageability_time_integral,
+                    one.node_time_integral_max,
+                    n.cycles,
+                    n.volume_time_integral,
+                    n.damageability_time_integral,
+                    n.node_time_integral_max,
+                ]);
+                v.extend(one.average);
+                v.extend(n.average);
+                v.extend(one.node_time_integral_max_at);
+                for st in &one.states {
+                    v.extend([st.time, st.volume, st.damageability, st.psi_max]);
+                }
+            }
         }
         if let Some(s) = &self.study {
             for r in &s.rows {
