@@ -95,6 +95,19 @@ struct RawDamage {
     limits: Option<toml::Table>,
     study: Option<RawStudy>,
     cycle: Option<RawCycle>,
+    energy: Option<RawEnergy>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawEnergy {
+    a_n: Option<Value>,
+    a_tau: Option<Value>,
+    a_t: Option<Value>,
+    a_tau_n: Option<Value>,
+    a_m_t: Option<Value>,
+    temperature: Option<Value>,
+    u0: Option<Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -755,6 +768,8 @@ fn damage_spec(
             .join(", ")
     };
     let names: Vec<String> = match &d.criteria {
+        // With [damage.energy] alone: only the effective energy.
+        None if d.energy.is_some() => Vec::new(),
         None => vec!["sigma_int".into()],
         Some(Value::Array(a)) if !a.is_empty() => {
             let mut names = Vec::new();
@@ -871,6 +886,58 @@ fn damage_spec(
             ));
         };
         criteria.push((quantity, source));
+    }
+    if let Some(e) = &d.energy {
+        // The generalized energy criterion (25)-(36): u_eff with the limit u0 (34).
+        let coefficient = |key: &str, v: &Option<Value>, default: f64| -> CliResult<f64> {
+            match v {
+                None => Ok(default),
+                Some(v) => number(&format!("damage.energy.{key}"), v),
+            }
+        };
+        let m = tribo::analysis::energy_criterion::EnergyCoefficients::MECHANICAL;
+        let coefficients = tribo::analysis::energy_criterion::EnergyCoefficients {
+            a_n: coefficient("a_n", &e.a_n, m.a_n)?,
+            a_tau: coefficient("a_tau", &e.a_tau, m.a_tau)?,
+            a_t: coefficient("a_t", &e.a_t, m.a_t)?,
+            a_tau_n: coefficient("a_tau_n", &e.a_tau_n, m.a_tau_n)?,
+            a_m_t: coefficient("a_m_t", &e.a_m_t, m.a_m_t)?,
+        };
+        coefficients
+            .validate("damage.energy")
+            .map_err(CliError::from)?;
+        let temperature = coefficient("temperature", &e.temperature, 293.15)?;
+        if !(temperature.is_finite() && temperature >= 0.0) {
+            return Err(CliError::field(
+                "damage.energy.temperature",
+                temperature,
+                "must be finite and >= 0 K (absolute temperature)",
+            ));
+        }
+        let u0 = match &e.u0 {
+            Some(v) => number("damage.energy.u0", v)?,
+            None => {
+                return Err(CliError::field(
+                    "damage.energy.u0",
+                    "(missing)",
+                    "required: the activation energy per unit volume u0, J/m^3",
+                ))
+            }
+        };
+        if !(u0.is_finite() && u0 > 0.0) {
+            return Err(CliError::field(
+                "damage.energy.u0",
+                u0,
+                "must be finite and > 0 (J/m^3)",
+            ));
+        }
+        criteria.push((
+            DamageQuantity::EffectiveEnergy {
+                coefficients,
+                temperature,
+            },
+            LimitSource::Given(u0),
+        ));
     }
     let study = match d.study {
         None => None,

@@ -1241,3 +1241,54 @@ fn bad_cycle_input_exits_2_and_names_the_field() {
         assert_bad_input(&format!("{base}{extra}"), &[], name);
     }
 }
+
+/// The generalized energy criterion (25)-(36) from the case file: with the mechanical
+/// coefficients (A_n = A_tau = A_tau\n = A_M\T = 1, A_T = 0) u_eff is the strain energy
+/// density u, so psi of u_eff with u0 equals psi of u with the limit u0, to round-off; a
+/// thermal term A_T k T raises psi everywhere by A_M\T A_T k T / u0.
+#[test]
+fn the_energy_criterion_reduces_to_the_strain_energy() {
+    let paper = PAPER.replacen(
+        "load = 2000.0\n",
+        &format!("load = 2000.0\n{DAMAGE_BASE}"),
+        1,
+    );
+    let u0 = 5.0e6;
+    let text = format!(
+        "{paper}[field]\nn = [9, 9, 5]\n[damage]\ncriteria = [\"u\"]\n[damage.limits]\nu = {u0}\n\
+         [damage.energy]\nu0 = {u0}\ntemperature = 300.0\n"
+    );
+    let (o, out, _d) = run_case(&text, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let c = &s["damage"]["criteria"];
+    assert_eq!(c[0]["name"], "u");
+    assert_eq!(c[1]["name"], "u_eff");
+    for key in ["psi_max", "volume", "damageability"] {
+        let (a, b) = (c[0][key].as_f64().unwrap(), c[1][key].as_f64().unwrap());
+        assert!(
+            (a - b).abs() <= 1e-12 * a.abs().max(1e-30),
+            "{key}: {a} vs {b}"
+        );
+    }
+    // A_T = 1e27 m^-3 at 300 K: A_T k T = 4.14e6 J/m^3, psi rises by 0.828.
+    let text = text.replace("temperature = 300.0\n", "temperature = 300.0\na_t = 1e27\n");
+    let (o, out, _d) = run_case(&text, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let c = &read_json(&out.join("summary.json"))["damage"]["criteria"];
+    let shift = c[1]["psi_max"].as_f64().unwrap() - c[0]["psi_max"].as_f64().unwrap();
+    let expected = 1e27 * 1.380649e-23 * 300.0 / u0;
+    assert!((shift - expected).abs() < 1e-12, "{shift} vs {expected}");
+    for (extra, name) in [
+        ("a_n = -1.0\n", "damage.energy.a_n"),
+        ("temperature = -5.0\n", "damage.energy.temperature"),
+    ] {
+        let bad = text.replace("temperature = 300.0\n", extra);
+        assert_bad_input(&bad, &[], name);
+    }
+    let missing = text.replace(
+        &format!("[damage.energy]\nu0 = {u0}\n"),
+        "[damage.energy]\n",
+    );
+    assert_bad_input(&missing, &[], "damage.energy.u0");
+}
