@@ -28,6 +28,12 @@ pub const EXAMPLES: &[Example] = &[
         text: include_str!("../examples/cases/roller-shaft-normal.toml"),
     },
     Example {
+        name: "roller-shaft-sec6",
+        description: "the paper's Sec. 6: dangerous volumes of the intensity for n, n+tau, \
+                      n+tau+b over sigma_b/p0",
+        text: include_str!("../examples/cases/roller-shaft-sec6.toml"),
+    },
+    Example {
         name: "roller-shaft-approach",
         description: "the same under approach control, delta = 2.723e-5 m",
         text: include_str!("../examples/cases/roller-shaft-approach.toml"),

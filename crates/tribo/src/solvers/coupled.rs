@@ -51,7 +51,7 @@ pub fn coupling_operator(
     let c = coupling_coefficient(body1, body2);
     let (dx, dy) = (grid.dx(), grid.dy());
     let (hx, hy) = (0.5 * dx, 0.5 * dy);
-    let (sin, cos) = angle.sin_cos();
+    let (sin, cos) = crate::solvers::tangential::direction(angle);
     ConvolutionOperator::new(grid, move |di, dj| {
         let (x, y) = (di as f64 * dx, dj as f64 * dy);
         c * (cos * love::rectangle_integral_h_x(x, y, hx, hy)
@@ -148,7 +148,7 @@ pub fn solve_coupled(
             tangential_params,
             if uncoupled { None } else { Some(&offset) },
         )?;
-        let (sin, cos) = angle.sin_cos();
+        let (sin, cos) = crate::solvers::tangential::direction(angle);
         for (t, (qx, qy)) in tau
             .iter_mut()
             .zip(tangential.traction_x.iter().zip(&tangential.traction_y))

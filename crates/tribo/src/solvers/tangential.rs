@@ -123,6 +123,24 @@ pub struct TangentialSolution {
     pub residual: f64,
 }
 
+/// (sin, cos) of a direction angle (rad), exact on the axes: where the angle is a multiple
+/// of pi/2 to within 4 ulp the components are exactly 0 and +-1, so that a load along y
+/// has no 6e-17 x component (and no spurious x shear to carry through a stress field).
+pub fn direction(angle: f64) -> (f64, f64) {
+    let quarter = angle / std::f64::consts::FRAC_PI_2;
+    let k = quarter.round();
+    if (quarter - k).abs() <= 4.0 * f64::EPSILON * k.abs().max(1.0) {
+        match (k as i64).rem_euclid(4) {
+            0 => (0.0, 1.0),
+            1 => (1.0, 0.0),
+            2 => (0.0, -1.0),
+            _ => (-1.0, 0.0),
+        }
+    } else {
+        angle.sin_cos()
+    }
+}
+
 /// The combined tangential compliance along a direction e of two bodies on a grid,
 /// `C_ee = e.(C_1 + C_2) e` per unit uniform shear along e on an element, m/Pa.
 pub fn tangential_compliance_operator(
@@ -134,7 +152,7 @@ pub fn tangential_compliance_operator(
     let (dx, dy) = (grid.dx(), grid.dy());
     let (hx, hy) = (0.5 * dx, 0.5 * dy);
     let (nx, ny) = (grid.nx(), grid.ny());
-    let (sin, cos) = angle.sin_cos();
+    let (sin, cos) = direction(angle);
     let bodies = [*body1, *body2];
     // e.(u due to e) = cos^2 u_x(q_x) + sin^2 u_y(q_y) + sin cos (u_y(q_x) + u_x(q_y)): the
     // first two terms are even in both offsets, the cross term odd in both (mirror
@@ -501,7 +519,7 @@ fn summarize(
     residual: f64,
 ) -> TangentialSolution {
     let area = grid.element_area();
-    let (sin, cos) = angle.sin_cos();
+    let (sin, cos) = direction(angle);
     let traction_x: Vec<f64> = tau.iter().map(|t| t * cos).collect();
     let traction_y: Vec<f64> = tau.iter().map(|t| t * sin).collect();
     let n_contact = bound.iter().filter(|&&b| b > 0.0).count();
@@ -567,6 +585,19 @@ mod tests {
         for (a, b) in response.iter().zip(&expected) {
             assert!((a - b).abs() <= 1e-12 * scale, "{a:e} vs {b:e}");
         }
+    }
+
+    #[test]
+    fn directions_are_exact_on_the_axes() {
+        use std::f64::consts::{FRAC_PI_2, PI};
+        assert_eq!(direction(0.0), (0.0, 1.0));
+        assert_eq!(direction(FRAC_PI_2), (1.0, 0.0));
+        assert_eq!(direction(90f64.to_radians()), (1.0, 0.0));
+        assert_eq!(direction(PI), (0.0, -1.0));
+        assert_eq!(direction(-FRAC_PI_2), (-1.0, 0.0));
+        assert_eq!(direction(270f64.to_radians()), (-1.0, 0.0));
+        let (s, c) = direction(0.3);
+        assert_eq!((s, c), 0.3f64.sin_cos());
     }
 
     #[test]
