@@ -252,7 +252,8 @@ pub struct ContactNode {
     pub position: [f64; 2],
     /// Slave segment parameter in [0, 1].
     pub param: f64,
-    /// Master outward normal at the projection (points into the slave).
+    /// Master outward normal at the projection (points into the slave); zero where the
+    /// node is [`ContactState::Outside`].
     pub normal: [f64; 2],
     /// Tangent tau = (-n_y, n_x).
     pub tangent: [f64; 2],
@@ -260,10 +261,10 @@ pub struct ContactNode {
     pub pressure: f64,
     /// Tangential traction q on the slave along tau, Pa.
     pub shear: f64,
-    /// Initial gap g0 along the master normal, m.
-    pub initial_gap: f64,
-    /// Gap, m.
-    pub gap: f64,
+    /// Initial gap g0 along the master normal, m (None where the node is outside the master).
+    pub initial_gap: Option<f64>,
+    /// Gap, m (None where the node is outside the master).
+    pub gap: Option<f64>,
     /// Total tangential relative displacement (slave minus master) along tau, m.
     pub slip: f64,
     /// Its increment in this step, m.
@@ -1579,9 +1580,9 @@ impl ContactProblem {
                     touches = true;
                 }
                 let (gap, slip, inc) = if sn.master.is_some() {
-                    (g[i], s[i], s[i] - self.slip[i])
+                    (Some(g[i]), s[i], s[i] - self.slip[i])
                 } else {
-                    (f64::INFINITY, 0.0, 0.0)
+                    (None, 0.0, 0.0)
                 };
                 nodes.push(ContactNode {
                     position: sn.position,
@@ -1590,7 +1591,7 @@ impl ContactProblem {
                     tangent: sn.tangent,
                     pressure: z[i],
                     shear: z[n + i],
-                    initial_gap: sn.gap0,
+                    initial_gap: sn.master.map(|_| sn.gap0),
                     gap,
                     slip,
                     slip_increment: inc,
