@@ -102,6 +102,7 @@
 //! | Nowell-Hills with bulk stress | c/a, e/a | 0.2225 vs 0.2202, 0.1988 vs 0.1993 |
 //! | unloading to Q = 0 | reverse-slip c'/a | 0.854 vs 0.866 |
 //! | f = 1e-9 vs f = 0 | pressure difference | 8e-11 p0 |
+//! | block of two bonded regions vs one piece | pressure difference | 1.2e-5 p0 |
 //!
 //! Timing (`contact_timing`, release, 2 shared cores): 932 BEM DOF / 196 contact unknowns:
 //! assembly 0.07 s, factorization + condensation 0.12 s, a load step 0.002 s; 1988 / 772:
@@ -135,7 +136,9 @@ pub enum GapRule {
     /// Weighted with the slave node's shape function over its support (every slave
     /// quadrature point projected onto the master segment), divided by int N_i ds: a
     /// mortar-type average of the node-to-segment gap. Smoother, but it smears the contact
-    /// edge (same Hertz case: 0.97 %).
+    /// edge (same Hertz case: 0.97 %), and at a singular edge on uniform non-matching
+    /// elements (flat punch) the quadratic weights make the active set cycle (reported as
+    /// [`Error::NotConverged`]; test `cycling_is_reported_with_the_residual`).
     Weighted,
 }
 

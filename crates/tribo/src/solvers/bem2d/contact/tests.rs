@@ -660,6 +660,72 @@ fn unloading_leaves_locked_in_shear() {
     assert!(load_dir.is_some() && unload_dir.is_some() && load_dir != unload_dir);
 }
 
+/// A body made of bonded regions (zonal homogeneity, (7)) takes part in contact as one
+/// body: the block split into a 2 mm top layer and the rest, both steel, bonded, gives the
+/// Hertz pressure of the one-piece block (measured difference 1.2e-5 p0, the interface's own
+/// discretization; tolerance 1e-3 p0).
+#[test]
+fn bonded_block_in_contact_matches_one_piece() {
+    let estar = 210e9 / (2.0 * (1.0 - 0.09));
+    let (b, p0) = hertz(R, estar, P);
+    let c = 2.0 * b;
+    let (l, d, h) = (0.010, 0.010, 0.002);
+    let ratio = (l - c) / (c / 40.0) / 4.0;
+    let lower = Region::new(
+        "lower",
+        steel(),
+        vec![
+            Segment::line("lower_bottom", [-l, -d], [l, -d], 12),
+            Segment::line("lower_right", [l, -d], [l, -h], 8),
+            Segment::line("iface", [l, -h], [-l, -h], 16),
+            Segment::line("lower_left", [-l, -h], [-l, -d], 8),
+        ],
+    );
+    let mut upper = Region::new(
+        "upper",
+        steel(),
+        vec![
+            Segment::line("upper_right", [l, -h], [l, 0.0], 4),
+            Segment::line("upper_top_right", [l, 0.0], [c, 0.0], 24).graded(Grading::End(ratio)),
+            Segment::line("upper_contact", [c, 0.0], [-c, 0.0], 40),
+            Segment::line("upper_top_left", [-c, 0.0], [-l, 0.0], 24).graded(Grading::Start(ratio)),
+            Segment::line("upper_left", [-l, 0.0], [-l, -h], 4),
+        ],
+    );
+    upper.loops[0].insert(0, crate::operators::bem2d::LoopItem::Shared("iface".into()));
+    let model = BemModel::new(
+        PlaneCondition::Strain,
+        vec![lower, upper, half_cylinder("cyl", steel(), R, c, 48, true)],
+    );
+    let bcs = BoundaryConditions::new().set("lower_bottom", SegmentBc::fixed());
+    let mut cp = ContactProblem::new(
+        &model,
+        &bcs,
+        &[ContactPair::new("cyl_contact", "upper_contact", 0.0)],
+        &["cyl_face"],
+    )
+    .unwrap();
+    let res = cp
+        .solve_steps(&[press(P)], &ContactOptions::default())
+        .unwrap();
+    let mut one = cylinder_on_block(0.0, 48, 40);
+    let r1 = one
+        .solve_steps(&[press(P)], &ContactOptions::default())
+        .unwrap();
+    let diff = res[0].pairs[0]
+        .nodes
+        .iter()
+        .zip(&r1[0].pairs[0].nodes)
+        .map(|(x, y)| (x.pressure - y.pressure).abs())
+        .fold(0.0, f64::max);
+    let ep = pressure_error(&res[0].pairs[0], b, p0, 0.9);
+    eprintln!(
+        "bonded block: max pressure difference to one piece {:.2e} p0, Hertz error {ep:.2e}",
+        diff / p0
+    );
+    assert!(diff < 1e-3 * p0);
+}
+
 /// f = 0 is the frictionless problem exactly: all q = 0, complementarity holds to
 /// round-off, and the result is path independent (one step or four give the same state to
 /// round-off); a tiny friction coefficient changes the pressure continuously.
@@ -947,4 +1013,76 @@ fn contact_timing() {
             rayon::current_num_threads()
         );
     }
+}
+
+/// A case where the active set cycles: the flat punch with uniform, non-matching elements
+/// and the weighted gap rule (its quadratic weights make the discrete LCP lose the P-matrix
+/// property next to the singular edge; pressures oscillate in sign). The sets repeat, the
+/// guard switches to single-node updates (Murty), which do not settle either, and the solver
+/// stops at the iteration limit with NotConverged and its residual instead of looping. The
+/// collocated rule solves the same case in 3 iterations.
+#[test]
+fn cycling_is_reported_with_the_residual() {
+    let a = 1e-3;
+    let stiff = ElasticMaterial::new(210e12, 0.3).unwrap();
+    let punch = Region::new(
+        "punch",
+        stiff,
+        vec![
+            Segment::line("punch_bottom", [-a, 0.0], [a, 0.0], 48),
+            Segment::line("punch_right", [a, 0.0], [a, a], 8),
+            Segment::line("punch_top", [a, a], [-a, a], 8),
+            Segment::line("punch_left", [-a, a], [-a, 0.0], 8),
+        ],
+    );
+    let model = BemModel::new(
+        PlaneCondition::Strain,
+        vec![
+            block("base", steel(), 20.0 * a, 20.0 * a, 1.2 * a, 40),
+            punch,
+        ],
+    );
+    let bcs = BoundaryConditions::new().set("base_bottom", SegmentBc::fixed());
+    let step = LoadStep {
+        external: 1.0,
+        rigid: vec![RigidControl::new(
+            "punch_top",
+            Control::Displacement(0.0),
+            Control::Force(-P),
+        )],
+    };
+    let opts = ContactOptions {
+        max_iterations: 60,
+        ..ContactOptions::default()
+    };
+    let mut cp = ContactProblem::new(
+        &model,
+        &bcs,
+        &[ContactPair::new("punch_bottom", "base_contact", 0.0).with_rule(GapRule::Weighted)],
+        &["punch_top"],
+    )
+    .unwrap();
+    match cp.solve_steps(std::slice::from_ref(&step), &opts) {
+        Err(Error::NotConverged {
+            iterations,
+            residual,
+            ..
+        }) => {
+            eprintln!("cycling: stopped after {iterations} iterations, residual {residual:.3e}");
+            assert!(iterations <= 60 && residual.is_finite() && residual > 1e-9);
+        }
+        other => panic!(
+            "expected NotConverged, got {:?}",
+            other.map(|r| r[0].iterations)
+        ),
+    }
+    let mut cp = ContactProblem::new(
+        &model,
+        &bcs,
+        &[ContactPair::new("punch_bottom", "base_contact", 0.0)],
+        &["punch_top"],
+    )
+    .unwrap();
+    let r = cp.solve_steps(&[step], &opts).unwrap();
+    assert!(r[0].residual < 1e-10);
 }
