@@ -1292,3 +1292,37 @@ fn the_energy_criterion_reduces_to_the_strain_energy() {
     );
     assert_bad_input(&missing, &[], "damage.energy.u0");
 }
+
+/// `traction_direction = "free"`: the full 2D partial-slip problem. Same force, a small
+/// traction across the load (odd in y), the stick radius of Cattaneo-Mindlin within about
+/// one element (the library tests check the optimality conditions and the energy).
+#[test]
+fn free_traction_direction_solves_the_2d_problem() {
+    let text = format!(
+        "{SPHERE}friction = 0.3\ntangential_load = 15.0\ntraction_direction = \"free\"\n\
+         [grid]\nn = 48\n"
+    );
+    let (o, out, _d) = run_case(&text, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let t = &s["tangential"];
+    assert_eq!(t["traction_direction"], "free");
+    let q = t["tangential_force"][0].as_f64().unwrap();
+    assert!((q / 15.0 - 1.0).abs() < 1e-8, "{t}");
+    let c = t["stick_semi_major"].as_f64().unwrap();
+    let cm = t["stick_semi_major_cattaneo_mindlin"].as_f64().unwrap();
+    let dx = 2.0 * s["grid"]["half_width"][0].as_f64().unwrap() / 48.0;
+    assert!((c - cm).abs() < 1.5 * dx, "{c} vs {cm} (dx {dx})");
+    let csv = std::fs::read_to_string(out.join("traction.csv")).unwrap();
+    let qy_max = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(3).unwrap().parse::<f64>().unwrap().abs())
+        .fold(0.0f64, f64::max);
+    assert!(qy_max > 0.0, "no transverse traction");
+    assert_bad_input(
+        &text.replace("\"free\"", "\"sideways\""),
+        &[],
+        "contact.traction_direction",
+    );
+}
