@@ -210,7 +210,7 @@ impl BasquinRegression {
         let sxx: f64 = x.iter().map(|a| (a - xm).powi(2)).sum();
         let syy: f64 = y.iter().map(|b| (b - ym).powi(2)).sum();
         let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - xm) * (b - ym)).sum();
-        if !(sxx > 0.0) {
+        if sxx.is_nan() || sxx <= 0.0 {
             return None;
         }
         let b = sxy / sxx;
@@ -334,7 +334,7 @@ pub fn fit_regression(data: &FatigueData, params: &RegressionParams) -> Result<R
     }
     let regression = regress(&finite)
         .ok_or_else(|| Error::invalid("data", "finite zone", "the regression is degenerate"))?;
-    if !(regression.slope_b < 0.0) {
+    if regression.slope_b.is_nan() || regression.slope_b >= 0.0 {
         return Err(Error::invalid(
             "data",
             format!("B = {:.4}", regression.slope_b),
@@ -494,7 +494,7 @@ fn invert(mut a: Vec<Vec<f64>>) -> Option<Vec<Vec<f64>>> {
         .collect();
     for c in 0..n {
         let p = (c..n).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))?;
-        if !(a[p][c].abs() > 1e-300) {
+        if a[p][c].is_nan() || a[p][c].abs() <= 1e-300 {
             return None;
         }
         a.swap(c, p);
@@ -583,7 +583,7 @@ pub fn fit_max_likelihood(
         _ => regress(&data.fractures().copied().collect::<Vec<_>>()),
     }
     .ok_or_else(|| Error::invalid("data", "fractures", "the start regression is degenerate"))?;
-    if !(start_reg.slope_b < 0.0) {
+    if start_reg.slope_b.is_nan() || start_reg.slope_b >= 0.0 {
         return Err(Error::invalid(
             "data",
             format!("B = {:.4}", start_reg.slope_b),

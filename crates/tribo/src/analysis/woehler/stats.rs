@@ -194,7 +194,7 @@ pub fn student_t_cdf(t: f64, dof: f64) -> f64 {
 /// Solved by bracketing and bisection of [`student_t_cdf`] to the resolution of f64.
 /// Returns NaN for p outside (0, 1) or dof <= 0 (callers validate first).
 pub fn student_t_quantile(p: f64, dof: f64) -> f64 {
-    if !(p > 0.0 && p < 1.0) || !(dof > 0.0) {
+    if !(p > 0.0 && p < 1.0 && dof > 0.0) {
         return f64::NAN;
     }
     if p == 0.5 {
