@@ -166,7 +166,12 @@ pub fn run(cmd: FatigueCommand) -> CliResult<u8> {
         }
         FatigueCommand::Diagram { limits, out, json } => {
             let (text, base) = read_input(&limits, "limits")?;
-            let input = parse_limits(&text, &limits.display().to_string(), &base)?;
+            let name = if limits.as_os_str() == "-" {
+                "<stdin>".to_string()
+            } else {
+                limits.display().to_string()
+            };
+            let input = parse_limits(&text, &name, &base)?;
             let report = diagram(input)?;
             write_diagram(&out, &report)?;
             emit(json, &report, || report.human(&out))
