@@ -34,11 +34,17 @@
 //! stress_max = 6.4e8               # sigma_a,max, Pa: the curve spans sigma/sigma_max in [-1, 1]
 //! points = 21                      # points per curve, odd, 3 ... 1001 (default 21)
 //! # stress = 3.2e8                 # optional operating bulk stress, Pa: F_N reported there
-//! [field]                          # optional: the subsurface stress field (direct sum)
+//! # bending_force = 5e3            # or, with kind = "bending": the operating bending stress
+//! # span = 0.2                     #   4 M/(pi R^3) from a force (N), a span (m) and the
+//! # support = "simply-supported"   #   support (M = F L/4; "cantilever": M = F L), with
+//! # bending_side = "tension"       #   the contact on the tension or compression side
+//! [field]                          # optional: the subsurface stress field
 //! n = [39, 39, 20]                 # points along x, y, z (default the paper's)
 //! extent = 1.5                     # x, y half width / Hertz a (or half_width, m)
 //! depth = 1.5                      # depth / Hertz a (or depth_m, m); z down into the body
 //! body = "body2"                   # the body the field is in (default body2)
+//! # points = "centres"             # instead of n and extent: x, y at the contact grid's
+//! # layers = 20                    # element centres (FFT, for large grids), `layers` depths
 //! ```
 
 use crate::error::{CliError, CliResult};
@@ -46,10 +52,12 @@ use crate::units::{count, number, pair, quantity, show, Dim};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use toml::Value;
+use tribo::analysis::damage::{DamageQuantity, TensorKind};
 use tribo::geometry::{
     Crown, HeightMap, LogarithmicCrown, QuadraticProfile, Roller, SurfaceProfile,
 };
 use tribo::grid::MAX_ELEMENTS_PER_SIDE;
+use tribo::kernels::bulk::{bending_moment, bending_stress, BeamSupport};
 use tribo::solvers::{NormalContactParams, NormalLoading};
 use tribo::ElasticMaterial;
 
@@ -75,6 +83,50 @@ struct RawCase {
     solver: Option<RawSolver>,
     bulk: Option<RawBulk>,
     field: Option<RawField>,
+    damage: Option<RawDamage>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawDamage {
+    criteria: Option<Value>,
+    limit_over_p0: Option<Value>,
+    limit_load: Option<Value>,
+    limits: Option<toml::Table>,
+    study: Option<RawStudy>,
+    cycle: Option<RawCycle>,
+    energy: Option<RawEnergy>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawEnergy {
+    a_n: Option<Value>,
+    a_tau: Option<Value>,
+    a_t: Option<Value>,
+    a_tau_n: Option<Value>,
+    a_m_t: Option<Value>,
+    temperature: Option<Value>,
+    u0: Option<Value>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCycle {
+    kind: Option<Value>,
+    amplitude: Option<Value>,
+    amplitude_over_p0: Option<Value>,
+    speed: Option<Value>,
+    period: Option<Value>,
+    steps: Option<Value>,
+    cycles: Option<Value>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawStudy {
+    bending_over_p0: Option<Value>,
+    limit_over_p0: Option<Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -123,6 +175,8 @@ struct RawContact {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawField {
+    points: Option<Value>,
+    layers: Option<Value>,
     n: Option<Value>,
     extent: Option<Value>,
     half_width: Option<Value>,
@@ -156,6 +210,10 @@ struct RawBulk {
     stress_max: Option<Value>,
     points: Option<Value>,
     stress: Option<Value>,
+    bending_force: Option<Value>,
+    span: Option<Value>,
+    support: Option<Value>,
+    bending_side: Option<Value>,
 }
 
 // ---------------------------------------------------------------- validated layer
@@ -323,17 +381,102 @@ pub enum Length {
     Metres(f64),
 }
 
+/// Where the field points lie in x and y.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FieldPoints {
+    /// `n` points evenly spaced over the field's half width, end points included; the
+    /// stresses by the direct sum over the loaded elements (exact at any point).
+    Uniform,
+    /// The element centres of the contact grid; the stresses by FFT convolution per depth
+    /// (the same kernels; cost O(layers N log N), for large contact grids).
+    Centres,
+}
+
 /// The validated `[field]` section: the subsurface stress field.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FieldSpec {
-    /// Points along x, y, z.
+    /// Where the points lie in x and y.
+    pub points: FieldPoints,
+    /// Points along x, y, z (for [`FieldPoints::Centres`], the contact grid's nx, ny).
     pub n: [usize; 3],
-    /// Half width of the field in x and y.
+    /// Half width of the field in x and y (unused, zero, for [`FieldPoints::Centres`]).
     pub half_width: Length,
     /// Depth of the field.
     pub depth: Length,
     /// The body the field is computed in ("body1" or "body2").
     pub body: &'static str,
+}
+
+/// Where a damage criterion's limit phi_q^lim comes from ((19)-(20)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LimitSource {
+    /// Given in `[damage.limits]` (material data), in the quantity's unit.
+    Given(f64),
+    /// A multiple of p0, the largest contact pressure of the run (stress quantities).
+    OverP0(f64),
+    /// The extreme of the field under the limiting load `damage.limit_load` (N).
+    LimitingLoad(f64),
+}
+
+/// The validated `[damage]` section: volume damageability (19)-(24).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DamageSpec {
+    /// The criteria with the source of each limit.
+    pub criteria: Vec<(DamageQuantity, LimitSource)>,
+    /// The limiting load F_lim, N, where some limit comes from it.
+    pub limit_load: Option<f64>,
+    /// The paper's Sec. 6 study (`[damage.study]`).
+    pub study: Option<StudySpec>,
+    /// Accumulation over a load cycle (`[damage.cycle]`), (23), (24), (36).
+    pub cycle: Option<CycleSpec>,
+}
+
+/// The load history of one cycle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CycleKind {
+    /// A rotating bent shaft under the fixed roller: sigma_b(t) = sigma_a cos(2 pi t / T)
+    /// superposed on the contact field; the amplitude in Pa.
+    RotatingBending {
+        /// sigma_a, Pa (> 0 starts in the tension zone).
+        amplitude: CycleAmplitude,
+    },
+    /// Rolling: the contact field moves along y at `speed` (m/s).
+    Rolling {
+        /// v, m/s.
+        speed: f64,
+    },
+}
+
+/// A bending amplitude in Pa or as a multiple of p0.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CycleAmplitude {
+    /// Pa.
+    Pascal(f64),
+    /// sigma_a / p0.
+    OverP0(f64),
+}
+
+/// The validated `[damage.cycle]` table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CycleSpec {
+    /// The history.
+    pub kind: CycleKind,
+    /// Duration of one cycle (one revolution), s.
+    pub period: f64,
+    /// Time steps per cycle.
+    pub steps: usize,
+    /// Number of cycles N for the totals.
+    pub cycles: f64,
+}
+
+/// The validated `[damage.study]` table: the paper's Sec. 6 loadings n, n + tau, n + tau + b
+/// over a range of bending stresses.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudySpec {
+    /// sigma_b / p0 values (>= 0, increasing).
+    pub bending_over_p0: Vec<f64>,
+    /// The intensity limit over p0 (the paper: 0.186).
+    pub limit_over_p0: f64,
 }
 
 /// A validated case, ready to run.
@@ -363,6 +506,8 @@ pub struct Case {
     pub friction: Option<Friction>,
     /// The subsurface stress field, where `[field]` is given.
     pub field: Option<FieldSpec>,
+    /// Volume damageability, where `[damage]` is given.
+    pub damage: Option<DamageSpec>,
     /// The case as written (TOML converted to JSON), echoed in `summary.json`.
     pub echo: serde_json::Value,
 }
@@ -560,7 +705,21 @@ fn validate(
     let friction = friction(&raw.contact)?;
     let field = match raw.field {
         None => None,
-        Some(f) => Some(field_spec(f, hertzian)?),
+        Some(f) => Some(field_spec(f, hertzian, n)?),
+    };
+    let damage = match raw.damage {
+        None => None,
+        Some(d) => {
+            if field.is_none() {
+                return Err(CliError::field(
+                    "damage",
+                    "given",
+                    "needs a [field] section: the damage measures are integrals over the \
+                     stress field's points",
+                ));
+            }
+            Some(damage_spec(d, &loading, bulk.as_ref())?)
+        }
     };
     let title = raw.title.unwrap_or_else(|| source.to_string());
     Ok(Case {
@@ -582,8 +741,407 @@ fn validate(
         bulk,
         friction,
         field,
+        damage,
         echo,
     })
+}
+
+/// The damage quantities a case file may name (`damage.criteria`): every stress and strain
+/// quantity of (19)-(20) by its [`DamageQuantity::name`].
+pub fn damage_vocabulary() -> Vec<DamageQuantity> {
+    let mut v = DamageQuantity::standard_set(TensorKind::Stress);
+    v.extend(DamageQuantity::standard_set(TensorKind::Strain));
+    v
+}
+
+fn damage_spec(
+    d: RawDamage,
+    loading: &NormalLoading,
+    bulk: Option<&Bulk>,
+) -> CliResult<DamageSpec> {
+    let vocabulary = damage_vocabulary();
+    let known = || {
+        vocabulary
+            .iter()
+            .map(|q| q.name())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let names: Vec<String> = match &d.criteria {
+        // With [damage.energy] alone: only the effective energy.
+        None if d.energy.is_some() => Vec::new(),
+        None => vec!["sigma_int".into()],
+        Some(Value::Array(a)) if !a.is_empty() => {
+            let mut names = Vec::new();
+            for (k, v) in a.iter().enumerate() {
+                match v {
+                    Value::String(s) => names.push(s.clone()),
+                    _ => {
+                        return Err(CliError::field(
+                            format!("damage.criteria[{k}]"),
+                            show(v),
+                            "must be the name of a quantity, e.g. \"sigma_int\"",
+                        ))
+                    }
+                }
+            }
+            names
+        }
+        Some(v) => {
+            return Err(CliError::field(
+                "damage.criteria",
+                show(v),
+                "must be a non-empty list of quantity names, e.g. [\"sigma_int\", \"u\"]",
+            ))
+        }
+    };
+    let over_p0 = match &d.limit_over_p0 {
+        None => None,
+        Some(v) => Some(positive_number("damage.limit_over_p0", v)?),
+    };
+    let limit_load = match &d.limit_load {
+        None => None,
+        Some(v) => {
+            if !matches!(loading, NormalLoading::Force(_)) {
+                return Err(CliError::field(
+                    "damage.limit_load",
+                    show(v),
+                    "needs force control (contact.load): the limiting state is the same case \
+                     at the load F_lim",
+                ));
+            }
+            Some(positive(
+                "damage.limit_load",
+                v,
+                Dim::Force,
+                "the limiting load F_lim (N)",
+            )?)
+        }
+    };
+    let limits = d.limits.unwrap_or_default();
+    for key in limits.keys() {
+        if !names.iter().any(|n| n == key) {
+            return Err(CliError::field(
+                format!("damage.limits.{key}"),
+                "given",
+                "is not one of damage.criteria",
+            ));
+        }
+    }
+    let mut criteria = Vec::new();
+    for (k, name) in names.iter().enumerate() {
+        let Some(quantity) = vocabulary.iter().find(|q| &q.name() == name).copied() else {
+            return Err(CliError::field(
+                format!("damage.criteria[{k}]"),
+                name,
+                format!("unknown quantity; known: {}", known()),
+            ));
+        };
+        if criteria.iter().any(|(q, _)| *q == quantity) {
+            return Err(CliError::field(
+                format!("damage.criteria[{k}]"),
+                name,
+                "is named twice",
+            ));
+        }
+        let field = format!("damage.limits.{name}");
+        let source = if let Some(v) = limits.get(name) {
+            let dim = match quantity.unit() {
+                "Pa" => Some(Dim::Pressure),
+                _ => None,
+            };
+            let x = match dim {
+                Some(dim) => crate::units::quantity(&field, v, dim)?,
+                None => number(&field, v)?,
+            };
+            tribo::analysis::damage::Limit::new(quantity, x)
+                .map_err(|e| CliError::field(&field, show(v), strip_field(&e.to_string())))?;
+            LimitSource::Given(x)
+        } else if limit_load.is_some() {
+            LimitSource::LimitingLoad(limit_load.unwrap_or(0.0))
+        } else if let Some(r) = over_p0 {
+            if quantity.unit() != "Pa" {
+                return Err(CliError::field(
+                    &field,
+                    "(missing)",
+                    format!(
+                        "damage.limit_over_p0 applies to stresses only; give the limit of \
+                         {name} ({}) here, or damage.limit_load",
+                        quantity.unit()
+                    ),
+                ));
+            }
+            if quantity.sense() == Some(tribo::analysis::damage::Sense::Compression) {
+                LimitSource::OverP0(-r)
+            } else {
+                LimitSource::OverP0(r)
+            }
+        } else {
+            return Err(CliError::field(
+                &field,
+                "(missing)",
+                "required: give the limit here (material data), or damage.limit_over_p0 \
+                 (stresses, a multiple of p0), or damage.limit_load (the field's extremes at \
+                 the limiting load, (19))",
+            ));
+        };
+        criteria.push((quantity, source));
+    }
+    if let Some(e) = &d.energy {
+        // The generalized energy criterion (25)-(36): u_eff with the limit u0 (34).
+        let coefficient = |key: &str, v: &Option<Value>, default: f64| -> CliResult<f64> {
+            match v {
+                None => Ok(default),
+                Some(v) => number(&format!("damage.energy.{key}"), v),
+            }
+        };
+        let m = tribo::analysis::energy_criterion::EnergyCoefficients::MECHANICAL;
+        let coefficients = tribo::analysis::energy_criterion::EnergyCoefficients {
+            a_n: coefficient("a_n", &e.a_n, m.a_n)?,
+            a_tau: coefficient("a_tau", &e.a_tau, m.a_tau)?,
+            a_t: coefficient("a_t", &e.a_t, m.a_t)?,
+            a_tau_n: coefficient("a_tau_n", &e.a_tau_n, m.a_tau_n)?,
+            a_m_t: coefficient("a_m_t", &e.a_m_t, m.a_m_t)?,
+        };
+        coefficients
+            .validate("damage.energy")
+            .map_err(CliError::from)?;
+        let temperature = coefficient("temperature", &e.temperature, 293.15)?;
+        if !(temperature.is_finite() && temperature >= 0.0) {
+            return Err(CliError::field(
+                "damage.energy.temperature",
+                temperature,
+                "must be finite and >= 0 K (absolute temperature)",
+            ));
+        }
+        let u0 = match &e.u0 {
+            Some(v) => number("damage.energy.u0", v)?,
+            None => {
+                return Err(CliError::field(
+                    "damage.energy.u0",
+                    "(missing)",
+                    "required: the activation energy per unit volume u0, J/m^3",
+                ))
+            }
+        };
+        if !(u0.is_finite() && u0 > 0.0) {
+            return Err(CliError::field(
+                "damage.energy.u0",
+                u0,
+                "must be finite and > 0 (J/m^3)",
+            ));
+        }
+        criteria.push((
+            DamageQuantity::EffectiveEnergy {
+                coefficients,
+                temperature,
+            },
+            LimitSource::Given(u0),
+        ));
+    }
+    let study = match d.study {
+        None => None,
+        Some(st) => {
+            let Some(b) = bulk else {
+                return Err(CliError::field(
+                    "damage.study",
+                    "given",
+                    "needs a [bulk] section for the shaft (bulk.shaft, bulk.shaft_radius)",
+                ));
+            };
+            let _ = b;
+            let values = match &st.bending_over_p0 {
+                Some(Value::Array(a)) if !a.is_empty() && a.len() <= 101 => {
+                    let mut out = Vec::new();
+                    for (k, v) in a.iter().enumerate() {
+                        let f = format!("damage.study.bending_over_p0[{k}]");
+                        let x = number(&f, v)?;
+                        if !(x.is_finite() && x >= 0.0) || out.last().is_some_and(|&l| x <= l) {
+                            return Err(CliError::field(
+                                f,
+                                show(v),
+                                "must be finite, >= 0 and increasing (sigma_b / p0; the zone \
+                                 gives the sign)",
+                            ));
+                        }
+                        out.push(x);
+                    }
+                    out
+                }
+                Some(v) => {
+                    return Err(CliError::field(
+                        "damage.study.bending_over_p0",
+                        show(v),
+                        "must be a list of 1 ... 101 values sigma_b / p0",
+                    ))
+                }
+                None => (0..=12).map(|k| 0.025 * k as f64).collect(),
+            };
+            let limit_over_p0 = match &st.limit_over_p0 {
+                None => 0.186,
+                Some(v) => positive_number("damage.study.limit_over_p0", v)?,
+            };
+            Some(StudySpec {
+                bending_over_p0: values,
+                limit_over_p0,
+            })
+        }
+    };
+    let cycle = match d.cycle {
+        None => None,
+        Some(c) => Some(cycle_spec(c, bulk)?),
+    };
+    Ok(DamageSpec {
+        criteria,
+        limit_load,
+        study,
+        cycle,
+    })
+}
+
+fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
+    let kind = match &c.kind {
+        Some(Value::String(k)) if k == "rotating-bending" => {
+            if bulk.is_none() {
+                return Err(CliError::field(
+                    "damage.cycle.kind",
+                    k,
+                    "rotating bending needs a [bulk] section (the shaft and its radius)",
+                ));
+            }
+            let amplitude = match (&c.amplitude, &c.amplitude_over_p0) {
+                (Some(v), None) => {
+                    let x = crate::units::quantity("damage.cycle.amplitude", v, Dim::Pressure)?;
+                    if !(x.is_finite() && x != 0.0) {
+                        return Err(CliError::field(
+                            "damage.cycle.amplitude",
+                            show(v),
+                            "must be finite and non-zero (Pa; > 0 starts in the tension zone)",
+                        ));
+                    }
+                    CycleAmplitude::Pascal(x)
+                }
+                (None, Some(v)) => {
+                    let x = number("damage.cycle.amplitude_over_p0", v)?;
+                    if !(x.is_finite() && x != 0.0) {
+                        return Err(CliError::field(
+                            "damage.cycle.amplitude_over_p0",
+                            show(v),
+                            "must be finite and non-zero (sigma_a / p0)",
+                        ));
+                    }
+                    CycleAmplitude::OverP0(x)
+                }
+                _ => {
+                    return Err(CliError::field(
+                        "damage.cycle.amplitude",
+                        "(missing or doubled)",
+                        "give exactly one of amplitude (Pa) and amplitude_over_p0",
+                    ))
+                }
+            };
+            if c.speed.is_some() {
+                return Err(CliError::field(
+                    "damage.cycle.speed",
+                    "given",
+                    "only for kind = \"rolling\"",
+                ));
+            }
+            CycleKind::RotatingBending { amplitude }
+        }
+        Some(Value::String(k)) if k == "rolling" => {
+            if c.amplitude.is_some() || c.amplitude_over_p0.is_some() {
+                return Err(CliError::field(
+                    "damage.cycle.amplitude",
+                    "given",
+                    "only for kind = \"rotating-bending\"",
+                ));
+            }
+            let speed = match &c.speed {
+                Some(v) => number("damage.cycle.speed", v)?,
+                None => {
+                    return Err(CliError::field(
+                        "damage.cycle.speed",
+                        "(missing)",
+                        "required for rolling: the speed of the contact along y, m/s",
+                    ))
+                }
+            };
+            if !(speed.is_finite() && speed != 0.0) {
+                return Err(CliError::field(
+                    "damage.cycle.speed",
+                    speed,
+                    "must be finite and non-zero (m/s)",
+                ));
+            }
+            CycleKind::Rolling { speed }
+        }
+        other => {
+            return Err(CliError::field(
+                "damage.cycle.kind",
+                other.as_ref().map_or("(missing)".to_string(), show),
+                "must be \"rotating-bending\" (a bent shaft turning under the roller) or \
+                 \"rolling\" (the contact moving along y)",
+            ))
+        }
+    };
+    let period = match &c.period {
+        Some(v) => positive_number("damage.cycle.period", v)?,
+        None => {
+            return Err(CliError::field(
+                "damage.cycle.period",
+                "(missing)",
+                "required: the duration of one cycle (one revolution), s",
+            ))
+        }
+    };
+    let steps = match &c.steps {
+        None => 36,
+        Some(v) => {
+            let k = count("damage.cycle.steps", v)?;
+            if !(2..=3600).contains(&k) {
+                return Err(CliError::field(
+                    "damage.cycle.steps",
+                    k,
+                    "must be in 2 ... 3600 time steps per cycle",
+                ));
+            }
+            k
+        }
+    };
+    let cycles = match &c.cycles {
+        None => 1.0,
+        Some(v) => positive_number("damage.cycles", v).map_err(|_| {
+            CliError::field(
+                "damage.cycle.cycles",
+                show(v),
+                "must be finite and > 0 (the number of cycles N)",
+            )
+        })?,
+    };
+    Ok(CycleSpec {
+        kind,
+        period,
+        steps,
+        cycles,
+    })
+}
+
+fn positive_number(field: &str, v: &Value) -> CliResult<f64> {
+    let x = number(field, v)?;
+    if x.is_finite() && x > 0.0 {
+        Ok(x)
+    } else {
+        Err(CliError::field(field, show(v), "must be finite and > 0"))
+    }
+}
+
+/// The rule part of a library error message "field = value: rule".
+fn strip_field(message: &str) -> String {
+    message
+        .split_once(": ")
+        .map_or(message, |(_, rule)| rule)
+        .to_string()
 }
 
 /// The default shaft radius from a body's radii: their common magnitude where both are
@@ -696,6 +1254,73 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
             }
             Some(x)
         }
+    };
+    // The operating bending stress from a force, a span and the shaft section (beam theory).
+    let from_force = b.bending_force.is_some()
+        || b.span.is_some()
+        || b.support.is_some()
+        || b.bending_side.is_some();
+    let stress = if from_force {
+        if let Some(v) = &b.stress {
+            return Err(CliError::field(
+                "bulk.stress",
+                show(v),
+                "give either bulk.stress or bulk.bending_force with bulk.span, not both",
+            ));
+        }
+        if kinds != [LoadKind::Bending] {
+            return Err(CliError::field(
+                "bulk.bending_force",
+                "given",
+                "needs kind = \"bending\" (the force bends the shaft)",
+            ));
+        }
+        let required = |key: &str, v: &Option<Value>| {
+            v.clone().ok_or_else(|| {
+                CliError::field(
+                    format!("bulk.{key}"),
+                    "(missing)",
+                    "required with a bending force: bending_force (N), span (m), and \
+                     optionally support and bending_side",
+                )
+            })
+        };
+        let force = quantity(
+            "bulk.bending_force",
+            &required("bending_force", &b.bending_force)?,
+            Dim::Force,
+        )?;
+        let span = quantity("bulk.span", &required("span", &b.span)?, Dim::Length)?;
+        let support = match &b.support {
+            None => BeamSupport::SimplySupported,
+            Some(Value::String(s)) if s == "simply-supported" => BeamSupport::SimplySupported,
+            Some(Value::String(s)) if s == "cantilever" => BeamSupport::Cantilever,
+            Some(v) => {
+                return Err(CliError::field(
+                    "bulk.support",
+                    show(v),
+                    "must be \"simply-supported\" (force at mid-span, M = F L/4) or \
+                     \"cantilever\" (force at the free end, M = F L)",
+                ))
+            }
+        };
+        let sign = match &b.bending_side {
+            None => 1.0,
+            Some(Value::String(s)) if s == "tension" => 1.0,
+            Some(Value::String(s)) if s == "compression" => -1.0,
+            Some(v) => {
+                return Err(CliError::field(
+                    "bulk.bending_side",
+                    show(v),
+                    "must be \"tension\" or \"compression\" (the side of the shaft the \
+                     contact is on)",
+                ))
+            }
+        };
+        let moment = bending_moment(force, span, support, "bulk.")?;
+        Some(sign * bending_stress(moment, shaft_radius))
+    } else {
+        stress
     };
     Ok(Bulk {
         shaft,
@@ -851,7 +1476,8 @@ fn field_length(
                     semi_key,
                     show(v),
                     format!(
-                        "is in units of the Hertz semi-axis, defined only where both bodies are                          given by radii; give {metres_key} (m)"
+                        "is in units of the Hertz semi-axis, defined only where both bodies are \
+                         given by radii; give {metres_key} (m)"
                     ),
                 ));
             }
@@ -884,8 +1510,57 @@ fn field_length(
     }
 }
 
-fn field_spec(f: RawField, hertzian: bool) -> CliResult<FieldSpec> {
+fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<FieldSpec> {
+    let points = match &f.points {
+        None => FieldPoints::Uniform,
+        Some(Value::String(s)) if s == "uniform" => FieldPoints::Uniform,
+        Some(Value::String(s)) if s == "centres" || s == "centers" => FieldPoints::Centres,
+        Some(v) => {
+            return Err(CliError::field(
+                "field.points",
+                show(v),
+                "must be \"uniform\" (n points over the extent, direct sum) or \"centres\" \
+                 (the contact grid's element centres, FFT)",
+            ))
+        }
+    };
+    if points == FieldPoints::Centres {
+        for (name, given) in [
+            ("field.n", f.n.is_some()),
+            ("field.extent", f.extent.is_some()),
+            ("field.half_width", f.half_width.is_some()),
+        ] {
+            if given {
+                return Err(CliError::field(
+                    name,
+                    "given",
+                    "with points = \"centres\" the x, y points are the contact grid's element \
+                     centres; give only field.layers and field.depth (or depth_m)",
+                ));
+            }
+        }
+    } else if f.layers.is_some() {
+        return Err(CliError::field(
+            "field.layers",
+            "given",
+            "only with points = \"centres\"; with uniform points give n = [nx, ny, nz]",
+        ));
+    }
     let n = match &f.n {
+        None if points == FieldPoints::Centres => {
+            let layers = match &f.layers {
+                None => DEFAULT_FIELD_N[2],
+                Some(v) => count("field.layers", v)?,
+            };
+            if !(2..=MAX_FIELD_N).contains(&layers) {
+                return Err(CliError::field(
+                    "field.layers",
+                    layers,
+                    format!("must be in 2 ... {MAX_FIELD_N} depths"),
+                ));
+            }
+            [contact_n[0], contact_n[1], layers]
+        }
         None => DEFAULT_FIELD_N,
         Some(Value::Array(a)) if a.len() == 3 => {
             let mut n = [0usize; 3];
@@ -922,13 +1597,17 @@ fn field_spec(f: RawField, hertzian: bool) -> CliResult<FieldSpec> {
             ),
         ));
     }
-    let half_width = field_length(
-        "field.extent",
-        f.extent.as_ref(),
-        "field.half_width",
-        f.half_width.as_ref(),
-        hertzian,
-    )?;
+    // With points at the element centres the contact grid sets x and y (no half width).
+    let half_width = match points {
+        FieldPoints::Centres => Length::Metres(0.0),
+        FieldPoints::Uniform => field_length(
+            "field.extent",
+            f.extent.as_ref(),
+            "field.half_width",
+            f.half_width.as_ref(),
+            hertzian,
+        )?,
+    };
     let depth = field_length(
         "field.depth",
         f.depth.as_ref(),
@@ -949,6 +1628,7 @@ fn field_spec(f: RawField, hertzian: bool) -> CliResult<FieldSpec> {
         }
     };
     Ok(FieldSpec {
+        points,
         n,
         half_width,
         depth,

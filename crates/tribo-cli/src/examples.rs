@@ -18,8 +18,20 @@ pub const DEFAULT: &str = "roller-shaft";
 pub const EXAMPLES: &[Example] = &[
     Example {
         name: "roller-shaft",
-        description: "the paper's Sec. 3 roller on shaft, F_N = 2000 N, 21 x 21 (default case)",
+        description: "the paper's roller on shaft, F_N = 2000 N, f = 0.2 sliding, stress field, \
+                      back effect (default case)",
         text: include_str!("../examples/cases/roller-shaft.toml"),
+    },
+    Example {
+        name: "roller-shaft-normal",
+        description: "the paper's Sec. 3 roller on shaft, normal contact only, 21 x 21",
+        text: include_str!("../examples/cases/roller-shaft-normal.toml"),
+    },
+    Example {
+        name: "roller-shaft-sec6",
+        description: "the paper's Sec. 6: dangerous volumes of the intensity for n, n+tau, \
+                      n+tau+b over sigma_b/p0",
+        text: include_str!("../examples/cases/roller-shaft-sec6.toml"),
     },
     Example {
         name: "roller-shaft-approach",
@@ -30,11 +42,6 @@ pub const EXAMPLES: &[Example] = &[
         name: "roller-shaft-bending",
         description: "the same with bulk loading of the shaft: the back effect, Fig. 2a",
         text: include_str!("../examples/cases/roller-shaft-bending.toml"),
-    },
-    Example {
-        name: "roller-shaft-friction",
-        description: "the same with friction f = 0.2 sliding along y and the stress field (Sec. 6)",
-        text: include_str!("../examples/cases/roller-shaft-friction.toml"),
     },
     Example {
         name: "sphere-on-flat",

@@ -39,13 +39,14 @@ one. Exit codes: 0 ok, 2 bad input, 3 solver did not converge, 1 anything else."
 
 const AFTER_HELP: &str = "\
 Examples:
-  tribo run                             the paper's roller/shaft case, writes tribo-out/
+  tribo run                             the paper's roller/shaft case with friction, the stress
+                                        field and the back-effect curve; writes tribo-out/
   tribo example                         list the example cases
   tribo example sphere-on-flat > s.toml
   tribo run s.toml -o out               run a case file, write out/
   tribo example crowned-roller | tribo run - -o roller --json
   tribo example roller-shaft-bending | tribo run - -o fig2a   the back effect (Fig. 2a)
-  tribo example roller-shaft-friction | tribo run - -o fig5   friction and the stress field
+  tribo example roller-shaft-normal | tribo run - -o normal   normal contact only
   tribo validate                        the verification table
   tribo fatigue fit data.csv -o fit     Woehler curve fits (E739, max. likelihood), Fig. 3
   tribo example fatigue-diagram | tribo fatigue diagram -   limiting states, Fig. 4";

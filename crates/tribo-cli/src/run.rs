@@ -1,14 +1,23 @@
 //! The pipeline of `tribo run`: validated case -> grid and initial gap -> normal contact
 //! solution -> comparison with Hertz (where the gap is Hertzian) -> the back effect of bulk
-//! loading (where the case has `[bulk]`).
+//! loading (where the case has `[bulk]`) -> tangential contact (friction) -> the stress
+//! field (`[field]`) -> volume damageability (`[damage]`).
 
-use crate::case::{Case, Length, LoadKind, Method, Shape, Window};
+use crate::case::{
+    Case, CycleAmplitude, CycleKind, FieldPoints, Length, LimitSource, LoadKind, Method, Shape,
+    Window,
+};
 use crate::error::CliResult;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::time::{Duration, Instant};
+use tribo::analysis::damage::{
+    accumulate, dangerous_region, relative_damage, roller_shaft_sweep, CycleDamage, CyclesDamage,
+    DamageAssessment, DamageMesh, Execution, Limit, RollerShaftStudy, RollingContact,
+    RotatingBentShaft, StudyResult,
+};
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
 use tribo::analysis::stress_field::{
-    stress_field_direct, FieldGrid, StressField, SurfaceTractions,
+    stress_field_direct, stress_field_on_centres_observed, FieldGrid, StressField, SurfaceTractions,
 };
 use tribo::geometry::initial_gap;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
@@ -63,6 +72,8 @@ pub struct Outcome {
     pub tangential: Option<Tangential>,
     /// The subsurface stress field (cases with `[field]`).
     pub stress: Option<Stress>,
+    /// Volume damageability (cases with `[damage]`).
+    pub damage: Option<Damage>,
 }
 
 /// The tangential contact of a case with friction.
@@ -105,6 +116,38 @@ pub struct Stress {
     pub material: ElasticMaterial,
     /// The bulk stress superposed: kind and operating stress, Pa.
     pub bulk: Option<(LoadKind, f64)>,
+    /// How it was computed ("direct sum" or "FFT on the element centres").
+    pub method: &'static str,
+    /// Wall time.
+    pub time: Duration,
+}
+
+/// One damage criterion evaluated on the stress field.
+#[derive(Debug, Clone)]
+pub struct DamageCriterion {
+    /// The limit used and the dangerous region (22), (24).
+    pub assessment: DamageAssessment,
+    /// Where the limit came from: "given", "p0 multiple" or "limiting load".
+    pub source: &'static str,
+    /// psi_q (21) at every field point.
+    pub psi: Vec<f64>,
+    /// Accumulation over the load cycle and over N cycles, with `[damage.cycle]`.
+    pub cycle: Option<(CycleDamage, CyclesDamage)>,
+}
+
+/// Volume damageability of a case with `[damage]`.
+#[derive(Debug, Clone)]
+pub struct Damage {
+    /// The criteria, in the case's order.
+    pub criteria: Vec<DamageCriterion>,
+    /// The volume of the field's box, m^3.
+    pub total_volume: f64,
+    /// The largest contact pressure p0, Pa (the base of limit_over_p0).
+    pub p0: f64,
+    /// The limiting load F_lim, N, where a limit came from it.
+    pub limit_load: Option<f64>,
+    /// The Sec. 6 study, one result per sigma_b / p0.
+    pub study: Option<Vec<StudyResult>>,
     /// Wall time.
     pub time: Duration,
 }
@@ -262,6 +305,7 @@ pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome>
         back_effect: None,
         tangential: None,
         stress: None,
+        damage: None,
     };
     outcome.tangential = tangential(case, &outcome, quiet)?;
     if let Some(c) = outcome
@@ -281,6 +325,7 @@ pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome>
     }
     outcome.back_effect = back_effect(case, &outcome, quiet)?;
     outcome.stress = stress(case, &outcome, quiet)?;
+    outcome.damage = damage(case, &outcome, quiet)?;
     Ok(outcome)
 }
 
@@ -487,41 +532,20 @@ fn resolve(length: Length, a: Option<f64>) -> f64 {
     }
 }
 
-/// The subsurface stress field of the case's `[field]` section, by the direct sum (exact at
-/// any point), layer by layer with progress; plus the bulk stress at `bulk.stress`.
+/// The subsurface stress field of the case's `[field]` section, with progress per depth: on
+/// uniform points by the direct sum (exact at any point), on the contact grid's element
+/// centres by FFT convolution (the same kernels, for large grids); plus the bulk stress at
+/// `bulk.stress`.
 pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stress>> {
     let Some(spec) = &case.field else {
         return Ok(None);
     };
     let a = out.prepared.hertz.as_ref().map(|h| h.contact.semi_major);
-    let half = resolve(spec.half_width, a);
     let depth = resolve(spec.depth, a);
     let [nx, ny, nz] = spec.n;
-    let grid = FieldGrid::uniform(nx, ny, nz, half, half, depth)?;
     let body = case.body(spec.body);
     // q acts on body 1; body 2 carries -q (in the mirrored frame, z into body 2).
-    let (qx, qy) = match &out.tangential {
-        Some(t) => {
-            let sign = if spec.body == "body1" { 1.0 } else { -1.0 };
-            (
-                Some(
-                    t.solution
-                        .traction_x
-                        .iter()
-                        .map(|q| sign * q)
-                        .collect::<Vec<_>>(),
-                ),
-                Some(
-                    t.solution
-                        .traction_y
-                        .iter()
-                        .map(|q| sign * q)
-                        .collect::<Vec<_>>(),
-                ),
-            )
-        }
-        None => (None, None),
-    };
+    let (qx, qy) = field_tractions(out, spec.body);
     let tractions = SurfaceTractions {
         grid: &out.prepared.grid,
         pressure: &out.solution.pressure,
@@ -538,30 +562,44 @@ pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stres
     {
         pb.set_style(style.progress_chars("=> "));
     }
+    let method = match spec.points {
+        FieldPoints::Uniform => "direct sum",
+        FieldPoints::Centres => "FFT on the element centres",
+    };
     pb.set_message(format!(
-        "stress field ({nx} x {ny} x {nz} points, direct sum)"
+        "stress field ({nx} x {ny} x {nz} points, {method})"
     ));
     pb.enable_steady_tick(Duration::from_millis(100));
     let start = Instant::now();
-    let mut stress = Vec::with_capacity(grid.len());
-    for &z in &grid.z {
-        let layer = FieldGrid {
-            x: grid.x.clone(),
-            y: grid.y.clone(),
-            z: vec![z],
-        };
-        let f = stress_field_direct(&tractions, body.material.poisson_ratio(), &layer);
-        match f {
-            Ok(f) => stress.extend(f.stress),
-            Err(e) => {
-                pb.finish_and_clear();
-                return Err(e.into());
-            }
+    let nu = body.material.poisson_ratio();
+    let computed = match spec.points {
+        FieldPoints::Uniform => {
+            let half = resolve(spec.half_width, a);
+            FieldGrid::uniform(nx, ny, nz, half, half, depth).and_then(|grid| {
+                let mut stress = Vec::with_capacity(grid.len());
+                for &z in &grid.z {
+                    let layer = FieldGrid {
+                        x: grid.x.clone(),
+                        y: grid.y.clone(),
+                        z: vec![z],
+                    };
+                    stress.extend(stress_field_direct(&tractions, nu, &layer)?.stress);
+                    pb.inc(1);
+                }
+                Ok(StressField { grid, stress })
+            })
         }
-        pb.inc(1);
-    }
+        FieldPoints::Centres => {
+            let depths: Vec<f64> = (0..nz)
+                .map(|k| depth * k as f64 / (nz - 1) as f64)
+                .collect();
+            stress_field_on_centres_observed(&tractions, nu, &depths, |done| {
+                pb.set_position(done as u64)
+            })
+        }
+    };
     pb.finish_and_clear();
-    let mut field = StressField { grid, stress };
+    let mut field = computed?;
     let mut bulk_applied = None;
     if let Some(b) = &case.bulk {
         if let (Some(sigma), Some(&kind)) = (b.stress, b.kinds.first()) {
@@ -576,6 +614,211 @@ pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stres
         body: spec.body,
         material: body.material,
         bulk: bulk_applied,
+        method,
+        time: start.elapsed(),
+    }))
+}
+
+/// The tractions on the body the field is in: p and, with friction, the shear (q on body 1,
+/// -q on body 2 in its mirrored frame).
+/// A shear component that is zero everywhere is left out (None): the field then skips its
+/// kernels.
+pub fn field_tractions(out: &Outcome, body: &str) -> (Option<Vec<f64>>, Option<Vec<f64>>) {
+    match &out.tangential {
+        Some(t) => {
+            let sign = if body == "body1" { 1.0 } else { -1.0 };
+            let side = |q: &[f64]| {
+                q.iter()
+                    .any(|v| *v != 0.0)
+                    .then(|| q.iter().map(|v| sign * v).collect())
+            };
+            (side(&t.solution.traction_x), side(&t.solution.traction_y))
+        }
+        None => (None, None),
+    }
+}
+
+/// Volume damageability of the case's `[damage]` section on the stress field: psi_q (21) of
+/// each criterion, V_q (22), Psi_q and Psi_q / V_q (24) with the cut cells counted by their
+/// fraction (exact for psi linear on the simplices of the field's cells); limits given,
+/// as multiples of p0, or the extremes of the field of a second run at the limiting load
+/// (19); and the Sec. 6 study where asked for.
+pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damage>> {
+    let (Some(spec), Some(st)) = (&case.damage, &out.stress) else {
+        return Ok(None);
+    };
+    let start = Instant::now();
+    let pb = spinner(quiet, "volume damageability".into());
+    let mesh = DamageMesh::from_field_grid(&st.field.grid)?;
+    let p0 = out.solution.max_pressure();
+    // The limiting state: the same case at F_lim (no damage, a short back-effect curve).
+    let limiting = match spec.limit_load {
+        Some(load) => {
+            pb.set_message(format!("limiting state: the case at F_lim = {load} N"));
+            let mut lim = case.clone();
+            lim.loading = NormalLoading::Force(load);
+            lim.damage = None;
+            if let Some(b) = &mut lim.bulk {
+                b.points = 3;
+            }
+            let prepared = prepare(&lim)?;
+            let solved = solve(&lim, prepared, true)?;
+            solved.stress.map(|s| s.field)
+        }
+        None => None,
+    };
+    let mut criteria = Vec::new();
+    for (quantity, source) in &spec.criteria {
+        let (limit, label) = match *source {
+            LimitSource::Given(v) => (Limit::new(*quantity, v)?, "given"),
+            LimitSource::OverP0(r) => (Limit::new(*quantity, r * p0)?, "p0 multiple"),
+            LimitSource::LimitingLoad(load) => {
+                let Some(field) = &limiting else {
+                    return Err(crate::error::CliError::field(
+                        "damage.limit_load",
+                        load,
+                        "the limiting run produced no stress field",
+                    ));
+                };
+                let limit = Limit::from_limiting_field(*quantity, &field.stress, &st.material)
+                    .map_err(|e| {
+                        crate::error::CliError::field(
+                            format!("damage.limits.{}", quantity.name()),
+                            "(from damage.limit_load)",
+                            format!(
+                                "no limit from the limiting field ({e}); give it in \
+                                 [damage.limits]"
+                            ),
+                        )
+                    })?;
+                (limit, "limiting load")
+            }
+        };
+        let psi = relative_damage(&limit, &st.field.stress, &st.material)?;
+        let region = dangerous_region(&mesh, &psi, Execution::Parallel)?;
+        let cycle = match &spec.cycle {
+            None => None,
+            Some(c) => {
+                pb.set_message(format!(
+                    "{}: accumulation over a cycle ({} steps)",
+                    quantity.name(),
+                    c.steps
+                ));
+                let one = match c.kind {
+                    CycleKind::RotatingBending { amplitude } => {
+                        let sigma_a = match amplitude {
+                            CycleAmplitude::Pascal(v) => v,
+                            CycleAmplitude::OverP0(r) => r * p0,
+                        };
+                        let radius = case.bulk.as_ref().map_or(0.0, |b| b.shaft_radius);
+                        let history = RotatingBentShaft::new(
+                            st.field.clone(),
+                            sigma_a,
+                            radius,
+                            c.period,
+                            c.steps,
+                        )?;
+                        accumulate(&mesh, &history, &limit, &st.material, Execution::Parallel)?
+                    }
+                    CycleKind::Rolling { speed } => {
+                        let bulk = match (&case.bulk, &st.bulk) {
+                            (Some(b), Some((kind, sigma))) => {
+                                Some((kind.load(*sigma), b.shaft_radius))
+                            }
+                            _ => None,
+                        };
+                        // The contact field alone moves; the bulk stress stays.
+                        let mut contact = st.field.clone();
+                        if let Some((load, radius)) = &bulk {
+                            let negative = match *load {
+                                tribo::kernels::bulk::BulkLoad::TensionCompression { stress } => {
+                                    tribo::kernels::bulk::BulkLoad::TensionCompression {
+                                        stress: -stress,
+                                    }
+                                }
+                                tribo::kernels::bulk::BulkLoad::Bending { surface_stress } => {
+                                    tribo::kernels::bulk::BulkLoad::Bending {
+                                        surface_stress: -surface_stress,
+                                    }
+                                }
+                                tribo::kernels::bulk::BulkLoad::Torsion { surface_shear } => {
+                                    tribo::kernels::bulk::BulkLoad::Torsion {
+                                        surface_shear: -surface_shear,
+                                    }
+                                }
+                            };
+                            contact.add_bulk(&negative, *radius);
+                        }
+                        let history = RollingContact::new(contact, speed, c.period, c.steps, bulk)?;
+                        accumulate(&mesh, &history, &limit, &st.material, Execution::Parallel)?
+                    }
+                };
+                let total = one.over_cycles(c.cycles)?;
+                Some((one, total))
+            }
+        };
+        criteria.push(DamageCriterion {
+            assessment: DamageAssessment {
+                name: quantity.name(),
+                unit: quantity.unit(),
+                limit,
+                region,
+            },
+            source: label,
+            psi,
+            cycle,
+        });
+    }
+    let study = match &spec.study {
+        None => None,
+        Some(study) => {
+            let (Some(hertz), Some(bulk)) = (&out.prepared.hertz, &case.bulk) else {
+                pb.finish_and_clear();
+                return Err(crate::error::CliError::field(
+                    "damage.study",
+                    "given",
+                    "needs a Hertzian gap (both bodies given by radii: the field is sized by \
+                     the semi-axis a) and a [bulk] section",
+                ));
+            };
+            let (qx, qy) = field_tractions(out, st.body);
+            let tractions = SurfaceTractions {
+                grid: &out.prepared.grid,
+                pressure: &out.solution.pressure,
+                shear_x: qx.as_deref(),
+                shear_y: qy.as_deref(),
+            };
+            let points = [
+                st.field.grid.x.len(),
+                st.field.grid.y.len(),
+                st.field.grid.z.len(),
+            ];
+            pb.set_message(format!(
+                "Sec. 6 study: fields n and n+tau, {} bending stresses",
+                study.bending_over_p0.len()
+            ));
+            let results = roller_shaft_sweep(
+                &RollerShaftStudy {
+                    tractions,
+                    material: st.material,
+                    semi_axis: hertz.contact.semi_major,
+                    points,
+                    limit_over_p0: study.limit_over_p0,
+                    bending_over_p0: 0.0,
+                    shaft_radius: bulk.shaft_radius,
+                },
+                &study.bending_over_p0,
+            )?;
+            Some(results)
+        }
+    };
+    pb.finish_and_clear();
+    Ok(Some(Damage {
+        criteria,
+        total_volume: mesh.total_measure(),
+        p0,
+        limit_load: spec.limit_load,
+        study,
         time: start.elapsed(),
     }))
 }

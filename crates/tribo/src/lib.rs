@@ -7,8 +7,10 @@
 //!
 //! Layers, lowest first; a layer never reaches up:
 //!
-//! 1. [`kernels`]: closed-form elastic solutions (Love's rectangle, Hertz), pure functions;
-//! 2. [`operators`]: discretized influence operators on grids (FFT convolution, dense);
+//! 1. [`kernels`]: closed-form elastic solutions (Love's rectangle, Hertz, Kelvin 2D), pure
+//!    functions;
+//! 2. [`operators`]: discretized influence operators on grids (FFT convolution, dense) and
+//!    boundary meshes (the 2D BEM's H and G matrices);
 //! 3. [`solvers`]: contact problems; each returns a solution carrying its convergence record;
 //! 4. [`analysis`]: pure functions of fields (error measures against references, ...).
 //!

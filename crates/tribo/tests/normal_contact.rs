@@ -248,6 +248,13 @@ fn tangential_rows_pass() {
 }
 
 #[test]
+fn coupled_rows_pass() {
+    let rows = validation::coupled_rows().unwrap();
+    assert_eq!(rows.len(), 2);
+    assert_rows(&rows);
+}
+
+#[test]
 fn sliding_sphere_rows_pass() {
     assert_rows(&validation::sliding_sphere_rows().unwrap());
 }

@@ -56,7 +56,51 @@ pub fn files(out: &Outcome) -> Vec<String> {
     if out.stress.is_some() {
         f.extend(STRESS_FILES.iter().map(|f| f.to_string()));
     }
+    if let Some(d) = &out.damage {
+        f.extend(
+            d.criteria
+                .iter()
+                .map(|c| damage_plot_name(&c.assessment.name)),
+        );
+        if d.study.is_some() {
+            f.extend(STUDY_FILES.iter().map(|f| f.to_string()));
+        }
+    }
     f
+}
+
+/// Files of the Sec. 6 study.
+pub const STUDY_FILES: [&str; 2] = ["sec6.csv", "sec6.png"];
+
+/// A quantity name as a file and VTK array name: `sigma_1+` -> `sigma_1_tension`.
+pub fn safe_name(name: &str) -> String {
+    name.replace('+', "_tension").replace('-', "_compression")
+}
+
+/// The psi section of a criterion, like the paper's Fig. 6.
+pub fn damage_plot_name(name: &str) -> String {
+    format!("psi_{}_y0.png", safe_name(name))
+}
+
+/// `sec6.csv`: per sigma_b / p0 the changes of V_int, Psi_int against n, %.
+fn study_csv(study: &summary::StudySummary) -> String {
+    let mut s = String::from(
+        "bending_over_p0,V_n_m3,Psi_n_m3,friction_V_pct,friction_Psi_pct,tension_V_pct,\
+         tension_Psi_pct,compression_V_pct,compression_Psi_pct,tension_V_vs_friction_pct,\
+         tension_Psi_vs_friction_pct,compression_V_vs_friction_pct,\
+         compression_Psi_vs_friction_pct\n",
+    );
+    for r in &study.rows {
+        let mut v = vec![r.bending_over_p0, r.normal[0], r.normal[1]];
+        v.extend(r.friction);
+        v.extend(r.tension);
+        v.extend(r.compression);
+        v.extend(r.bending_vs_friction);
+        let line: Vec<String> = v.iter().map(|x| format!("{:e}", x + 0.0)).collect();
+        s.push_str(&line.join(","));
+        s.push('\n');
+    }
+    s
 }
 
 fn check_finite(what: &str, values: &[f64]) -> CliResult<()> {
@@ -164,6 +208,9 @@ pub fn summary(case: &Case, out: &Outcome) -> CliResult<Summary> {
     if let Some(t) = &s.stress {
         scalars.extend(t.scalars());
     }
+    if let Some(d) = &s.damage {
+        scalars.extend(d.scalars());
+    }
     check_finite("summary.json", &scalars)?;
     Ok(s)
 }
@@ -223,7 +270,18 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
     };
     let stress_out = match &out.stress {
         Some(st) => {
-            let arrays = stress::arrays(st);
+            let mut arrays: Vec<(String, Vec<f64>)> = stress::arrays(st)
+                .into_iter()
+                .map(|(n, v)| (n.to_string(), v))
+                .collect();
+            if let Some(d) = &out.damage {
+                for c in &d.criteria {
+                    arrays.push((
+                        format!("psi_{}", safe_name(&c.assessment.name)),
+                        c.psi.clone(),
+                    ));
+                }
+            }
             for (name, v) in &arrays {
                 check_finite(&format!("stress.vti {name}"), v)?;
             }
@@ -338,7 +396,7 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                 (&g.z, "z"),
                 &stress::plane_y(st, sxx, iy0),
                 true,
-                "sigma_xx",
+                ("sigma_xx", 1e9, "GPa"),
                 &format!("{y0}, {}", case.title),
             )
         })?;
@@ -349,7 +407,7 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                 (&g.y, "y"),
                 &stress::plane_z(st, sxx, iz),
                 false,
-                "sigma_xx",
+                ("sigma_xx", 1e9, "GPa"),
                 &format!(
                     "layer z = {:.4} mm nearest {}, {}",
                     1e3 * g.z[iz],
@@ -365,8 +423,82 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                 (&g.z, "z"),
                 &stress::plane_y(st, vm, iy0),
                 true,
-                "von Mises",
+                ("von Mises", 1e9, "GPa"),
                 &format!("{y0}, {}", case.title),
+            )
+        })?;
+    }
+    if let (Some(d), Some(st)) = (&out.damage, &out.stress) {
+        let g = &st.field.grid;
+        let iy0 = stress::nearest(&g.y, 0.0);
+        for c in &d.criteria {
+            let r = &c.assessment.region;
+            let name = &c.assessment.name;
+            plot_atomic(dir, &damage_plot_name(name), |p| {
+                plot::section(
+                    p,
+                    (&g.x, "x"),
+                    (&g.z, "z"),
+                    &stress::plane_y(st, &c.psi, iy0),
+                    true,
+                    (&format!("psi_{name}"), 1.0, "1 (dangerous where >= 1)"),
+                    &format!(
+                        "y = {:.3} mm, V = {:.3e} m^3, Psi = {:.3e} m^3, max {:.3}",
+                        1e3 * g.y[iy0],
+                        r.volume,
+                        r.damageability,
+                        r.psi_max
+                    ),
+                )
+            })?;
+        }
+    }
+    if let Some(study) = summary.damage.as_ref().and_then(|d| d.study.as_ref()) {
+        write_atomic(dir, STUDY_FILES[0], study_csv(study).as_bytes())?;
+        let pick = |f: &dyn Fn(&summary::StudyRow) -> f64| -> Vec<(f64, f64)> {
+            study
+                .rows
+                .iter()
+                .map(|r| (r.bending_over_p0, f(r)))
+                .collect()
+        };
+        let paper = study.paper;
+        let curves = vec![
+            plot::Curve {
+                name: "n+tau+b, tension zone: V_int".into(),
+                points: pick(&|r| r.tension[0]),
+                colour: plotters::style::RGBColor(214, 39, 40),
+                reference: Some(paper[2]),
+            },
+            plot::Curve {
+                name: "n+tau+b, tension zone: Psi_int".into(),
+                points: pick(&|r| r.tension[1]),
+                colour: plotters::style::RGBColor(255, 127, 14),
+                reference: Some(paper[3]),
+            },
+            plot::Curve {
+                name: "n+tau+b, compression zone: V_int".into(),
+                points: pick(&|r| r.compression[0]),
+                colour: plotters::style::RGBColor(31, 119, 180),
+                reference: Some(paper[4]),
+            },
+            plot::Curve {
+                name: "n+tau+b, compression zone: Psi_int".into(),
+                points: pick(&|r| r.compression[1]),
+                colour: plotters::style::RGBColor(44, 160, 44),
+                reference: Some(paper[5]),
+            },
+        ];
+        plot_atomic(dir, STUDY_FILES[1], |p| {
+            plot::lines(
+                p,
+                &curves,
+                "bending stress at the contact, sigma_b / p0",
+                "change against the loading n (normal only), %",
+                &format!(
+                    "Sec. 6: dangerous volume of the intensity, limit {} p0 (dashed: the paper)",
+                    study.limit_over_p0
+                ),
             )
         })?;
     }

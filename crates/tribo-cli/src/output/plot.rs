@@ -400,6 +400,103 @@ pub fn back_effect(
     Ok(())
 }
 
+/// One curve of [`lines`]: name, points, colour, and a dashed horizontal reference level.
+pub struct Curve {
+    /// Legend label.
+    pub name: String,
+    /// (x, y) points (markers joined by a line).
+    pub points: Vec<(f64, f64)>,
+    /// Colour.
+    pub colour: RGBColor,
+    /// A reference value drawn as a dashed horizontal line in the same colour (the paper's).
+    pub reference: Option<f64>,
+}
+
+/// Curves y(x) with markers, and dashed horizontal reference levels (the paper's values):
+/// the Sec. 6 changes of V_int and Psi_int against sigma_b / p0.
+pub fn lines(
+    path: &Path,
+    curves: &[Curve],
+    x_desc: &str,
+    y_desc: &str,
+    title: &str,
+) -> Result<(), String> {
+    register_font()?;
+    let root = BitMapBackend::new(path, (960, 720)).into_drawing_area();
+    root.fill(&WHITE).map_err(e)?;
+    let xs = curves.iter().flat_map(|c| c.points.iter().map(|p| p.0));
+    let (x0, x1) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+        (a.min(x), b.max(x))
+    });
+    let ys = curves
+        .iter()
+        .flat_map(|c| c.points.iter().map(|p| p.1).chain(c.reference));
+    let (y0, y1) = ys.fold((0.0f64, 0.0f64), |(a, b), y| (a.min(y), b.max(y)));
+    if !(x0.is_finite() && x1.is_finite()) {
+        return Err("lines: no points".into());
+    }
+    let (x0, x1) = if x1 > x0 {
+        (x0, x1)
+    } else {
+        (x0 - 1.0, x0 + 1.0)
+    };
+    let pad = 0.08 * (y1 - y0).max(1.0);
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, (FAMILY, 20))
+        .margin(20)
+        .x_label_area_size(55)
+        .y_label_area_size(75)
+        .build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
+        .label_style((FAMILY, 15))
+        .axis_desc_style((FAMILY, 17))
+        .light_line_style(WHITE.mix(0.0))
+        .draw()
+        .map_err(e)?;
+    chart
+        .draw_series(LineSeries::new(
+            [(x0, 0.0), (x1, 0.0)],
+            BLACK.mix(0.3).stroke_width(1),
+        ))
+        .map_err(e)?;
+    for c in curves {
+        let colour = c.colour;
+        chart
+            .draw_series(LineSeries::new(
+                c.points.iter().copied(),
+                colour.stroke_width(2),
+            ))
+            .map_err(e)?
+            .label(c.name.clone())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+            });
+        chart
+            .draw_series(c.points.iter().map(|&p| Circle::new(p, 4, colour.filled())))
+            .map_err(e)?;
+        if let Some(r) = c.reference {
+            // Dashed: short segments.
+            let n = 40;
+            chart
+                .draw_series((0..n).step_by(2).map(|k| {
+                    let a = x0 + (x1 - x0) * k as f64 / n as f64;
+                    let b = x0 + (x1 - x0) * (k + 1) as f64 / n as f64;
+                    PathElement::new(vec![(a, r), (b, r)], colour.mix(0.7).stroke_width(1))
+                }))
+                .map_err(e)?;
+        }
+    }
+    legend_box(&mut chart)?;
+    root.present().map_err(e)?;
+    Ok(())
+}
+
 /// A reference curve q(x, y) (Pa) and its legend label.
 pub type Reference<'a> = (&'a dyn Fn(f64, f64) -> f64, &'a str);
 
@@ -510,15 +607,18 @@ pub fn traction_profiles(
 
 /// A colour map of a scalar on a plane section: `values[iv * nh + ih]` at (h[ih], v[iv])
 /// (m), axes in mm; with `depth_down` the vertical axis is the depth z, drawn downward.
+/// `quantity` = (name, divisor, unit): values are shown divided by the divisor, e.g.
+/// ("sigma_xx", 1e9, "GPa"), or ("psi", 1.0, "1") for a dimensionless field.
 pub fn section(
     path: &Path,
     h: (&[f64], &str),
     v: (&[f64], &str),
     values: &[f64],
     depth_down: bool,
-    quantity: &str,
+    quantity: (&str, f64, &str),
     title: &str,
 ) -> Result<(), String> {
+    let (quantity, divisor, unit_name) = quantity;
     register_font()?;
     let (hs, hname) = h;
     let (vs, vname) = v;
@@ -536,8 +636,8 @@ pub fn section(
     let (h0, h1) = (1e3 * hs[0], 1e3 * hs[nh - 1]);
     let (va, vb) = (sgn * 1e3 * vs[0], sgn * 1e3 * vs[nv - 1]);
     let (v0, v1) = (va.min(vb), va.max(vb));
-    let lo = values.iter().cloned().fold(f64::INFINITY, f64::min) / 1e9;
-    let hi = values.iter().cloned().fold(f64::NEG_INFINITY, f64::max) / 1e9;
+    let lo = values.iter().cloned().fold(f64::INFINITY, f64::min) / divisor;
+    let hi = values.iter().cloned().fold(f64::NEG_INFINITY, f64::max) / divisor;
     let (lo, hi) = if hi > lo {
         (lo, hi)
     } else {
@@ -572,7 +672,7 @@ pub fn section(
         .draw_series((0..nv).flat_map(|iv| {
             (0..nh).map(move |ih| {
                 let (x, y) = (1e3 * hs[ih], sgn * 1e3 * vs[iv]);
-                let t = (values[iv * nh + ih] / 1e9 - lo) / (hi - lo);
+                let t = (values[iv * nh + ih] / divisor - lo) / (hi - lo);
                 Rectangle::new(
                     [(x - 0.5 * dh, y - 0.5 * dv), (x + 0.5 * dh, y + 0.5 * dv)],
                     viridis(t).filled(),
@@ -591,7 +691,7 @@ pub fn section(
     cb.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
-        .y_desc(format!("{quantity}, GPa"))
+        .y_desc(format!("{quantity}, {unit_name}"))
         .y_label_formatter(&tick)
         .label_style((FAMILY, 15))
         .axis_desc_style((FAMILY, 17))

@@ -77,7 +77,7 @@ fn spacing(v: &[f64]) -> f64 {
 
 /// VTK XML ImageData over the field points (uniform spacing): `Origin = (-hx, -hy, 0)`, z
 /// the depth into the body; every array as `PointData`.
-pub fn vti(st: &Stress, arrays: &[(&str, Vec<f64>)]) -> String {
+pub fn vti(st: &Stress, arrays: &[(String, Vec<f64>)]) -> String {
     let g = &st.field.grid;
     let (nx, ny, nz) = (g.x.len(), g.y.len(), g.z.len());
     let mut s = String::new();

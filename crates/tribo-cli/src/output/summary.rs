@@ -3,6 +3,7 @@
 use crate::case::{Case, LoadKind, Window};
 use crate::run::{BackEffect, Outcome};
 use serde::Serialize;
+use tribo::analysis::damage::{CycleDamage, CyclesDamage};
 use tribo::analysis::hertz_error::PressureErrors;
 use tribo::solvers::back_effect::BackEffectPoint;
 use tribo::solvers::NormalLoading;
@@ -37,6 +38,9 @@ pub struct Summary {
     /// The subsurface stress field (cases with `[field]`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stress: Option<StressSummary>,
+    /// Volume damageability (cases with `[damage]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damage: Option<DamageSummary>,
     /// Files written (names within the output directory).
     pub outputs: Vec<String>,
 }
@@ -438,6 +442,7 @@ impl Summary {
                 .as_ref()
                 .and_then(|t| TangentialSummary::new(case, out, t)),
             stress: out.stress.as_ref().map(StressSummary::new),
+            damage: out.damage.as_ref().map(DamageSummary::new),
             outputs,
         }
     }
@@ -579,6 +584,64 @@ impl Summary {
                 st.max_principal.value,
                 loc(st.max_principal.location)
             );
+        }
+        if let Some(d) = &self.damage {
+            for c in &d.criteria {
+                let _ = writeln!(
+                    o,
+                    "  damage {:<9} limit {:.4e} {} ({}): psi_max {:.4} at [{:.3e}, {:.3e}, \
+                     {:.3e}] m, V {:.4e} m^3 ({:.2} % of the field), Psi {:.4e} m^3",
+                    c.name,
+                    c.limit,
+                    c.unit,
+                    c.limit_source,
+                    c.psi_max,
+                    c.psi_max_location[0],
+                    c.psi_max_location[1],
+                    c.psi_max_location[2],
+                    c.volume,
+                    100.0 * c.volume_fraction,
+                    c.damageability
+                );
+                if let (Some(one), Some(n)) = (&c.cycle, &c.cycles) {
+                    let _ = writeln!(
+                        o,
+                        "         per cycle ({:.4e} s): mean V {:.4e} m^3, int V dt {:.4e} m^3 s, \
+                         Psi^(V,t) {:.4e} m^3 s, max int psi dt {:.4e} s; over N = {:e}: \
+                         Psi^(V,t) {:.4e} m^3 s",
+                        one.period,
+                        one.mean_volume,
+                        one.volume_time_integral,
+                        one.damageability_time_integral,
+                        one.node_time_integral_max,
+                        n.cycles,
+                        n.damageability_time_integral
+                    );
+                }
+            }
+            if let Some(study) = &d.study {
+                let _ = writeln!(
+                    o,
+                    "  Sec. 6 study  sigma_int,lim = {} p0; changes of V_int, Psi_int vs n \
+                     (paper: n+tau +3 %, +5 %; tension zone +20 %, +22 %; compression zone \
+                     +8 %, +3 %):",
+                    study.limit_over_p0
+                );
+                for r in &study.rows {
+                    let _ = writeln!(
+                        o,
+                        "    sigma_b/p0 = {:<6} n+tau {:+.1} %, {:+.1} %; tension {:+.1} %, \
+                         {:+.1} %; compression {:+.1} %, {:+.1} %",
+                        r.bending_over_p0,
+                        r.friction[0],
+                        r.friction[1],
+                        r.tension[0],
+                        r.tension[1],
+                        r.compression[0],
+                        r.compression[1]
+                    );
+                }
+            }
         }
         let _ = writeln!(
             o,
@@ -743,7 +806,7 @@ impl StressSummary {
             points: [f.grid.x.len(), f.grid.y.len(), f.grid.z.len()],
             half_width: half,
             depth: f.grid.z.last().copied().unwrap_or(0.0),
-            method: "direct sum",
+            method: st.method,
             bulk: st.bulk.map(|(k, s)| (k.name(), s)),
             max_von_mises: loc(f.max_of(|s| s.von_mises())),
             max_shear: loc(f.max_of(|s| s.max_shear())),
@@ -768,6 +831,196 @@ impl StressSummary {
         ] {
             v.push(l.value);
             v.extend(l.location);
+        }
+        v
+    }
+}
+
+/// One damage criterion in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct DamageCriterionSummary {
+    /// The quantity, e.g. `sigma_int` (von Mises), `u`, `sigma_1+`.
+    pub name: String,
+    /// Unit of the quantity and its limit.
+    pub unit: &'static str,
+    /// The limit phi_q^lim used (19)-(20).
+    pub limit: f64,
+    /// Where it came from: "given", "p0 multiple", "limiting load".
+    pub limit_source: &'static str,
+    /// The largest psi_q (21).
+    pub psi_max: f64,
+    /// Where, [x, y, z] m (z the depth).
+    pub psi_max_location: [f64; 3],
+    /// Dangerous volume V_q (22), m^3.
+    pub volume: f64,
+    /// V_q over the field's volume.
+    pub volume_fraction: f64,
+    /// Damageability Psi_q (24), m^3.
+    pub damageability: f64,
+    /// Psi_q / V_q (24), the mean psi over the dangerous volume (absent when V_q = 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub average: Option<f64>,
+    /// Accumulation over one load cycle (23), (24), (36), with `[damage.cycle]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cycle: Option<CycleDamage>,
+    /// The same over N cycles.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cycles: Option<CyclesDamage>,
+}
+
+/// One sigma_b / p0 of the Sec. 6 study: changes against the loading n, %.
+#[derive(Debug, Clone, Serialize)]
+pub struct StudyRow {
+    /// sigma_b / p0.
+    pub bending_over_p0: f64,
+    /// V_int and Psi_int of n, m^3.
+    pub normal: [f64; 2],
+    /// n + tau: changes of V_int and Psi_int against n, %.
+    pub friction: [f64; 2],
+    /// n + tau + b, contact in the tension zone: changes against n, %.
+    pub tension: [f64; 2],
+    /// n + tau + b, contact in the compression zone: changes against n, %.
+    pub compression: [f64; 2],
+    /// The same two bending loadings against n + tau, % ([tension V, Psi, compression V,
+    /// Psi]).
+    pub bending_vs_friction: [f64; 4],
+}
+
+/// The Sec. 6 study in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct StudySummary {
+    /// The intensity limit over p0.
+    pub limit_over_p0: f64,
+    /// p0, Pa.
+    pub p0: f64,
+    /// One row per sigma_b / p0.
+    pub rows: Vec<StudyRow>,
+    /// The paper's changes (Sec. 6), %: n+tau V, Psi; tension V, Psi; compression V, Psi.
+    pub paper: [f64; 6],
+}
+
+/// Volume damageability in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct DamageSummary {
+    /// The criteria.
+    pub criteria: Vec<DamageCriterionSummary>,
+    /// The field's volume, m^3.
+    pub field_volume: f64,
+    /// p0 (the largest contact pressure), Pa.
+    pub p0: f64,
+    /// The limiting load, N, where a limit came from it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limit_load: Option<f64>,
+    /// The Sec. 6 study.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub study: Option<StudySummary>,
+    /// Wall time, s.
+    pub time_s: f64,
+}
+
+/// The paper's Sec. 6 changes, %: n+tau V_int, Psi_int; tension zone; compression zone.
+pub const PAPER_SEC6: [f64; 6] = [3.0, 5.0, 20.0, 22.0, 8.0, 3.0];
+
+impl DamageSummary {
+    /// From the run's damage.
+    pub fn new(d: &crate::run::Damage) -> Self {
+        let criteria = d
+            .criteria
+            .iter()
+            .map(|c| {
+                let r = &c.assessment.region;
+                DamageCriterionSummary {
+                    name: c.assessment.name.clone(),
+                    unit: c.assessment.unit,
+                    limit: c.assessment.limit.value(),
+                    limit_source: c.source,
+                    psi_max: r.psi_max,
+                    psi_max_location: r.psi_max_at,
+                    volume: r.volume,
+                    volume_fraction: r.volume / d.total_volume,
+                    damageability: r.damageability,
+                    average: r.average,
+                    cycle: c.cycle.as_ref().map(|c| c.0.clone()),
+                    cycles: c.cycle.as_ref().map(|c| c.1),
+                }
+            })
+            .collect();
+        let study = d.study.as_ref().and_then(|results| {
+            let first = results.first()?;
+            let rows = results
+                .iter()
+                .filter(|r| r.loadings.len() == 4)
+                .map(|r| {
+                    let l = &r.loadings;
+                    let vs_n = |k: usize| [l[k].volume_change_vs_n, l[k].damageability_change_vs_n];
+                    StudyRow {
+                        bending_over_p0: r.bending_stress / r.p0,
+                        normal: [l[0].volume, l[0].damageability],
+                        friction: vs_n(1),
+                        tension: vs_n(2),
+                        compression: vs_n(3),
+                        bending_vs_friction: [
+                            l[2].volume_change_vs_n_tau,
+                            l[2].damageability_change_vs_n_tau,
+                            l[3].volume_change_vs_n_tau,
+                            l[3].damageability_change_vs_n_tau,
+                        ],
+                    }
+                })
+                .collect();
+            Some(StudySummary {
+                limit_over_p0: first.limit / first.p0,
+                p0: first.p0,
+                rows,
+                paper: PAPER_SEC6,
+            })
+        });
+        Self {
+            criteria,
+            field_volume: d.total_volume,
+            p0: d.p0,
+            limit_load: d.limit_load,
+            study,
+            time_s: d.time.as_secs_f64(),
+        }
+    }
+
+    /// Every number, for the finiteness check.
+    pub fn scalars(&self) -> Vec<f64> {
+        let mut v = vec![self.field_volume, self.p0];
+        for c in &self.criteria {
+            v.extend([c.limit, c.psi_max, c.volume, c.damageability]);
+            v.extend(c.psi_max_location);
+            v.extend(c.average);
+            if let (Some(one), Some(n)) = (&c.cycle, &c.cycles) {
+                v.extend([
+                    one.period,
+                    one.volume_time_integral,
+                    one.mean_volume,
+                    one.damageability_time_integral,
+                    one.node_time_integral_max,
+                    n.cycles,
+                    n.volume_time_integral,
+                    n.damageability_time_integral,
+                    n.node_time_integral_max,
+                ]);
+                v.extend(one.average);
+                v.extend(n.average);
+                v.extend(one.node_time_integral_max_at);
+                for st in &one.states {
+                    v.extend([st.time, st.volume, st.damageability, st.psi_max]);
+                }
+            }
+        }
+        if let Some(s) = &self.study {
+            for r in &s.rows {
+                v.push(r.bending_over_p0);
+                v.extend(r.normal);
+                v.extend(r.friction);
+                v.extend(r.tension);
+                v.extend(r.compression);
+                v.extend(r.bending_vs_friction);
+            }
         }
         v
     }

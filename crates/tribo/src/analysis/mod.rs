@@ -1,6 +1,10 @@
-//! Layer 4: pure functions of fields: error measures against reference solutions, ...
+//! Layer 4: pure functions of fields: error measures against reference solutions, the
+//! stress field, volume damageability and the energy criterion.
 
+pub mod damage;
+pub mod energy_criterion;
 pub mod hertz_error;
 pub mod limit_diagram;
 pub mod stress_field;
+pub mod surface_response;
 pub mod woehler;

@@ -159,6 +159,47 @@ pub fn bending_stress(bending_moment: f64, radius: f64) -> f64 {
     4.0 * bending_moment / (std::f64::consts::PI * radius.powi(3))
 }
 
+/// How a shaft loaded in bending by a transverse force is supported (beam theory).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum BeamSupport {
+    /// Simply supported at both ends, the force at mid-span: the largest moment, at mid-span,
+    /// is M = F L / 4 (Timoshenko & Gere, *Mechanics of Materials*, ch. 4).
+    SimplySupported,
+    /// Clamped at one end, the force at the free end: the largest moment, at the clamp, is
+    /// M = F L (Timoshenko & Gere, ch. 4).
+    Cantilever,
+}
+
+/// The largest bending moment (N m) of a shaft of span `span` (m) under the transverse
+/// force `force` (N) with the given support (see [`BeamSupport`]); the contact is taken at
+/// that section. Errors name `field_prefix`.force / .span when they are not finite and > 0.
+pub fn bending_moment(
+    force: f64,
+    span: f64,
+    support: BeamSupport,
+    field_prefix: &str,
+) -> Result<f64> {
+    if !(force.is_finite() && force > 0.0) {
+        return Err(Error::invalid(
+            format!("{field_prefix}bending_force"),
+            force,
+            "must be finite and > 0 (N): its magnitude; the side of the shaft the contact is \
+             on sets the sign of the bending stress there",
+        ));
+    }
+    if !(span.is_finite() && span > 0.0) {
+        return Err(Error::invalid(
+            format!("{field_prefix}span"),
+            span,
+            "must be finite and > 0 (m)",
+        ));
+    }
+    Ok(match support {
+        BeamSupport::SimplySupported => force * span / 4.0,
+        BeamSupport::Cantilever => force * span,
+    })
+}
+
 /// Surface shear stress of a circular shaft of radius `radius` (m) under a torque (N m):
 /// T R / J with J = pi R^4 / 2, Pa (Timoshenko & Gere, ch. 3).
 pub fn torsion_stress(torque: f64, radius: f64) -> f64 {
@@ -168,6 +209,25 @@ pub fn torsion_stress(torque: f64, radius: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bending_from_force_span_and_section() {
+        // A 20 mm shaft (R = 10 mm), 200 mm span, 5 kN at mid-span: M = F L / 4 = 250 N m,
+        // sigma = 4 M / (pi R^3) = 318.31 MPa (W = pi d^3 / 32 = 785.4 mm^3).
+        let m = bending_moment(5e3, 0.2, BeamSupport::SimplySupported, "bulk.").unwrap();
+        assert!((m - 250.0).abs() < 1e-12);
+        let sigma = bending_stress(m, 0.01);
+        assert!(
+            (sigma / (250.0 / (std::f64::consts::PI * 0.02f64.powi(3) / 32.0)) - 1.0).abs() < 1e-14
+        );
+        assert!((sigma - 3.183_098_861_837_907e8).abs() < 1.0);
+        let m = bending_moment(5e3, 0.2, BeamSupport::Cantilever, "bulk.").unwrap();
+        assert!((m - 1000.0).abs() < 1e-12);
+        let e = bending_moment(-1.0, 0.2, BeamSupport::Cantilever, "bulk.").unwrap_err();
+        assert!(e.to_string().starts_with("bulk.bending_force"), "{e}");
+        let e = bending_moment(1.0, 0.0, BeamSupport::Cantilever, "bulk.").unwrap_err();
+        assert!(e.to_string().starts_with("bulk.span"), "{e}");
+    }
 
     #[test]
     fn back_effect_of_the_papers_case_matches_halfspace_table() {

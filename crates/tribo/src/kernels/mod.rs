@@ -4,6 +4,7 @@ pub mod bulk;
 pub mod elliptic;
 pub mod hamilton;
 pub mod hertz;
+pub mod kelvin2d;
 pub mod love;
 pub(crate) mod quadrature;
 pub mod subsurface;

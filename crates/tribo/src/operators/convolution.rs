@@ -416,7 +416,7 @@ impl ConvolutionOperator {
 
 /// `columns[kx * column_len + iy] = rows[iy * bins_x + kx]` for `iy < n_rows`, zero for the
 /// rest of each column.
-fn transpose_rows_to_columns(
+pub(crate) fn transpose_rows_to_columns(
     rows: &[Complex<f64>],
     columns: &mut [Complex<f64>],
     bins_x: usize,
@@ -442,7 +442,7 @@ fn transpose_rows_to_columns(
 }
 
 /// `rows[iy * bins_x + kx] = columns[kx * column_len + iy]` for `iy < n_rows`.
-fn transpose_columns_to_rows(
+pub(crate) fn transpose_columns_to_rows(
     columns: &[Complex<f64>],
     rows: &mut [Complex<f64>],
     bins_x: usize,

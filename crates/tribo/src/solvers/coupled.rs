@@ -51,7 +51,7 @@ pub fn coupling_operator(
     let c = coupling_coefficient(body1, body2);
     let (dx, dy) = (grid.dx(), grid.dy());
     let (hx, hy) = (0.5 * dx, 0.5 * dy);
-    let (sin, cos) = angle.sin_cos();
+    let (sin, cos) = crate::solvers::tangential::direction(angle);
     ConvolutionOperator::new(grid, move |di, dj| {
         let (x, y) = (di as f64 * dx, dj as f64 * dy);
         c * (cos * love::rectangle_integral_h_x(x, y, hx, hy)
@@ -148,7 +148,7 @@ pub fn solve_coupled(
             tangential_params,
             if uncoupled { None } else { Some(&offset) },
         )?;
-        let (sin, cos) = angle.sin_cos();
+        let (sin, cos) = crate::solvers::tangential::direction(angle);
         for (t, (qx, qy)) in tau
             .iter_mut()
             .zip(tangential.traction_x.iter().zip(&tangential.traction_y))
@@ -286,6 +286,22 @@ mod tests {
                 assert!((-k - (ux(&b1) - ux(&b2))).abs() <= 1e-12 * scale);
             }
         }
+    }
+
+    /// The coupled solution against a dense projected Gauss-Seidel solution of the same
+    /// discrete problem ([`crate::validation::coupled_dense_check`], where the tolerance is
+    /// argued).
+    #[test]
+    fn coupled_solution_equals_a_dense_gauss_seidel_solution() {
+        let c = crate::validation::coupled_dense_check().unwrap();
+        assert!(c.passes >= 3, "coupling should need passes: {}", c.passes);
+        assert!(c.pressure_difference <= 1e-6, "{c:?}");
+        assert!(c.traction_difference <= 1e-6, "{c:?}");
+        assert!((c.dense_normal_load / 1000.0 - 1.0).abs() < 1e-6, "{c:?}");
+        assert!(
+            (c.dense_tangential_force / 150.0 - 1.0).abs() < 1e-5,
+            "{c:?}"
+        );
     }
 
     #[test]

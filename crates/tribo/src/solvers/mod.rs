@@ -1,6 +1,7 @@
 //! Layer 3: contact solvers. Each returns a solution that carries its convergence record.
 
 pub mod back_effect;
+pub mod bem2d;
 pub mod coupled;
 pub mod normal;
 pub mod tangential;

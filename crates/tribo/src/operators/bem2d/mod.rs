@@ -1,0 +1,20 @@
+//! Dense 2D boundary element operators (direct collocation BEM with the Kelvin solution).
+//!
+//! * [`geometry`]: regions bounded by named line and arc segments (the model description);
+//! * [`mesh`]: quadratic isoparametric elements with discontinuous nodes at segment ends,
+//!   built and validated from the model;
+//! * [`assemble`]: the H and G matrices of each region (rayon-parallel dense assembly);
+//! * `integrate` (crate-internal): singular, near-singular and regular element integrals.
+//!
+//! The operators know meshes, not problems: boundary conditions, bonded interfaces and the
+//! solve live in [`crate::solvers::bem2d`].
+
+pub mod assemble;
+pub mod geometry;
+pub(crate) mod integrate;
+pub mod mesh;
+
+pub use assemble::{assemble, RegionOperators};
+pub use geometry::{BemModel, Division, Grading, LoopItem, Region, Segment, SegmentShape};
+pub use integrate::{MAX_DEPTH, NEAR_RATIO, SINGULAR_POWER};
+pub use mesh::{BemMesh, Element, Node, RegionMesh, SegmentInfo};
