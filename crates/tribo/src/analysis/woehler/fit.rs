@@ -4,13 +4,14 @@
 //!
 //! * [`fit_regression`]: ASTM E739-10 ("Standard practice for statistical analysis of linear
 //!   or linearized stress-life (S-N) and strain-life (epsilon-N) fatigue data"): least squares
-//!   of log10 N on log10 S (N is the dependent variable, E739 Sec. 5) over the fractures of the
-//!   finite zone, the standard error of log10 N with k - 2 degrees of freedom, and confidence
-//!   bands for the median line: pointwise with Student's t, and the E739 Sec. 8.1 band for the
-//!   whole line (Working-Hotelling, sqrt(2 F_P(2, k-2))). Run-outs are not used by E739; they
-//!   only place the fatigue limit estimate, the midpoint between the highest run-out level and
-//!   the lowest level of the finite zone (pyLife's `finite_infinite_transition`, the same
-//!   heuristic its `Elementary` analyser uses, so the two can be compared).
+//!   of log10 N on log10 S (N is the dependent variable, as E739 prescribes) over the
+//!   fractures of the finite zone, the standard error of log10 N with k - 2 degrees of
+//!   freedom, and confidence bands for the median line: pointwise with Student's t, and
+//!   E739's band for the whole line (Working-Hotelling, sqrt(2 F_P(2, k-2))). Run-outs are
+//!   not used by E739; they only place the fatigue limit estimate, the midpoint between the
+//!   highest run-out level and the lowest level of the finite zone (pyLife's
+//!   `finite_infinite_transition`, the same heuristic its `Elementary` analyser uses, so
+//!   the two can be compared).
 //! * [`fit_max_likelihood`]: maximum likelihood of the full model, in the spirit of pyLife's
 //!   `MaxLikeFull` (boschresearch/pylife, `materialdata/woehler/likelihood.py`, read, not
 //!   copied): in the finite zone log10 N of a fracture is normal around Basquin's line,
@@ -178,9 +179,9 @@ pub struct BasquinRegression {
     /// B = -m (negative for fatigue data).
     pub slope_b: f64,
     /// Standard error of the estimate: the standard deviation of log10 N about the line,
-    /// sqrt(sum of squared residuals / (k - 2)) (E739 Eq. 6).
+    /// sqrt(sum of squared residuals / (k - 2)) (E739's variance estimate).
     pub std_error: f64,
-    /// Standard error of A (E739 Sec. 7: sigma^2 (1/k + Xbar^2 / Sxx)).
+    /// Standard error of A (variance sigma^2 (1/k + Xbar^2 / Sxx), ordinary least squares).
     pub std_error_intercept: f64,
     /// Standard error of B (sigma^2 / Sxx).
     pub std_error_slope: f64,
@@ -197,8 +198,8 @@ pub struct BasquinRegression {
 }
 
 impl BasquinRegression {
-    /// Least squares of y on x (E739 Eqs. 4-6); None when fewer than three points or all x
-    /// equal.
+    /// Least squares of y on x (the E739 estimators A = Ybar - B Xbar, B = Sxy / Sxx);
+    /// None when fewer than three points or all x equal.
     pub fn from_points(x: &[f64], y: &[f64]) -> Option<Self> {
         let k = x.len();
         if k < 3 || y.len() != k {

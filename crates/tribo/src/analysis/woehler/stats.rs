@@ -92,7 +92,8 @@ pub fn ln_gamma_q(a: f64, x: f64) -> f64 {
 }
 
 /// ln Phi(z), the log of the standard normal CDF, accurate in both tails:
-/// Phi(z) = Q(1/2, z^2/2) / 2 for z < 0 (A&S 7.1.2, 26.2.2 with erfc(x) = Q(1/2, x^2)).
+/// Phi(z) = erfc(-z / sqrt 2) / 2 and erfc(x) = Q(1/2, x^2), so Phi(z) = Q(1/2, z^2/2) / 2
+/// for z < 0 (A&S chapters 6, 7 and 26.2).
 pub fn ln_normal_cdf(z: f64) -> f64 {
     if z.is_nan() {
         return f64::NAN;
@@ -180,7 +181,7 @@ fn beta_cf(a: f64, b: f64, x: f64) -> f64 {
 }
 
 /// CDF of Student's t distribution with `dof` > 0 degrees of freedom:
-/// P(T <= t) = 1 - I_{dof/(dof+t^2)}(dof/2, 1/2) / 2 for t >= 0 (A&S 26.7.1 with 26.5.27).
+/// P(T <= t) = 1 - I_{dof/(dof+t^2)}(dof/2, 1/2) / 2 for t >= 0 (A&S Sec. 26.7).
 pub fn student_t_cdf(t: f64, dof: f64) -> f64 {
     let tail = 0.5 * incomplete_beta(0.5 * dof, 0.5, dof / (dof + t * t));
     if t >= 0.0 {
@@ -227,7 +228,7 @@ pub fn student_t_quantile(p: f64, dof: f64) -> f64 {
 
 /// The quantile of the F distribution with (2, d2) degrees of freedom, in closed form: its CDF
 /// is 1 - (1 + 2x/d2)^(-d2/2), so x_p = (d2/2) ((1-p)^(-2/d2) - 1). Used by the ASTM E739
-/// (Working-Hotelling) confidence band, E739-10 Sec. 8.1.
+/// (Working-Hotelling) confidence band for the whole line.
 pub fn f2_quantile(p: f64, d2: f64) -> f64 {
     0.5 * d2 * ((1.0 - p).powf(-2.0 / d2) - 1.0)
 }
