@@ -1077,8 +1077,8 @@ fn limits_from_a_limiting_run_scale_like_hertz() {
     }
 }
 
-/// The Sec. 6 study on a reduced grid: the changes have the paper's signs for friction and
-/// the tension zone, and sec6.csv / sec6.png are written.
+/// The Sec. 6 study on a reduced grid: the changes have the paper's signs for every loading
+/// (friction, tension zone, compression zone), and sec6.csv / sec6.png are written.
 #[test]
 fn the_sec6_study_runs_and_has_the_papers_signs() {
     let text = stdout(&tribo(&["example", "roller-shaft-sec6"], None))
@@ -1086,7 +1086,7 @@ fn the_sec6_study_runs_and_has_the_papers_signs() {
         .replace("n = [39, 39, 20]", "n = [15, 15, 8]")
         .replace(
             "bending_over_p0 = [0.0, 0.025, 0.05, 0.075, 0.1, 0.125, 0.15, 0.175, 0.2, 0.25, 0.3]",
-            "bending_over_p0 = [0.0, 0.05]",
+            "bending_over_p0 = [0.0, 0.1]",
         );
     let (o, out, _d) = run_case(&text, &[], &[]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
@@ -1095,7 +1095,13 @@ fn the_sec6_study_runs_and_has_the_papers_signs() {
     let rows = st["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 2);
     let g = |r: &serde_json::Value, k: &str, i: usize| r[k][i].as_f64().unwrap();
-    assert!(g(&rows[1], "friction", 0) > 0.0 && g(&rows[1], "friction", 1) > 0.0);
+    // The paper's signs for every loading at sigma_b = 0.1 p0 (README: at 0.05 p0 the
+    // compression zone is still slightly below n; the paper's +8 %, +3 % need about 0.1 p0).
+    for key in ["friction", "tension", "compression"] {
+        for i in 0..2 {
+            assert!(g(&rows[1], key, i) > 0.0, "{key}[{i}]: {}", rows[1]);
+        }
+    }
     assert!(g(&rows[1], "tension", 0) > g(&rows[1], "friction", 0));
     // sigma_b = 0: the bending loadings equal n + tau.
     assert!((g(&rows[0], "tension", 0) - g(&rows[0], "friction", 0)).abs() < 1e-9);
