@@ -170,6 +170,7 @@ struct RawContact {
     tangential_angle_deg: Option<Value>,
     sliding: Option<Value>,
     sliding_angle_deg: Option<Value>,
+    traction_direction: Option<Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -351,6 +352,9 @@ pub struct Friction {
     pub coefficient: f64,
     /// Partial slip under a force, or full sliding (angles in rad from x).
     pub loading: tribo::solvers::tangential::TangentialLoading,
+    /// Partial slip with the traction direction free (`traction_direction = "free"`, the
+    /// full 2D problem) instead of parallel to the load (Cattaneo-Mindlin's assumption).
+    pub free_direction: bool,
 }
 
 impl Friction {
@@ -1381,6 +1385,7 @@ fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
         for (name, v) in [
             ("contact.tangential_angle_deg", &c.tangential_angle_deg),
             ("contact.sliding_angle_deg", &c.sliding_angle_deg),
+            ("contact.traction_direction", &c.traction_direction),
         ] {
             if let Some(v) = v {
                 return Err(CliError::field(
@@ -1406,7 +1411,8 @@ fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
                 return Err(CliError::field(
                     "contact.sliding_angle_deg",
                     show(v),
-                    "applies to sliding = true; under a tangential load give                      contact.tangential_angle_deg",
+                    "applies to sliding = true; under a tangential load give \
+                 contact.tangential_angle_deg",
                 ));
             }
             let magnitude = positive(
@@ -1439,20 +1445,36 @@ fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
             return Err(CliError::field(
                 "contact.tangential_load",
                 show(q),
-                "give exactly one of contact.tangential_load (partial slip) and                  contact.sliding = true (full sliding), not both",
+                "give exactly one of contact.tangential_load (partial slip) and \
+                 contact.sliding = true (full sliding), not both",
             ))
         }
         (None, _) => {
             return Err(CliError::field(
                 "contact.friction",
                 show(fv),
-                "needs exactly one of contact.tangential_load (N, partial slip) and                  contact.sliding = true (full sliding)",
+                "needs exactly one of contact.tangential_load (N, partial slip) and \
+                 contact.sliding = true (full sliding)",
+            ))
+        }
+    };
+    let free_direction = match &c.traction_direction {
+        None => false,
+        Some(Value::String(v)) if v == "parallel" => false,
+        Some(Value::String(v)) if v == "free" => true,
+        Some(v) => {
+            return Err(CliError::field(
+                "contact.traction_direction",
+                show(v),
+                "must be \"parallel\" (q along the load, Cattaneo-Mindlin's assumption) or \
+                 \"free\" (the full 2D partial-slip problem)",
             ))
         }
     };
     Ok(Some(Friction {
         coefficient: f,
         loading,
+        free_direction,
     }))
 }
 
@@ -1503,7 +1525,8 @@ fn field_length(
                 Err(CliError::field(
                     metres_key,
                     "(missing)",
-                    "required where a body is given by a surface (no Hertz semi-axis to scale                      by): give it in m",
+                    "required where a body is given by a surface (no Hertz semi-axis to scale \
+                 by): give it in m",
                 ))
             }
         }

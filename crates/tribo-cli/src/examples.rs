@@ -63,6 +63,12 @@ pub const EXAMPLES: &[Example] = &[
         description: "a surface given as a grid of heights (inline; CSV files work the same)",
         text: include_str!("../examples/cases/height-map.toml"),
     },
+    Example {
+        name: "fatigue-diagram",
+        description:
+            "four fatigue limits -> the limiting-state diagram, Fig. 4 (`tribo fatigue diagram -`)",
+        text: include_str!("../examples/fatigue-diagram.toml"),
+    },
 ];
 
 /// Find an example by name.
@@ -88,6 +94,11 @@ mod tests {
     #[test]
     fn every_example_parses_and_validates() {
         for e in EXAMPLES {
+            if e.name.starts_with("fatigue-") {
+                let d = crate::fatigue::parse_limits(e.text, e.name, Path::new("."));
+                assert!(d.is_ok(), "{}: {}", e.name, d.unwrap_err());
+                continue;
+            }
             let c = parse_case(e.text, e.name, Path::new("."));
             assert!(c.is_ok(), "{}: {}", e.name, c.unwrap_err());
         }

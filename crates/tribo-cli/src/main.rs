@@ -4,6 +4,7 @@
 mod case;
 mod error;
 mod examples;
+mod fatigue;
 mod output;
 mod run;
 mod units;
@@ -46,7 +47,9 @@ Examples:
   tribo example crowned-roller | tribo run - -o roller --json
   tribo example roller-shaft-bending | tribo run - -o fig2a   the back effect (Fig. 2a)
   tribo example roller-shaft-normal | tribo run - -o normal   normal contact only
-  tribo validate                        the verification table";
+  tribo validate                        the verification table
+  tribo fatigue fit data.csv -o fit     Woehler curve fits (E739, max. likelihood), Fig. 3
+  tribo example fatigue-diagram | tribo fatigue diagram -   limiting states, Fig. 4";
 
 #[derive(Debug, Parser)]
 #[command(name = "tribo", version, about = ABOUT, long_about = LONG_ABOUT, after_help = AFTER_HELP)]
@@ -121,6 +124,9 @@ Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3
         /// Example name; omit to list them.
         name: Option<String>,
     },
+    /// Fatigue curves from test data and the limiting-state diagram (paper Figs. 3, 4).
+    #[command(subcommand)]
+    Fatigue(fatigue::FatigueCommand),
     /// Run the verification suite and print its table (exit 1 if a row fails).
     Validate {
         /// Print the rows as JSON.
@@ -141,6 +147,7 @@ fn main() -> ExitCode {
         } => cmd_run(case.as_deref(), &out, json, quiet, dry_run),
         Command::Example { name } => cmd_example(name.as_deref()),
         Command::Validate { json } => cmd_validate(json),
+        Command::Fatigue(cmd) => fatigue::run(cmd),
     };
     match result {
         Ok(code) => ExitCode::from(code),

@@ -25,6 +25,7 @@ use tribo::solvers::back_effect::{back_effect_curve_observed, BackEffectPoint};
 use tribo::solvers::coupled::solve_coupled;
 use tribo::solvers::tangential::TangentialSolution;
 use tribo::solvers::tangential::{solve_tangential, TangentialParams, TangentialProblem};
+use tribo::solvers::tangential_2d::solve_tangential_2d;
 use tribo::solvers::{
     solve_normal_active_set, solve_normal_cg_observed, NormalContactProblem, NormalContactSolution,
     NormalLoading,
@@ -477,6 +478,15 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
         ),
     );
     let start = Instant::now();
+    if dissimilar && fr.free_direction {
+        pb.finish_and_clear();
+        return Err(crate::error::CliError::field(
+            "contact.traction_direction",
+            "free",
+            "the free-direction partial-slip solver is not coupled to the normal problem \
+             yet; for dissimilar materials (Dundurs beta != 0) use \"parallel\"",
+        ));
+    }
     let (result, coupled) = if dissimilar {
         let p = &out.prepared;
         match solve_coupled(
@@ -511,7 +521,11 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
             body2: *m2,
             loading: fr.loading,
         };
-        (solve_tangential(&problem, &params), None)
+        if fr.free_direction {
+            (solve_tangential_2d(&problem, &params), None)
+        } else {
+            (solve_tangential(&problem, &params), None)
+        }
     };
     let time = start.elapsed();
     pb.finish_and_clear();

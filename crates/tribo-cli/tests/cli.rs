@@ -487,6 +487,10 @@ fn examples_list_print_and_validate() {
     for name in &names {
         let o = tribo(&["example", name], None);
         assert_eq!(o.status.code(), Some(0), "{name}");
+        if name.starts_with("fatigue-") {
+            // Not a case file: `tribo fatigue diagram` input, checked in tests/fatigue_cli.rs.
+            continue;
+        }
         let text = stdout(&o);
         let v = tribo(&["run", "-", "--dry-run"], Some(&text));
         assert_eq!(v.status.code(), Some(0), "{name}: {}", stderr(&v));
@@ -1073,8 +1077,8 @@ fn limits_from_a_limiting_run_scale_like_hertz() {
     }
 }
 
-/// The Sec. 6 study on a reduced grid: the changes have the paper's signs for friction and
-/// the tension zone, and sec6.csv / sec6.png are written.
+/// The Sec. 6 study on a reduced grid: the changes have the paper's signs for every loading
+/// (friction, tension zone, compression zone), and sec6.csv / sec6.png are written.
 #[test]
 fn the_sec6_study_runs_and_has_the_papers_signs() {
     let text = stdout(&tribo(&["example", "roller-shaft-sec6"], None))
@@ -1082,7 +1086,7 @@ fn the_sec6_study_runs_and_has_the_papers_signs() {
         .replace("n = [39, 39, 20]", "n = [15, 15, 8]")
         .replace(
             "bending_over_p0 = [0.0, 0.025, 0.05, 0.075, 0.1, 0.125, 0.15, 0.175, 0.2, 0.25, 0.3]",
-            "bending_over_p0 = [0.0, 0.05]",
+            "bending_over_p0 = [0.0, 0.1]",
         );
     let (o, out, _d) = run_case(&text, &[], &[]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
@@ -1091,7 +1095,13 @@ fn the_sec6_study_runs_and_has_the_papers_signs() {
     let rows = st["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 2);
     let g = |r: &serde_json::Value, k: &str, i: usize| r[k][i].as_f64().unwrap();
-    assert!(g(&rows[1], "friction", 0) > 0.0 && g(&rows[1], "friction", 1) > 0.0);
+    // The paper's signs for every loading at sigma_b = 0.1 p0 (README: at 0.05 p0 the
+    // compression zone is still slightly below n; the paper's +8 %, +3 % need about 0.1 p0).
+    for key in ["friction", "tension", "compression"] {
+        for i in 0..2 {
+            assert!(g(&rows[1], key, i) > 0.0, "{key}[{i}]: {}", rows[1]);
+        }
+    }
     assert!(g(&rows[1], "tension", 0) > g(&rows[1], "friction", 0));
     // sigma_b = 0: the bending loadings equal n + tau.
     assert!((g(&rows[0], "tension", 0) - g(&rows[0], "friction", 0)).abs() < 1e-9);
@@ -1291,4 +1301,38 @@ fn the_energy_criterion_reduces_to_the_strain_energy() {
         "[damage.energy]\n",
     );
     assert_bad_input(&missing, &[], "damage.energy.u0");
+}
+
+/// `traction_direction = "free"`: the full 2D partial-slip problem. Same force, a small
+/// traction across the load (odd in y), the stick radius of Cattaneo-Mindlin within about
+/// one element (the library tests check the optimality conditions and the energy).
+#[test]
+fn free_traction_direction_solves_the_2d_problem() {
+    let text = format!(
+        "{SPHERE}friction = 0.3\ntangential_load = 15.0\ntraction_direction = \"free\"\n\
+         [grid]\nn = 48\n"
+    );
+    let (o, out, _d) = run_case(&text, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let t = &s["tangential"];
+    assert_eq!(t["traction_direction"], "free");
+    let q = t["tangential_force"][0].as_f64().unwrap();
+    assert!((q / 15.0 - 1.0).abs() < 1e-8, "{t}");
+    let c = t["stick_semi_major"].as_f64().unwrap();
+    let cm = t["stick_semi_major_cattaneo_mindlin"].as_f64().unwrap();
+    let dx = 2.0 * s["grid"]["half_width"][0].as_f64().unwrap() / 48.0;
+    assert!((c - cm).abs() < 1.5 * dx, "{c} vs {cm} (dx {dx})");
+    let csv = std::fs::read_to_string(out.join("traction.csv")).unwrap();
+    let qy_max = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(3).unwrap().parse::<f64>().unwrap().abs())
+        .fold(0.0f64, f64::max);
+    assert!(qy_max > 0.0, "no transverse traction");
+    assert_bad_input(
+        &text.replace("\"free\"", "\"sideways\""),
+        &[],
+        "contact.traction_direction",
+    );
 }

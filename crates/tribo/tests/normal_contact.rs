@@ -248,6 +248,13 @@ fn tangential_rows_pass() {
 }
 
 #[test]
+fn damage_rows_pass() {
+    let rows = validation::damage_rows().unwrap();
+    assert_eq!(rows.len(), 4);
+    assert_rows(&rows);
+}
+
+#[test]
 fn coupled_rows_pass() {
     let rows = validation::coupled_rows().unwrap();
     assert_eq!(rows.len(), 2);

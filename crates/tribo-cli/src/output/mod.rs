@@ -150,7 +150,8 @@ pub fn write_atomic(dir: &Path, name: &str, bytes: &[u8]) -> CliResult<()> {
     commit(&tmp, dir, name)
 }
 
-fn plot_atomic(
+/// Draw a plot into a temporary file and rename it over `dir/name` (whole or nothing).
+pub fn plot_atomic(
     dir: &Path,
     name: &str,
     draw: impl FnOnce(&Path) -> Result<(), String>,

@@ -658,6 +658,8 @@ impl Summary {
 pub struct TangentialSummary {
     /// "partial_slip" or "sliding".
     pub mode: &'static str,
+    /// "parallel" (q along the load) or "free" (the full 2D problem).
+    pub traction_direction: &'static str,
     /// Coulomb friction coefficient.
     pub friction: f64,
     /// (Q_x, Q_y) on body 1, N.
@@ -705,6 +707,11 @@ impl TangentialSummary {
         };
         Some(Self {
             mode: fr.mode(),
+            traction_direction: if fr.free_direction {
+                "free"
+            } else {
+                "parallel"
+            },
             friction: fr.coefficient,
             tangential_force: [s.tangential_force.0 + 0.0, s.tangential_force.1 + 0.0],
             stick_area: s.stick_area,

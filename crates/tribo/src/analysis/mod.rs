@@ -4,5 +4,7 @@
 pub mod damage;
 pub mod energy_criterion;
 pub mod hertz_error;
+pub mod limit_diagram;
 pub mod stress_field;
 pub mod surface_response;
+pub mod woehler;

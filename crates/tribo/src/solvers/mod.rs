@@ -5,6 +5,7 @@ pub mod bem2d;
 pub mod coupled;
 pub mod normal;
 pub mod tangential;
+pub mod tangential_2d;
 
 pub use normal::{
     solve_normal_active_set, solve_normal_cg, solve_normal_cg_observed, NormalContactParams,

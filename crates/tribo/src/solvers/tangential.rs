@@ -184,6 +184,15 @@ pub fn tangential_compliance_operator(
     })
 }
 
+/// The input rules of the tangential problem (lengths, finite values, friction, the force
+/// below f F_N), shared with [`crate::solvers::tangential_2d`].
+pub(crate) fn validate_problem(
+    problem: &TangentialProblem<'_>,
+    params: &TangentialParams,
+) -> Result<()> {
+    validate(problem, params)
+}
+
 fn validate(problem: &TangentialProblem<'_>, params: &TangentialParams) -> Result<()> {
     if !(params.tolerance.is_finite() && params.tolerance > 0.0 && params.tolerance < 1.0) {
         return Err(Error::invalid(
