@@ -1161,12 +1161,15 @@ impl ContactProblem {
     pub fn reset(&mut self) {
         self.slip = vec![0.0; self.n];
         let mut states = Vec::with_capacity(self.n);
-        let gmin = self
-            .pairs
-            .iter()
-            .flat_map(|p| p.nodes.iter().map(|s| s.gap0))
-            .fold(f64::INFINITY, f64::min);
+        // Start each pair with its closest node(s) in contact (sticking), so that a body held
+        // only by contact is restrained in the first iteration.
         for p in &self.pairs {
+            let gmin = p
+                .nodes
+                .iter()
+                .filter(|s| s.master.is_some())
+                .map(|s| s.gap0)
+                .fold(f64::INFINITY, f64::min);
             let hmin = seg_elements(&self.problem, p.slave_seg)
                 .iter()
                 .map(|e| e.chord_length())
