@@ -104,10 +104,12 @@
 //! | f = 1e-9 vs f = 0 | pressure difference | 8e-11 p0 |
 //! | block of two bonded regions vs one piece | pressure difference | 1.2e-5 p0 |
 //!
-//! Timing (`contact_timing`, release, 2 shared cores): 932 BEM DOF / 196 contact unknowns:
-//! assembly 0.07 s, factorization + condensation 0.12 s, a load step 0.002 s; 1988 / 772:
-//! 0.35 s, 1.1 s, 0.08 s (10 active-set iterations per step, each one dense LU of the
-//! contact nodes' unknowns).
+//! Timing (`contact_timing`, release, 2 cores shared with other builds, load average 4.4):
+//! 932 BEM DOF / 196 contact unknowns: assembly 0.04 s, factorization + condensation 0.09 s,
+//! a load step 0.0016 s; 1284 / 388: 0.09 s, 0.17 s, 0.009 s; 1988 / 772: 0.22 s, 0.74 s,
+//! 0.043 s (about 10 active-set iterations per step, each a dense LU of the unknowns of the
+//! nodes in contact). Condensation costs one LU per body plus one solve per contact-node
+//! component, O(N^2 n_c); a step is independent of N.
 //!
 //! References: Johnson, *Contact Mechanics* (1985), ch. 4 (Hertz, flat punch: p = P /
 //! (pi sqrt(a^2 - x^2))) and ch. 7 (Cattaneo-Mindlin, c = a sqrt(1 - Q/(f P))); Nowell &
