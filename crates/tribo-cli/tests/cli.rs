@@ -1,7 +1,9 @@
 //! End-to-end tests of the `tribo` binary: exit codes, error messages, files written.
 
+mod common;
+use common::tribo;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
 
 const PAPER: &str = r#"
 title = "Roller on shaft, paper Sec. 3"
@@ -39,27 +41,6 @@ load = 10.0
 n = 8
 half_width = 1e-4
 "#;
-
-fn tribo(args: &[&str], stdin: Option<&str>) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_tribo"));
-    cmd.args(args).stdout(Stdio::piped()).stderr(Stdio::piped());
-    cmd.stdin(if stdin.is_some() {
-        Stdio::piped()
-    } else {
-        Stdio::null()
-    });
-    let mut child = cmd.spawn().expect("spawn tribo");
-    if let Some(text) = stdin {
-        use std::io::Write;
-        child
-            .stdin
-            .take()
-            .unwrap()
-            .write_all(text.as_bytes())
-            .unwrap();
-    }
-    child.wait_with_output().expect("wait for tribo")
-}
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
@@ -858,6 +839,12 @@ fn dissimilar_materials_are_coupled_by_alternation() {
     assert!(!stderr(&o).contains("note"));
     let o = tribo(&["run", "-", "--dry-run"], Some(&text));
     assert_eq!(o.status.code(), Some(0));
+    // The free-direction solver is not coupled: refused, naming the field, nothing written.
+    let free = text.replace(
+        "tangential_load = 10.0\n",
+        "tangential_load = 10.0\ntraction_direction = \"free\"\n",
+    );
+    assert_bad_input(&free, &[], "contact.traction_direction");
 }
 
 #[test]

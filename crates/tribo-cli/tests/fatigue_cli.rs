@@ -2,30 +2,11 @@
 //! pyLife's numbers recorded in `tests/fixtures/pylife_woehler.json` (provenance inside),
 //! the files written, and bad input (exit code 2 naming the field).
 
+mod common;
+use common::tribo;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-
-fn tribo(args: &[&str], stdin: Option<&str>) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_tribo"));
-    cmd.args(args).stdout(Stdio::piped()).stderr(Stdio::piped());
-    cmd.stdin(if stdin.is_some() {
-        Stdio::piped()
-    } else {
-        Stdio::null()
-    });
-    let mut child = cmd.spawn().expect("spawn tribo");
-    if let Some(text) = stdin {
-        use std::io::Write;
-        child
-            .stdin
-            .take()
-            .unwrap()
-            .write_all(text.as_bytes())
-            .unwrap();
-    }
-    child.wait_with_output().expect("wait for tribo")
-}
+use std::process::Output;
 
 fn data_set() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/data/woehler-steel.csv")

@@ -1139,7 +1139,11 @@ pub fn coupled_rows() -> Result<Vec<ValidationRow>> {
 
 /// A disc of radius `radius`: a centre node and `rings` rings of `segments` nodes each (the
 /// outer ring on the circle: an inscribed polygon), quadrilaterals between rings split in two.
-fn disc_triangles(radius: f64, segments: usize, rings: usize) -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
+pub(crate) fn disc_triangles(
+    radius: f64,
+    segments: usize,
+    rings: usize,
+) -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
     let mut nodes = vec![[0.0, 0.0]];
     for i in 1..=rings {
         let rho = radius * i as f64 / rings as f64;

@@ -47,27 +47,9 @@ fn xx_tension(limit: f64) -> Limit {
     .unwrap()
 }
 
-/// A disc of radius `r`: a centre node and `rings` rings of `m` nodes each (the outer one on
-/// the circle, an inscribed m-gon), quadrilaterals between rings split in two.
+/// The disc mesh of the validation rows (an inscribed polygon of `m` segments, `rings` rings).
 fn disc_mesh(r: f64, m: usize, rings: usize) -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
-    let mut nodes = vec![[0.0, 0.0]];
-    for i in 1..=rings {
-        let rho = r * i as f64 / rings as f64;
-        for j in 0..m {
-            let a = 2.0 * std::f64::consts::PI * j as f64 / m as f64;
-            nodes.push([rho * a.cos(), rho * a.sin()]);
-        }
-    }
-    let id = |i: usize, j: usize| 1 + (i - 1) * m + j % m;
-    let mut tris = Vec::new();
-    for j in 0..m {
-        tris.push([0, id(1, j), id(1, j + 1)]);
-        for i in 1..rings {
-            tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    (nodes, tris)
+    crate::validation::disc_triangles(r, m, rings)
 }
 
 #[test]
