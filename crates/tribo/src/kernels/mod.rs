@@ -1,5 +1,6 @@
 //! Layer 1: closed-form elastic solutions, each a pure function citing its source.
 
+pub mod body_force2d;
 pub mod bulk;
 pub mod elliptic;
 pub mod hamilton;

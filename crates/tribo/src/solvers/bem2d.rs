@@ -250,6 +250,9 @@ pub struct BemSolution {
     pub traction: Vec<Vec<[f64; 2]>>,
     /// Relative residual ||A x - b||_inf / (||A||_inf ||x||_inf + ||b||_inf) of the solve.
     pub residual: f64,
+    /// Factor on the regions' body forces in this state (1, or the load step's factor of
+    /// the external loads in contact).
+    body_force_factor: f64,
 }
 
 impl BemProblem {
@@ -263,6 +266,27 @@ impl BemProblem {
     /// Number of boundary unknowns.
     pub fn dof(&self) -> usize {
         self.mesh.dof()
+    }
+
+    /// The body-force term of region `r`'s boundary equations, `H u_p - G t_p` (length 2n,
+    /// row 2 i + d), with the particular solution's nodal displacements u_p and tractions
+    /// t_p = sigma_p n (module docs); None for a region without body forces.
+    pub(crate) fn body_force_rhs(&self, r: usize) -> Option<Vec<f64>> {
+        let region = &self.mesh.regions[r];
+        region.body_force?;
+        let ops = &self.operators[r];
+        let n2 = ops.h.nrows();
+        let mut out = vec![0.0; n2];
+        for i in 0..region.nodes.len() {
+            let (up, tp) = region.particular_at_node(i);
+            for d in 0..2 {
+                let (hc, gc) = (ops.h.col(2 * i + d), ops.g.col(2 * i + d));
+                for row in 0..n2 {
+                    out[row] += hc[row] * up[d] - gc[row] * tp[d];
+                }
+            }
+        }
+        Some(out)
     }
 
     fn dofs(&self, bcs: &BoundaryConditions) -> Result<(Vec<Vec<[Dof; 2]>>, usize)> {
@@ -498,6 +522,11 @@ impl BemProblem {
                     }
                 }
             }
+            if let Some(bf) = self.body_force_rhs(r) {
+                for (row, v) in bf.iter().enumerate() {
+                    b[(offset + row, 0)] += v;
+                }
+            }
             offset += n2;
         }
         let lu = a.partial_piv_lu();
@@ -557,6 +586,7 @@ impl BemProblem {
             displacement,
             traction,
             residual,
+            body_force_factor: 1.0,
         })
     }
 }
@@ -664,12 +694,26 @@ impl BemSolution {
         })
     }
 
+    /// Interior displacement and stress: the particular solution at p plus the Somigliana
+    /// identities of the complementary boundary data u - u_p, t - t_p.
     fn interior(&self, r: usize, p: [f64; 2]) -> ([f64; 2], [f64; 3]) {
         let region = &self.mesh.regions[r];
-        let mut u = [0.0; 2];
-        let mut s = [0.0; 3];
+        let lam = self.body_force_factor;
+        let (mut u, mut s) = region.particular_at(p);
+        u.iter_mut().for_each(|v| *v *= lam);
+        s.iter_mut().for_each(|v| *v *= lam);
+        let particular = region.body_force.is_some();
         for e in &region.elements {
-            let (ue, te) = self.nodal(r, e);
+            let (mut ue, mut te) = self.nodal(r, e);
+            if particular {
+                for (k, &m) in e.nodes.iter().enumerate() {
+                    let (up, tp) = region.particular_at_node(m);
+                    for d in 0..2 {
+                        ue[k][d] -= lam * up[d];
+                        te[k][d] -= lam * tp[d];
+                    }
+                }
+            }
             element_interior(&region.kernels, e, p, &ue, &te, &mut u, &mut s);
         }
         (u, s)

@@ -292,8 +292,103 @@ pub enum LoopItem {
     Shared(String),
 }
 
+/// A body force acting on a region (the volume load q of the paper's (9)-(12)), N/m^3.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum BodyForce {
+    /// Gravity (or any uniform acceleration field): b = rho g.
+    Gravity {
+        /// Density rho, kg/m^3 (> 0).
+        density: f64,
+        /// Acceleration g = [gx, gy], m/s^2 (e.g. [0, -9.81]).
+        acceleration: [f64; 2],
+    },
+    /// Steady rotation about the axis normal to the plane through `center` (the centrifugal
+    /// load of the rotating frame): b = rho omega^2 (x - c).
+    Centrifugal {
+        /// Density rho, kg/m^3 (> 0).
+        density: f64,
+        /// Angular velocity omega, rad/s (its sign does not matter).
+        angular_velocity: f64,
+        /// A point c of the rotation axis, m.
+        center: [f64; 2],
+    },
+}
+
+impl BodyForce {
+    /// Gravity: density (kg/m^3) and acceleration (m/s^2).
+    pub fn gravity(density: f64, acceleration: [f64; 2]) -> Self {
+        BodyForce::Gravity {
+            density,
+            acceleration,
+        }
+    }
+
+    /// Rotation at `angular_velocity` (rad/s) about the axis through `center` (m).
+    pub fn centrifugal(density: f64, angular_velocity: f64, center: [f64; 2]) -> Self {
+        BodyForce::Centrifugal {
+            density,
+            angular_velocity,
+            center,
+        }
+    }
+
+    /// The body force at `x`, N/m^3.
+    pub fn at(&self, x: [f64; 2]) -> [f64; 2] {
+        match *self {
+            BodyForce::Gravity {
+                density,
+                acceleration,
+            } => [density * acceleration[0], density * acceleration[1]],
+            BodyForce::Centrifugal {
+                density,
+                angular_velocity,
+                center,
+            } => {
+                let k = density * angular_velocity * angular_velocity;
+                [k * (x[0] - center[0]), k * (x[1] - center[1])]
+            }
+        }
+    }
+
+    /// Checks the parameters; errors name `field` (e.g. `region 'disc'.body_force[0]`).
+    pub(crate) fn validate(&self, field: &str) -> Result<()> {
+        let density = match *self {
+            BodyForce::Gravity {
+                density,
+                acceleration,
+            } => {
+                finite_point(&format!("{field}.acceleration"), acceleration)?;
+                density
+            }
+            BodyForce::Centrifugal {
+                density,
+                angular_velocity,
+                center,
+            } => {
+                if !angular_velocity.is_finite() {
+                    return Err(Error::invalid(
+                        format!("{field}.angular_velocity"),
+                        angular_velocity,
+                        "must be finite (rad/s)",
+                    ));
+                }
+                finite_point(&format!("{field}.center"), center)?;
+                density
+            }
+        };
+        if !(density.is_finite() && density > 0.0) {
+            return Err(Error::invalid(
+                format!("{field}.density"),
+                density,
+                "the density must be finite and > 0 (kg/m^3)",
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// A homogeneous sub-region: one material, an outer loop (counter-clockwise) and holes
-/// (clockwise).
+/// (clockwise), and the body forces acting on it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Region {
     /// Name (errors and results refer to it).
@@ -302,6 +397,8 @@ pub struct Region {
     pub material: ElasticMaterial,
     /// Loops: the first is the outer boundary, the rest are holes.
     pub loops: Vec<Vec<LoopItem>>,
+    /// Body forces (summed; none by default).
+    pub body_forces: Vec<BodyForce>,
 }
 
 impl Region {
@@ -311,6 +408,7 @@ impl Region {
             name: name.to_string(),
             material,
             loops: vec![outer.into_iter().map(LoopItem::Segment).collect()],
+            body_forces: Vec::new(),
         }
     }
 
@@ -318,6 +416,12 @@ impl Region {
     pub fn with_hole(mut self, hole: Vec<Segment>) -> Self {
         self.loops
             .push(hole.into_iter().map(LoopItem::Segment).collect());
+        self
+    }
+
+    /// Adds a body force (several add up: gravity and rotation together).
+    pub fn with_body_force(mut self, force: BodyForce) -> Self {
+        self.body_forces.push(force);
         self
     }
 }

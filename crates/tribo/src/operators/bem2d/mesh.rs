@@ -14,8 +14,9 @@
 
 use std::collections::HashMap;
 
-use super::geometry::{mesh_segment, BemModel, LoopItem, SegmentShape};
+use super::geometry::{mesh_segment, BemModel, BodyForce, LoopItem, SegmentShape};
 use crate::error::{Error, Result};
+use crate::kernels::body_force2d::AffineBodyForce;
 use crate::kernels::kelvin2d::{Kelvin2d, PlaneCondition};
 use crate::material::ElasticMaterial;
 
@@ -128,6 +129,72 @@ pub struct RegionMesh {
     pub elements: Vec<Element>,
     /// Functional nodes (region-local numbering; DOF 2 i + d for direction d).
     pub nodes: Vec<Node>,
+    /// The region's body forces summed into one affine field about the centroid of its
+    /// nodes (None without body forces).
+    pub body_force: Option<AffineBodyForce>,
+}
+
+impl RegionMesh {
+    /// The particular solution of the region's body force at `x`: displacement (m) and
+    /// in-plane stress [sigma_xx, sigma_yy, sigma_xy] (Pa); zero without body forces
+    /// ([`AffineBodyForce::particular`]).
+    pub fn particular_at(&self, x: [f64; 2]) -> ([f64; 2], [f64; 3]) {
+        match &self.body_force {
+            Some(f) => f.particular(&self.kernels, x),
+            None => ([0.0; 2], [0.0; 3]),
+        }
+    }
+
+    /// The particular displacement u_p (m) and traction t_p = sigma_p n (Pa) at node `i`.
+    pub fn particular_at_node(&self, i: usize) -> ([f64; 2], [f64; 2]) {
+        let node = &self.nodes[i];
+        let (u, s) = self.particular_at(node.position);
+        let n = node.normal;
+        (u, [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]])
+    }
+}
+
+/// Sums the body forces of a region into one affine field about `origin`; errors name the
+/// region and the item.
+fn affine_body_force(
+    region: &str,
+    forces: &[BodyForce],
+    origin: [f64; 2],
+) -> Result<Option<AffineBodyForce>> {
+    if forces.is_empty() {
+        return Ok(None);
+    }
+    let mut constant = [0.0; 2];
+    let mut radial = 0.0;
+    for (k, f) in forces.iter().enumerate() {
+        f.validate(&format!("region '{region}'.body_force[{k}]"))?;
+        let b = f.at(origin);
+        constant[0] += b[0];
+        constant[1] += b[1];
+        if let BodyForce::Centrifugal {
+            density,
+            angular_velocity,
+            ..
+        } = *f
+        {
+            radial += density * angular_velocity * angular_velocity;
+        }
+    }
+    if !(constant[0].is_finite() && constant[1].is_finite() && radial.is_finite()) {
+        return Err(Error::invalid(
+            format!("region '{region}'.body_force"),
+            format!(
+                "b = ({:e}, {:e}) N/m^3, rho omega^2 = {radial:e} N/m^4",
+                constant[0], constant[1]
+            ),
+            "the body force overflows (density times acceleration must be finite)",
+        ));
+    }
+    Ok(Some(AffineBodyForce {
+        origin,
+        constant,
+        radial,
+    }))
 }
 
 /// A named segment of the mesh and where its nodes are.
@@ -165,7 +232,9 @@ impl BemMesh {
     /// division or grading); a shared segment that is unknown, shared twice or shared by its
     /// owner; a loop that is not closed (naming the two segments that do not meet); an outer
     /// loop that is not counter-clockwise or a hole that is not clockwise; an element of zero
-    /// length; a self-intersecting region boundary (naming the two segments).
+    /// length; a self-intersecting region boundary (naming the two segments); a body force
+    /// with a density that is not finite and > 0, or a non-finite acceleration, angular
+    /// velocity or centre (naming `region 'NAME'.body_force[K].FIELD`).
     pub fn new(model: &BemModel) -> Result<Self> {
         if model.regions.is_empty() {
             return Err(Error::invalid(
@@ -325,12 +394,18 @@ impl BemMesh {
             for (l, range) in loop_ranges.into_iter().enumerate() {
                 check_orientation(&region.name, l, &elements[range])?;
             }
+            let k = nodes.len().max(1) as f64;
+            let centroid = nodes.iter().fold([0.0, 0.0], |c, n| {
+                [c[0] + n.position[0] / k, c[1] + n.position[1] / k]
+            });
+            let body_force = affine_body_force(&region.name, &region.body_forces, centroid)?;
             regions.push(RegionMesh {
                 name: region.name.clone(),
                 material: region.material,
                 kernels: Kelvin2d::new(&region.material, model.plane),
                 elements,
                 nodes,
+                body_force,
             });
         }
         Ok(Self {

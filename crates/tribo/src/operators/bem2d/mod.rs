@@ -15,6 +15,8 @@ pub(crate) mod integrate;
 pub mod mesh;
 
 pub use assemble::{assemble, RegionOperators};
-pub use geometry::{BemModel, Division, Grading, LoopItem, Region, Segment, SegmentShape};
+pub use geometry::{
+    BemModel, BodyForce, Division, Grading, LoopItem, Region, Segment, SegmentShape,
+};
 pub use integrate::{MAX_DEPTH, NEAR_RATIO, SINGULAR_POWER};
 pub use mesh::{BemMesh, Element, Node, RegionMesh, SegmentInfo};

@@ -937,6 +937,12 @@ impl ContactProblem {
                     }
                 }
             }
+            // Body forces are external loads: their term H u_p - G t_p joins column 0.
+            for &(r, off) in &regions {
+                for (row, v) in problem.body_force_rhs(r).into_iter().flatten().enumerate() {
+                    rhs[(off + row, 0)] += v;
+                }
+            }
             let lu = a.partial_piv_lu();
             let x = lu.solve(&rhs);
             // Accuracy check on the external-load column and two parameter columns (a
@@ -1724,6 +1730,7 @@ impl ContactProblem {
             displacement,
             traction,
             residual: self.lu_residual,
+            body_force_factor: lam,
         }
     }
 }

@@ -466,6 +466,7 @@ fn bonded_two_material_annulus_matches_closed_form() {
                 LoopItem::Segment(Segment::line("x0_in", [0.0, b], [0.0, a], n)),
                 LoopItem::Segment(Segment::arc("bore", [0.0, 0.0], a, FRAC_PI_2, 0.0, 2 * n)),
             ]],
+            body_forces: Vec::new(),
         };
         let outer = Region {
             name: "outer".into(),
@@ -476,6 +477,7 @@ fn bonded_two_material_annulus_matches_closed_form() {
                 LoopItem::Segment(Segment::line("x0_out", [0.0, c], [0.0, b], n)),
                 LoopItem::Shared("bond".into()),
             ]],
+            body_forces: Vec::new(),
         };
         let problem =
             BemProblem::new(&BemModel::new(PlaneCondition::Strain, vec![inner, outer])).unwrap();
