@@ -61,7 +61,9 @@
 //! rejected before factorization (the BEM restraint check, an [`Error::InvalidParameter`]).
 //!
 //! Friction is path dependent, so loads are applied in [`LoadStep`]s: each sets the factor of
-//! the external boundary conditions and the controls of every rigid segment. The Coulomb law
+//! the external boundary conditions (and of the regions' body forces, which enter the same
+//! external column; the displacements are totals, so the gaps include the particular
+//! solution) and the controls of every rigid segment. The Coulomb law
 //! is written on the slip increment of the step, `ds_i = s_i - s_i(previous step)`:
 //!
 //! * open: `p = 0, q = 0` (g >= 0);
