@@ -152,10 +152,16 @@ impl SegmentBc {
     }
 }
 
-/// Boundary conditions by segment name.
+/// Boundary conditions by segment name, each optionally in a named load group.
+///
+/// Load groups matter only for the load steps of [`contact::ContactProblem`], where each
+/// group has its own factor ([`contact::LoadStep::groups`]; ungrouped conditions take
+/// [`contact::LoadStep::external`]). [`BemProblem::solve`] applies every condition with
+/// factor 1, whatever its group.
 #[derive(Debug, Clone, Default)]
 pub struct BoundaryConditions {
-    entries: Vec<(String, SegmentBc)>,
+    /// (segment, condition, load group or None).
+    entries: Vec<(String, SegmentBc, Option<String>)>,
 }
 
 impl BoundaryConditions {
@@ -164,10 +170,31 @@ impl BoundaryConditions {
         Self::default()
     }
 
-    /// Adds the condition of segment `name`.
+    /// Adds the condition of segment `name` (in no load group).
     pub fn set(mut self, name: &str, bc: SegmentBc) -> Self {
-        self.entries.push((name.to_string(), bc));
+        self.entries.push((name.to_string(), bc, None));
         self
+    }
+
+    /// Adds the condition of segment `name` in load group `group` (scaled in each load step
+    /// by that group's factor; see [`contact::LoadStep`]).
+    pub fn set_in_group(mut self, name: &str, bc: SegmentBc, group: &str) -> Self {
+        self.entries
+            .push((name.to_string(), bc, Some(group.to_string())));
+        self
+    }
+
+    /// The named load groups, in the order of their first use.
+    pub fn groups(&self) -> Vec<String> {
+        let mut out: Vec<String> = Vec::new();
+        for (_, _, g) in &self.entries {
+            if let Some(g) = g {
+                if !out.contains(g) {
+                    out.push(g.clone());
+                }
+            }
+        }
+        out
     }
 }
 
@@ -268,7 +295,7 @@ impl BemProblem {
     fn dofs(&self, bcs: &BoundaryConditions) -> Result<(Vec<Vec<[Dof; 2]>>, usize)> {
         let mesh = &self.mesh;
         let mut given: Vec<Option<&SegmentBc>> = vec![None; mesh.segments.len()];
-        for (name, bc) in &bcs.entries {
+        for (name, bc, _) in &bcs.entries {
             let s = mesh.segment_index(name).ok_or_else(|| {
                 Error::invalid(
                     "boundary_condition.segment",
@@ -361,9 +388,9 @@ impl BemProblem {
         Ok((dofs, col))
     }
 
-    /// Rigid-body check: every body (regions joined by interfaces) must have prescribed
-    /// displacements that restrain x and y translation and the rotation.
-    fn check_restraint(&self, dofs: &[Vec<[Dof; 2]>]) -> Result<()> {
+    /// The bodies (regions joined by bonded interfaces), each as its sorted member regions,
+    /// ordered by their union-find roots.
+    fn bodies(&self) -> Vec<Vec<usize>> {
         let mesh = &self.mesh;
         let nr = mesh.regions.len();
         let mut body: Vec<usize> = (0..nr).collect();
@@ -381,13 +408,31 @@ impl BemProblem {
                 body[a] = b;
             }
         }
+        let mut out = Vec::new();
         for root in 0..nr {
             if find(&mut body, root) != root {
                 continue;
             }
-            let members: Vec<usize> = (0..nr).filter(|&r| find(&mut body, r) == root).collect();
+            out.push((0..nr).filter(|&r| find(&mut body, r) == root).collect());
+        }
+        out
+    }
+
+    /// Rigid-body check: every body (regions joined by interfaces) must have prescribed
+    /// displacements that restrain x and y translation and the rotation.
+    fn check_restraint(&self, dofs: &[Vec<[Dof; 2]>]) -> Result<()> {
+        for members in self.bodies() {
+            self.check_body_restraint(dofs, &members)?;
+        }
+        Ok(())
+    }
+
+    /// The rigid-body check of one body (its member regions).
+    fn check_body_restraint(&self, dofs: &[Vec<[Dof; 2]>], members: &[usize]) -> Result<()> {
+        let mesh = &self.mesh;
+        {
             let mut rows: Vec<(usize, [f64; 2])> = Vec::new();
-            for &r in &members {
+            for &r in members {
                 for (node, d) in mesh.regions[r].nodes.iter().zip(&dofs[r]) {
                     for (dir, dof) in d.iter().enumerate() {
                         if matches!(dof, Dof::T { .. }) {

@@ -165,6 +165,7 @@ fn press(p: f64) -> LoadStep {
             Control::Displacement(0.0),
             Control::Force(-p),
         )],
+        groups: vec![],
     }
 }
 
@@ -308,6 +309,7 @@ fn hertz_two_cylinders() {
             Control::Displacement(0.0),
             Control::Force(-P),
         )],
+        groups: vec![],
     };
     let res = cp.solve_steps(&[step], &ContactOptions::default()).unwrap();
     let pr = &res[0].pairs[0];
@@ -377,6 +379,7 @@ fn flat_punch_edge_singularity() {
             Control::Displacement(0.0),
             Control::Force(-P),
         )],
+        groups: vec![],
     };
     let res = cp.solve_steps(&[step], &ContactOptions::default()).unwrap();
     let pr = &res[0].pairs[0];
@@ -449,6 +452,7 @@ fn cattaneo_mindlin_partial_slip() {
                 Control::Force(0.0),
                 Control::Force(-P),
             )],
+            groups: vec![],
         },
         LoadStep {
             external: 1.0,
@@ -457,6 +461,7 @@ fn cattaneo_mindlin_partial_slip() {
                 Control::Force(q),
                 Control::Force(-P),
             )],
+            groups: vec![],
         },
     ];
     let res = cp.solve_steps(&steps, &ContactOptions::default()).unwrap();
@@ -556,6 +561,7 @@ fn nowell_hills_stick_zone_shift() {
                 Control::Force(0.0),
                 Control::Force(-p),
             )],
+            groups: vec![],
         },
         LoadStep {
             external: 1.0,
@@ -564,6 +570,7 @@ fn nowell_hills_stick_zone_shift() {
                 Control::Force(q),
                 Control::Force(-p),
             )],
+            groups: vec![],
         },
     ];
     let res = cp.solve_steps(&steps, &ContactOptions::default()).unwrap();
@@ -604,6 +611,7 @@ fn unloading_leaves_locked_in_shear() {
             Control::Force(qx),
             Control::Force(-P),
         )],
+        groups: vec![],
     };
     let res = cp
         .solve_steps(
@@ -762,6 +770,7 @@ fn zero_friction_is_frictionless_and_path_independent() {
             Control::Force(0.0),
             Control::Force(-P),
         )],
+        groups: vec![],
     }];
     let rt = tiny
         .solve_steps(&steps, &ContactOptions::default())
@@ -859,14 +868,15 @@ fn bad_contact_input_is_reported() {
         e.contains("block_contact") && e.contains("no boundary condition"),
         "{e}"
     );
-    // A body held by nothing at all: a clear error before any factorization.
-    let e = err_text(ContactProblem::new(
-        &model,
-        &bcs,
-        std::slice::from_ref(&pair),
-        &[],
-    ));
+    // A body held by nothing at all (free and in no contact pair): a clear error before any
+    // factorization.
+    let e = err_text(ContactProblem::new(&model, &bcs, &[], &[]));
     assert!(e.contains("cyl") && e.contains("not restrained"), "{e}");
+    // A free body in a pair but with no load: nothing presses it onto the contact.
+    let mut floating =
+        ContactProblem::new(&model, &bcs, std::slice::from_ref(&pair), &[]).unwrap();
+    let e = err_text(floating.solve_steps(&[LoadStep::new(1.0)], &ContactOptions::default()));
+    assert!(e.contains("no contact") && e.contains("cyl"), "{e}");
     // Overlapping bodies.
     let sunk = BemModel::new(
         PlaneCondition::Strain,
@@ -927,6 +937,7 @@ fn bad_contact_input_is_reported() {
         &[LoadStep {
             external: 1.0,
             rigid: vec![],
+            groups: vec![],
         }],
         &ContactOptions::default(),
     ));
@@ -939,6 +950,7 @@ fn bad_contact_input_is_reported() {
                 Control::Force(1e3),
                 Control::Force(-P),
             )],
+            groups: vec![],
         }],
         &ContactOptions::default(),
     ));
@@ -956,6 +968,7 @@ fn bad_contact_input_is_reported() {
                 Control::Displacement(0.0),
                 Control::Force(P),
             )],
+            groups: vec![],
         }],
         &ContactOptions::default(),
     ));
@@ -990,6 +1003,7 @@ fn contact_timing() {
                     Control::Force(0.0),
                     Control::Force(-P),
                 )],
+                groups: vec![],
             },
             LoadStep {
                 external: 1.0,
@@ -998,6 +1012,7 @@ fn contact_timing() {
                     Control::Force(q),
                     Control::Force(-P),
                 )],
+                groups: vec![],
             },
         ];
         let t1 = std::time::Instant::now();
@@ -1050,6 +1065,7 @@ fn cycling_is_reported_with_the_residual() {
             Control::Displacement(0.0),
             Control::Force(-P),
         )],
+        groups: vec![],
     };
     let opts = ContactOptions {
         max_iterations: 60,
