@@ -1584,9 +1584,7 @@ impl ContactProblem {
     /// contact and of the stick rows (f > 0), where its singular value is below 1e-8 (the
     /// entries are dimensionless, O(1): a translation moves every node by its amplitude).
     fn unheld_mode(&self, states: &[ContactState], fric: &[f64]) -> Option<Vec<f64>> {
-        let Some(first) = self.free.first() else {
-            return None;
-        };
+        let first = self.free.first()?;
         let c0 = first.zcol;
         let nz = self.pz.ncols();
         let m = nz - c0;
