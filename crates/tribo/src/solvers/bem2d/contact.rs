@@ -39,30 +39,87 @@
 //! # Condensation
 //!
 //! Every body (regions joined by bonded interfaces) is factored once: contact-segment nodes
-//! take their traction as a parameter and rigid-load segments (below) their displacement, so
-//! `A_b x_b = b_b(external) + B_b c_b` with c_b the body's contact tractions and rigid
-//! translations. One LU of A_b and `1 + dim c_b` solves give the response of the contact-node
-//! displacements and of the rigid-segment force resultants: a dense flexibility of the
-//! slave-node gaps, slips and rigid forces on the contact unknowns (p, q, rigid translations)
-//! z, `g = g0 + lambda g_ext + W_n z`, `s = lambda s_ext + W_t z`, `F = lambda F_ext + K z`.
-//! Each load step then solves only small dense systems of size dim z.
+//! take their traction as a parameter, rigid-load segments (below) and the artificial supports
+//! of free bodies (below) their displacement, so `A_b x_b = sum_g b_b,g + B_b c_b` with b_b,g
+//! the right-hand side of load group g (the ungrouped conditions are group 0) and c_b the
+//! body's contact tractions, rigid translations and free-mode amplitudes. One LU of A_b and
+//! `n_groups + dim c_b` solves give the response of the contact-node displacements and of the
+//! rigid-segment force resultants: a dense flexibility of the slave-node gaps, slips and
+//! rigid forces on the contact unknowns z (p, q, rigid translations, free-mode amplitudes),
+//! `g = g0 + sum_g lambda_g g_g + W_n z`, `s = sum_g lambda_g s_g + W_t z`, `F = sum_g
+//! lambda_g F_g + K z`, lambda_g the step's factor of group g. Each load step then solves only
+//! small dense systems of size dim z.
 //!
 //! # Loads, rigid-body modes and steps
 //!
-//! A body held only by contact (a cylinder pressed on a block) is loaded through a *rigid
-//! segment*: a named segment that moves as a rigid translation (no rotation: a guided face),
-//! each component either force-controlled (the resultant of the traction on the segment is
-//! prescribed, the translation unknown) or displacement-controlled. This removes the body's
-//! rigid-body modes from the BEM system (the segment is a displacement boundary for the
-//! factorization) and returns them to the contact problem, where contact and friction hold
-//! them. A force-controlled component that neither contact nor friction restrains (a
-//! frictionless pair pushed sideways) makes the step's system singular and is reported as an
-//! [`Error::Numerical`]; a body with no displacement condition and no rigid segment at all is
-//! rejected before factorization (the BEM restraint check, an [`Error::InvalidParameter`]).
+//! A body held only by contact (a cylinder pressed on a block, a clamp plate pressed by a bolt
+//! onto a knife) is loaded either through a *rigid segment* or by ordinary traction and
+//! pressure conditions.
 //!
-//! Friction is path dependent, so loads are applied in [`LoadStep`]s: each sets the factor of
-//! the external boundary conditions and the controls of every rigid segment. The Coulomb law
-//! is written on the slip increment of the step, `ds_i = s_i - s_i(previous step)`:
+//! *Rigid segment*: a named segment that moves as a rigid translation (no rotation: a guided
+//! face), each component either force-controlled (the resultant of the traction on the
+//! segment is prescribed, the translation unknown) or displacement-controlled. This removes
+//! the body's rigid-body modes from the BEM system (the segment is a displacement boundary
+//! for the factorization) and returns them to the contact problem. A force-controlled
+//! component that neither contact nor friction restrains makes the step's system singular
+//! and is reported as an [`Error::Numerical`].
+//!
+//! *Free bodies* (automatic rigid-body modes): a body that takes part in a contact pair and
+//! whose displacement conditions leave rigid modes free. The free modes are the null space of
+//! the prescribed displacement components on the rigid modes r = (x translation, y
+//! translation, rotation about the boundary centroid scaled by the body size L, so that all
+//! three amplitudes are lengths), found from the eigenvalues of the 3 x 3 Gram matrix
+//! (threshold: the 1e-6 of the BEM restraint check); u_x = 0 on a vertical face leaves y free,
+//! no condition leaves all three. For each free mode one traction-type boundary node
+//! component off the contact and rigid segments becomes an *artificial support*: its
+//! displacement is a parameter u_pin = R_pin a with a the body's free-mode amplitudes, chosen
+//! by pivoting (the component whose rigid-mode row has the largest part orthogonal to the rows
+//! already chosen; among near ties the one farthest from the contact), i.e. a statically
+//! determinate set of supports far apart. With the supports the body's BEM system is regular
+//! (one LU as before) and a joins z. The equations that determine a are the free body's
+//! equilibrium in each free mode k, the virtual work of all its boundary tractions on r_k,
+//!
+//! `sum_i (int N_i r_k ds) . t_i = 0`,
+//!
+//! summed over the prescribed tractions (at the supports their prescribed values; scaled by
+//! the step's group factors) and the contact tractions (slave p n + q tau, master the
+//! transferred traction), the interpolated fields integrated by 8-point Gauss rules
+//! (prescribed displacement components do no work on a free mode). So the contact tractions
+//! balance the applied loads in every free mode to round-off. The supports' own reactions
+//! (their BEM tractions minus the prescribed values) are then the BEM's equilibrium defect of
+//! the body (the discrete `H u = G t` balances only to discretization error): the step result
+//! reports their resultant ([`FreeBodyResult::support_force`]; measured 6e-6 and 8e-5 of the
+//! load in the Hertz tests, 1e-13 in the uniform state) and the boundary state reports the
+//! prescribed traction at the supports. The alternative, prescribing the supports' tractions
+//! exactly and leaving equilibrium to the BEM, moves the same defect into the balance of
+//! contact and applied forces; the choice here makes the contact force equal the applied load.
+//! The reported motion ([`FreeBodyResult`]) is the least-squares rigid motion of the body's
+//! boundary displacement (independent of the supports): translation = arc-length mean of u,
+//! rotation = `int r x u ds / int abs(r)^2 ds` about the boundary centroid.
+//!
+//! A free mode must be held by the contact rows of the step (the gap rows of nodes in contact
+//! and the stick rows): in each active-set iteration, while the amplitude columns of these
+//! rows are rank deficient (smallest singular value below 1e-8; the entries are
+//! dimensionless), the open node with the smallest gap whose rows act on the deficient
+//! combination is brought into contact (a single initial contact node does not hold the
+//! rotation of a free cylinder). Where no node can, the step stops with an
+//! [`Error::InvalidParameter`] naming the body and the mode (e.g. "body \[blk\] = free
+//! rigid-body translation in x": a frictionless contact holds no tangential motion, also
+//! without a tangential load, since the position is then undetermined; use a symmetry or
+//! displacement condition); where the last solve opened every contact node of the body (its
+//! loads pull it off or vanish), with [`Error::NoContact`]. A body with free modes that is in
+//! no contact pair is rejected before factorization (the BEM restraint check, an
+//! [`Error::InvalidParameter`]).
+//!
+//! Friction is path dependent, so loads are applied in [`LoadStep`]s: each sets the factors of
+//! the external boundary conditions per *load group* and the controls of every rigid segment.
+//! Conditions set with [`BoundaryConditions::set`] are ungrouped (factor
+//! [`LoadStep::external`]); those set with [`BoundaryConditions::set_in_group`] take their
+//! group's factor from [`LoadStep::groups`], 0 where the step does not list the group (so a
+//! step 1 "bolt" and a step 2 "bolt + cut" are `LoadStep::new(0.0).with_group("bolt", 1.0)`
+//! and the same `.with_group("cut", 1.0)`). A displacement condition in a group is scaled
+//! too. The Coulomb law is written on the slip increment of the step,
+//! `ds_i = s_i - s_i(previous step)`:
 //!
 //! * open: `p = 0, q = 0` (g >= 0);
 //! * stick: `g = 0, ds = 0, |q| <= f p`;
@@ -87,7 +144,8 @@
 //! The force-controlled resultants on rigid segments are equations of the step system and
 //! hold to round-off; the transferred master traction carries exactly the slave's force
 //! (round-off); the balance of a body's whole boundary (contact force against the loaded
-//! face) holds to the BEM discretization error (1e-5 relative in the Hertz test).
+//! face) holds to the BEM discretization error (1e-5 relative in the Hertz test), except for
+//! free bodies, whose equilibrium in their free modes is an equation (round-off, see above).
 //!
 //! # Verification (tests in `contact/tests.rs`)
 //!
@@ -103,6 +161,12 @@
 //! | unloading to Q = 0 | reverse-slip c'/a | 0.854 vs 0.866 |
 //! | f = 1e-9 vs f = 0 | pressure difference | 8e-11 p0 |
 //! | block of two bonded regions vs one piece | pressure difference | 1.2e-5 p0 |
+//! | free block on base, uniform pressure (exact uniform state), f = 0 (y free) and 0.3 (all free) | p, q, rigid motion; force, moment | 1.6e-10 p, 1e-11 p, 2e-11; 1e-15, 1e-13 |
+//! | free plate on free knife on base (chain) | p, rigid y motions | 1.6e-10 p, < 1e-7 |
+//! | Hertz, cylinder held only by contact (face load), f = 0 (y, rotation free) / 0.3 (all free) | b, p0, max abs(p - p_H)/p0; support force | -0.09 %, +0.02 %, 0.21 % / 0.18 %; 8e-5 / 6e-6 P |
+//! | free mode that nothing holds (f = 0, pushed sideways or not) | error naming body and mode | yes |
+//! | load groups, f = 0: two steps vs one, and unloading a group | p, u | identical (0) |
+//! | load groups, f = 0.3: bulk load applied and removed vs never applied | locked-in q | 0.37 f p0 (p within 0.5 % p0) |
 //!
 //! Timing (`contact_timing`, release, 2 cores shared with other builds, load average 4.4):
 //! 932 BEM DOF / 196 contact unknowns: assembly 0.04 s, factorization + condensation 0.09 s,
@@ -564,16 +628,20 @@ impl ContactProblem {
     /// Meshes and assembles `model`, validates the pairs and rigid segments, factors every
     /// body once and condenses the BEM systems onto the contact unknowns.
     ///
-    /// `bcs` are the external boundary conditions (scaled by [`LoadStep::external`]); they
-    /// must not name contact or rigid segments. `rigid` names the rigid (load) segments.
+    /// `bcs` are the external boundary conditions (scaled per load group: ungrouped ones by
+    /// [`LoadStep::external`], grouped ones by [`LoadStep::groups`]); they must not name
+    /// contact or rigid segments. `rigid` names the rigid (load) segments. A body in a contact
+    /// pair may leave rigid-body modes free (held by contact and friction; see the module
+    /// docs).
     ///
     /// Errors ([`Error::InvalidParameter`] naming the item): an unknown segment in a pair or
     /// in `rigid`; a segment used twice (in two pairs, as rigid and contact, or with a boundary
     /// condition); a bonded interface used as contact or rigid segment; slave and master in the
     /// same body; a friction coefficient that is negative or not finite; a pair whose slave
     /// nodes all miss the master; initial penetration deeper than 1e-6 of the slave's
-    /// smallest element; an unrestrained body. [`Error::Numerical`] where a factorization
-    /// fails.
+    /// smallest element; an unrestrained body in no contact pair; an empty load-group name; a
+    /// free body with no traction-loaded node off its contact segments for an artificial
+    /// support. [`Error::Numerical`] where a factorization fails.
     pub fn new(
         model: &BemModel,
         bcs: &BoundaryConditions,
@@ -1454,7 +1522,10 @@ impl ContactProblem {
     /// (use [`ContactProblem::reset`] to start again from the unloaded state).
     ///
     /// Errors: a step that misses or repeats a rigid segment, or names an unknown one, or a
-    /// non-finite load ([`Error::InvalidParameter`]); [`Error::NotConverged`] with the
+    /// non-finite load, or names an unknown load group or one twice
+    /// ([`Error::InvalidParameter`]); a free rigid-body mode that neither contact nor
+    /// friction holds ([`Error::InvalidParameter`] naming the body and the mode); a free
+    /// body whose loads do not press it onto a contact ([`Error::NoContact`]); [`Error::NotConverged`] with the
     /// complementarity residual when the active sets cycle or the iteration limit is
     /// reached; [`Error::NoContact`] when no node is in contact and a force-controlled body
     /// floats; [`Error::Numerical`] for a singular step system (a rigid-body mode that

@@ -1579,3 +1579,86 @@ fn small_symmetric_eigen() {
     let (vals, _) = symmetric_eigen(vec![vec![1.0, 0.0], vec![0.0, 1.0]]);
     assert_eq!(vals, vec![1.0, 1.0]);
 }
+
+/// Two bodies held only by contact in a chain (a clamp plate pressed by a uniform "bolt"
+/// pressure onto a knife, the knife onto a base; both with u_x = 0 on their left faces, so
+/// free in y): the exact solution is again the uniform state sigma_yy = -p in all three
+/// (same material, rollers on the base), so both contacts carry p (tolerance 1e-7 as in the
+/// single block) and each body's reported y translation is eps_yy (y_c + d) at its boundary
+/// centroid. The free modes of the two bodies are held only jointly through the chain.
+#[test]
+fn two_free_bodies_in_a_chain() {
+    let (w, d, h, p) = (0.010, 0.010, 0.003, 40e6);
+    let eyy = -(1.0 - 0.09) * p / 210e9;
+    let layer = |name: &str, y0: f64, y1: f64, nb: usize, nt: usize| {
+        Region::new(
+            name,
+            steel(),
+            vec![
+                Segment::line(&format!("{name}_bottom"), [0.0, y0], [w, y0], nb),
+                Segment::line(&format!("{name}_right"), [w, y0], [w, y1], 4),
+                Segment::line(&format!("{name}_top"), [w, y1], [0.0, y1], nt),
+                Segment::line(&format!("{name}_left"), [0.0, y1], [0.0, y0], 4),
+            ],
+        )
+    };
+    let model = BemModel::new(
+        PlaneCondition::Strain,
+        vec![
+            layer("base", -d, 0.0, 6, 8),
+            layer("knife", 0.0, h, 10, 8),
+            layer("plate", h, 2.0 * h, 11, 6),
+        ],
+    );
+    let bcs = BoundaryConditions::new()
+        .set("base_left", SegmentBc::roller_x())
+        .set("base_bottom", SegmentBc::roller_y())
+        .set("knife_left", SegmentBc::roller_x())
+        .set("plate_left", SegmentBc::roller_x())
+        .set_in_group(
+            "plate_top",
+            SegmentBc::Pressure(Profile::Uniform(p)),
+            "bolt",
+        );
+    let mut cp = ContactProblem::new(
+        &model,
+        &bcs,
+        &[
+            ContactPair::new("knife_bottom", "base_top", 0.0),
+            ContactPair::new("plate_bottom", "knife_top", 0.0),
+        ],
+        &[],
+    )
+    .unwrap();
+    let res = cp
+        .solve_steps(
+            &[LoadStep::new(0.0).with_group("bolt", 1.0)],
+            &ContactOptions::default(),
+        )
+        .unwrap();
+    let step = &res[0];
+    let ep = step
+        .pairs
+        .iter()
+        .flat_map(|pr| pr.nodes.iter())
+        .map(|n| (n.pressure / p - 1.0).abs())
+        .fold(0.0, f64::max);
+    eprintln!(
+        "chain: max |p/p_exact - 1| {ep:.2e}, free bodies {:?}",
+        step.free_bodies
+            .iter()
+            .map(|fb| (fb.body.clone(), fb.translation[1]))
+            .collect::<Vec<_>>()
+    );
+    assert!(ep < 1e-7);
+    let names: Vec<&str> = step.free_bodies.iter().map(|fb| fb.body.as_str()).collect();
+    assert_eq!(names, ["knife", "plate"]);
+    for fb in &step.free_bodies {
+        let exact = eyy * (fb.reference_point[1] + d);
+        assert!((fb.translation[1] / exact - 1.0).abs() < 1e-7, "{fb:?}");
+        assert_eq!(fb.free_modes, ["translation in y"]);
+    }
+    for pr in &step.pairs {
+        assert!((pr.slave_force[1] - p * w).abs() < 1e-10 * p * w);
+    }
+}
