@@ -257,7 +257,7 @@ fn hoop_radial(p: [f64; 2], s: &Stress2d) -> (f64, f64) {
 /// length of the inner arc within 5e-3 (the boundary-layer rule). The tolerances are those
 /// bounds: 2e-4 of sigma_t(a) for interior nodes at least 0.1 element length from the
 /// boundary (measured 4.3e-5), 5e-3 for the boundary nodes and those closer (measured
-/// 2.4e-3, at the corners, from their tractions); a wrong sign, region or boundary-layer
+/// 2.4e-3; the corners, from their tractions, 1.2e-3); a wrong sign, region or boundary-layer
 /// treatment gives O(1) errors (the corners did, 65x sigma, before the junction rule).
 /// The displacement against u_r of the closed form: the nodal accuracy 1e-4 of u_r(a),
 /// doubled for the extrapolation to the corners (measured 1.1e-4).
