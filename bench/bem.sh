@@ -24,7 +24,7 @@ trap 'rm -f "$tmp"' EXIT
 {
     "$bin/tribo-bench-bem" --dof "$sizes"
     echo
-    echo "Machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo); run $(date -u '+%Y-%m-%d %H:%M UTC'), commit $(cd "$root" && git rev-parse --short HEAD 2>/dev/null || echo '?')."
+    echo "Host: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo); run $(date -u '+%Y-%m-%d %H:%M UTC'), commit $(cd "$root" && git rev-parse --short HEAD 2>/dev/null || echo '?')."
 } | tee "$tmp"
 mkdir -p "$here/results"
 mv "$tmp" "$out"
