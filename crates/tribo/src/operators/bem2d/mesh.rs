@@ -333,6 +333,7 @@ impl BemMesh {
                 nodes,
             });
         }
+        super::overlap::check_overlap(&regions)?;
         Ok(Self {
             plane: model.plane,
             regions,
