@@ -164,7 +164,8 @@
 //! | free block on base, uniform pressure (exact uniform state), f = 0 (y free) and 0.3 (all free) | p, q, rigid motion; force, moment | 1.6e-10 p, 1e-11 p, 2e-11; 1e-15, 1e-13 |
 //! | free plate on free knife on base (chain) | p, rigid y motions | 1.6e-10 p, < 1e-7 |
 //! | Hertz, cylinder held only by contact (face load), f = 0 (y, rotation free) / 0.3 (all free) | b, p0, max abs(p - p_H)/p0; support force | -0.09 %, +0.02 %, 0.21 % / 0.18 %; 8e-5 / 6e-6 P |
-//! | free mode that nothing holds (f = 0, pushed sideways or not) | error naming body and mode | yes |
+//! | free block pushed sideways, f = 0.3, Q = 0.6 f P (groups bolt, cut) | Coulomb at every node; force, moment | round-off; 1e-16, 5e-16 |
+//! | free mode that nothing holds (f = 0 pushed sideways or not; f = 0.3, Q = 1.1 f P) | error naming body and mode | yes |
 //! | load groups, f = 0: two steps vs one, and unloading a group | p, u | identical (0) |
 //! | load groups, f = 0.3: bulk load applied and removed vs never applied | locked-in q | 0.37 f p0 (p within 0.5 % p0) |
 //!
@@ -1785,11 +1786,13 @@ impl ContactProblem {
                         (0..v.len()).map(|a| w[(i, c0 + a)] * v[a]).sum::<f64>()
                     };
                     if !checked && iterations > 1 {
-                        // The last solve opened every node of the body: its loads do not
-                        // press it onto a contact (or vanish).
+                        // The last solve opened every contact node of the body: its loads do
+                        // not press it onto a contact (or vanish).
+                        let (fb, _) = self.name_mode(&v);
                         let touching = (0..n).any(|i| {
                             !matches!(states[i], ContactState::Open | ContactState::Outside)
-                                && weight(i, &self.wn).abs() > 1e-6
+                                && (0..fb.modes.len())
+                                    .any(|a| self.wn[(i, fb.zcol + a)].abs() > 1e-6)
                         });
                         if !touching {
                             let (fb, mode) = self.name_mode(&v);
@@ -1828,9 +1831,10 @@ impl ContactProblem {
                                 format!(
                                     "in load step {k} neither contact nor friction holds this \
                                      mode of a body held only by contact (a frictionless contact \
-                                     holds no tangential motion; with friction, no contact node \
-                                     sticks): add friction, a symmetry or displacement \
-                                     condition, or a rigid segment"
+                                     holds no tangential motion; with friction, every contact \
+                                     node slips: the tangential load reaches the friction limit): \
+                                     add friction, a symmetry or displacement condition, or a \
+                                     rigid segment, or reduce the tangential load"
                                 ),
                             ));
                         }

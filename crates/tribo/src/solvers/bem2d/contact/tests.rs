@@ -1662,3 +1662,90 @@ fn two_free_bodies_in_a_chain() {
         assert!((pr.slave_force[1] - p * w).abs() < 1e-10 * p * w);
     }
 }
+
+/// A free block (all three modes free, f = 0.3) pressed by a "bolt" pressure and then pushed
+/// sideways by a "cut" traction on its right face with resultant Q (two load groups, two
+/// steps). Below the friction limit (Q = 0.6 f P) the block is held by friction with partial
+/// slip at the contact edges: Coulomb's law holds at every node (slip nodes abs(q) = f p,
+/// stick nodes abs(q) <= f p with zero slip increment, to round-off) and the block is in
+/// equilibrium in force and moment (the tipping moment Q h / 2 taken by the pressure) to
+/// round-off. Above it (Q = 1.1 f P, gross slip) the step stops with the error naming the
+/// body and the x translation.
+#[test]
+fn free_block_pushed_sideways_with_friction() {
+    let (w, d, h, p) = (0.010, 0.010, 0.004, 50e6);
+    let f = 0.3;
+    let load = 2.0 * w * p;
+    for ratio in [0.6, 1.1] {
+        let q = ratio * f * load;
+        let bcs = BoundaryConditions::new()
+            .set("base_left", SegmentBc::roller_x())
+            .set("base_bottom", SegmentBc::roller_y())
+            .set_in_group("blk_top", SegmentBc::Pressure(Profile::Uniform(p)), "bolt")
+            .set_in_group(
+                "blk_right",
+                SegmentBc::traction(Profile::Uniform(-q / h), Profile::Uniform(0.0)),
+                "cut",
+            );
+        let mut cp = ContactProblem::new(
+            &stack(-w, w, d, h),
+            &bcs,
+            &[ContactPair::new("blk_bottom", "base_top", f)],
+            &[],
+        )
+        .unwrap();
+        let bolt = LoadStep::new(0.0).with_group("bolt", 1.0);
+        let steps = [bolt.clone(), bolt.with_group("cut", 1.0)];
+        let r = cp.solve_steps(&steps, &ContactOptions::default());
+        if ratio > 1.0 {
+            let e = err_text(r);
+            assert!(
+                e.contains("body [blk]") && e.contains("translation in x"),
+                "{e}"
+            );
+            continue;
+        }
+        let r = r.unwrap();
+        let s = &r[1];
+        let pr = &s.pairs[0];
+        let nslip = pr
+            .nodes
+            .iter()
+            .filter(|n| {
+                matches!(
+                    n.state,
+                    ContactState::SlipPositive | ContactState::SlipNegative
+                )
+            })
+            .count();
+        let (force, moment) = resultant(&s.solution, "blk", s.free_bodies[0].reference_point);
+        eprintln!(
+            "free block, Q = {ratio} f P: slip nodes {nslip} / {}, iterations {}, contact force \
+             {:?}, resultant ({:.1e}, {:.1e}) P, moment {:.1e} P h, rotation {:.2e}",
+            pr.nodes.len(),
+            s.iterations,
+            pr.slave_force,
+            force[0] / load,
+            force[1] / load,
+            moment / (load * h),
+            s.free_bodies[0].rotation
+        );
+        assert!(nslip > 0 && nslip < pr.nodes.len());
+        assert!((pr.slave_force[0] - q).abs() < 1e-10 * load);
+        assert!((pr.slave_force[1] - load).abs() < 1e-10 * load);
+        assert!(force[0].abs() < 1e-10 * load && force[1].abs() < 1e-10 * load);
+        assert!(moment.abs() < 1e-10 * load * h);
+        for n in &pr.nodes {
+            match n.state {
+                ContactState::SlipPositive | ContactState::SlipNegative => {
+                    assert!((n.shear.abs() - f * n.pressure).abs() < 1e-9 * f * p)
+                }
+                ContactState::Stick => {
+                    assert!(n.shear.abs() <= f * n.pressure + 1e-9 * f * p);
+                    assert!(n.slip_increment.abs() < 1e-12 * h);
+                }
+                _ => {}
+            }
+        }
+    }
+}
