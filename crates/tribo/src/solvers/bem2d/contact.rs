@@ -580,6 +580,9 @@ pub struct ContactProblem {
     /// Free-body equilibrium rows: eq_z z + eq_ext lambda = 0.
     eq_z: Mat<f64>,
     eq_ext: Mat<f64>,
+    /// Largest prescribed traction of each load group at factor 1 (a prescribed displacement
+    /// counted as shear modulus * u / model size), Pa: the load scale of a step.
+    group_load: Vec<f64>,
     /// Largest relative residual of the body factorizations.
     lu_residual: f64,
     /// Total slip at the end of the last solved step (path memory).
@@ -1119,6 +1122,28 @@ impl ContactProblem {
             row0 += fb.modes.len();
         }
         let eq_z = &eq_param * &pz;
+        let mut group_load = vec![0.0_f64; next];
+        for (r, region) in mesh.regions.iter().enumerate() {
+            for (o, node) in region.nodes.iter().enumerate() {
+                if role.contains_key(&node.segment) {
+                    continue;
+                }
+                let g = seg_group[node.segment];
+                for d in 0..2 {
+                    let v = match dofs[r][o][d] {
+                        Dof::U { t, .. } => t.abs(),
+                        Dof::T { u, .. } => scale * u.abs() / length,
+                        Dof::Interface { .. } => 0.0,
+                    };
+                    group_load[g] = group_load[g].max(v);
+                }
+            }
+        }
+        for fb in &free {
+            for pin in &fb.pins {
+                group_load[pin.group] = group_load[pin.group].max(pin.t.abs());
+            }
+        }
 
         // --- bodies: assemble, factor once, solve for the external load and unit params.
         let mut roots: Vec<usize> = body_of.clone();
@@ -1292,6 +1317,7 @@ impl ContactProblem {
             f_ext: Mat::zeros(0, 0),
             eq_z,
             eq_ext,
+            group_load,
             lu_residual,
             slip: vec![0.0; n],
             states: Vec::new(),
@@ -1737,6 +1763,16 @@ impl ContactProblem {
         let gl: Vec<f64> = (0..n).map(|i| ext(&self.gn_ext, i)).collect();
         let sl: Vec<f64> = (0..n).map(|i| ext(&self.st_ext, i)).collect();
         let fric = self.friction_of();
+        // The step's load scale (Pa): prescribed tractions, displacements and rigid controls.
+        let mut load_scale = (0..next)
+            .map(|g| lamv[g].abs() * self.group_load[g])
+            .fold(0.0_f64, f64::max);
+        for c in &ctl {
+            load_scale = load_scale.max(match *c {
+                Control::Force(f) => f.abs() / self.length,
+                Control::Displacement(u) => self.scale * u.abs() / self.length,
+            });
+        }
         let g0: Vec<f64> = self
             .pairs
             .iter()
@@ -1786,11 +1822,14 @@ impl ContactProblem {
                         (0..v.len()).map(|a| w[(i, c0 + a)] * v[a]).sum::<f64>()
                     };
                     if !checked && iterations > 1 {
-                        // The last solve opened every contact node of the body: its loads do
-                        // not press it onto a contact (or vanish).
+                        // The last solve left no contact node of the body with a pressure
+                        // above round-off of the step's loads: its loads do not press it onto
+                        // a contact (or vanish).
                         let (fb, _) = self.name_mode(&v);
                         let touching = (0..n).any(|i| {
                             !matches!(states[i], ContactState::Open | ContactState::Outside)
+                                && load_scale > 0.0
+                                && z[i] > 1e-9 * load_scale
                                 && (0..fb.modes.len())
                                     .any(|a| self.wn[(i, fb.zcol + a)].abs() > 1e-6)
                         });
