@@ -15,6 +15,8 @@
 //! Rigid-body modes: a body (regions joined by interfaces) whose prescribed displacements do
 //! not restrain both translations and the rotation is reported as an
 //! [`Error::InvalidParameter`] naming the body and the free mode, before any factorization.
+//! (In a contact problem a body that takes part in a contact pair may leave modes free: they
+//! are held by contact and friction, see [`contact`].)
 //!
 //! Body forces (the volume terms of (9)-(12)) are not implemented yet.
 //!
