@@ -556,17 +556,6 @@ pub fn parse_case(text: &str, source: &str, base_dir: &Path) -> CliResult<Case> 
     validate(raw, source, base_dir, echo)
 }
 
-/// Read and validate a case file.
-pub fn load_case(path: &Path) -> CliResult<Case> {
-    let text = std::fs::read_to_string(path).map_err(|source| CliError::Unreadable {
-        field: "case".into(),
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    parse_case(&text, &path.display().to_string(), &base)
-}
-
 fn validate(
     raw: RawCase,
     source: &str,

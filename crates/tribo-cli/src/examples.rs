@@ -44,6 +44,12 @@ pub const EXAMPLES: &[Example] = &[
         text: include_str!("../examples/cases/roller-shaft-bending.toml"),
     },
     Example {
+        name: "clamp-knife-base",
+        description: "the paper's Sec. 7: knife clamped between clamp and base (2D BEM, \
+                      friction), damage sweep, steel vs cast-iron knife",
+        text: include_str!("../examples/cases/clamp-knife-base.toml"),
+    },
+    Example {
         name: "sphere-on-flat",
         description: "steel ball (R = 10 mm) on a flat, 100 N: circular Hertz contact",
         text: include_str!("../examples/cases/sphere-on-flat.toml"),

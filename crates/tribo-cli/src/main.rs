@@ -1,6 +1,7 @@
 //! `tribo`: the command line of the tribo suite. Case files in; summaries, fields and plots
 //! out. See README.md and `tribo --help`.
 
+mod bem;
 mod case;
 mod error;
 mod examples;
@@ -158,14 +159,19 @@ fn main() -> ExitCode {
     }
 }
 
-fn load(case: Option<&Path>) -> CliResult<case::Case> {
+/// The case text, its name for errors, and the folder relative paths resolve against.
+fn read_case(case: Option<&Path>) -> CliResult<(String, String, PathBuf)> {
     match case {
         None => {
             let ex = examples::find(examples::DEFAULT).ok_or_else(|| CliError::UnknownExample {
                 name: examples::DEFAULT.into(),
                 known: examples::names(),
             })?;
-            case::parse_case(ex.text, &format!("<embedded {}>", ex.name), Path::new("."))
+            Ok((
+                ex.text.to_string(),
+                format!("<embedded {}>", ex.name),
+                PathBuf::from("."),
+            ))
         }
         Some(p) if p.as_os_str() == "-" => {
             let mut text = String::new();
@@ -176,9 +182,17 @@ fn load(case: Option<&Path>) -> CliResult<case::Case> {
                     path: p.to_path_buf(),
                     source,
                 })?;
-            case::parse_case(&text, "<stdin>", Path::new("."))
+            Ok((text, "<stdin>".into(), PathBuf::from(".")))
         }
-        Some(p) => case::load_case(p),
+        Some(p) => {
+            let text = std::fs::read_to_string(p).map_err(|source| CliError::Unreadable {
+                field: "case".into(),
+                path: p.to_path_buf(),
+                source,
+            })?;
+            let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
+            Ok((text, p.display().to_string(), base))
+        }
     }
 }
 
@@ -189,7 +203,11 @@ fn cmd_run(
     quiet: bool,
     dry_run: bool,
 ) -> CliResult<u8> {
-    let case = load(case)?;
+    let (text, source, base_dir) = read_case(case)?;
+    if bem::is_bem_text(&text) {
+        return bem::run_text(&text, &source, &base_dir, out, json, quiet, dry_run);
+    }
+    let case = case::parse_case(&text, &source, &base_dir)?;
     let prepared = run::prepare(&case)?;
     if dry_run {
         let g = &prepared.grid;

@@ -2093,8 +2093,10 @@ impl ContactProblem {
                         if m < p.nodes.len() && states[p.offset + m] == ContactState::Outside {
                             return Err(Error::ContactReachesWindow {
                                 detail: format!(
-                                    "contact pair '{}' / '{}': the contact reaches the end of \
-                                     the master segment; extend the master segment",
+                                    "contact pair '{}' / '{}': the contact reaches an end of \
+                                     the master segment; extend the master segment, or, where \
+                                     the master ends at a corner of its body (a punch edge), \
+                                     end the slave segment at the same place",
                                     p.pair.slave, p.pair.master
                                 ),
                             });

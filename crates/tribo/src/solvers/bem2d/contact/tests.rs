@@ -1749,3 +1749,35 @@ fn free_block_pushed_sideways_with_friction() {
         }
     }
 }
+
+/// A contact growing past the master segment (the cylinder's contact arc, narrower than the
+/// block's contact segment) is refused with the window error, which says what to change.
+#[test]
+fn contact_past_a_smooth_master_end_is_refused() {
+    let bcs = BoundaryConditions::new().set("block_bottom", SegmentBc::fixed());
+    let estar = 210e9 / (2.0 * (1.0 - 0.09));
+    let (b, _) = hertz(R, estar, P);
+    // The block's contact segment (the slave) spans 4 b, the cylinder's arc (the master) 2 b;
+    // under 40 P the Hertz half-width is 6.3 b.
+    let model = BemModel::new(
+        PlaneCondition::Strain,
+        vec![
+            block("block", steel(), 0.010, 0.010, 4.0 * b, 48),
+            half_cylinder("cyl", steel(), R, 2.0 * b, 24, true),
+        ],
+    );
+    let mut cp = ContactProblem::new(
+        &model,
+        &bcs,
+        &[ContactPair::new("block_contact", "cyl_contact", 0.0)],
+        &["cyl_face"],
+    )
+    .unwrap();
+    match cp.solve_steps(&[press(40.0 * P)], &ContactOptions::default()) {
+        Err(err @ Error::ContactReachesWindow { .. }) => {
+            assert!(err.to_string().contains("end the slave segment"), "{err}")
+        }
+        Err(other) => panic!("expected the window error, got {other}"),
+        Ok(_) => panic!("a contact past a smooth master end was accepted"),
+    }
+}
