@@ -284,3 +284,113 @@ fn the_readme_bem_case_runs_and_balances() {
         assert!(out.join(f).is_file(), "{f} missing");
     }
 }
+
+/// `tribo example clamp-knife-base | tribo run -`: equilibrium of the two bodies held by
+/// contact, the paper's statements on Fig. 7b, the damage sweep and the comparison.
+#[test]
+fn the_clamp_knife_base_example_balances_and_shows_the_papers_effects() {
+    let text = stdout(&tribo(&["example", "clamp-knife-base"], None));
+    let (o, out, _d) = run_case(&text, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let steps = s["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 2);
+    let (bolt, cutting) = (48.4e6 * 12e-3, 16.475e3);
+    let force = |k: usize, pair: usize, d: usize| {
+        steps[k]["pairs"][pair]["slave_force_n_per_m"][d]
+            .as_f64()
+            .unwrap()
+    };
+    for k in 0..2 {
+        // The clamp is held only by the knife: the knife-clamp contact force equals the bolt
+        // force p_n w (a free-body equation of the contact problem: round-off, 1e-9).
+        assert!(
+            (-force(k, 1, 1) / bolt - 1.0).abs() < 1e-9,
+            "step {k}: {}",
+            force(k, 1, 1)
+        );
+        assert!(
+            force(k, 1, 0).abs() < 1e-9 * bolt,
+            "clamp friction resultant {}",
+            force(k, 1, 0)
+        );
+        // The knife is free in y: base + clamp + cutting load balance (round-off).
+        let cut = if k == 1 { cutting } else { 0.0 };
+        let balance = force(k, 0, 1) + force(k, 1, 1) + cut;
+        assert!(
+            balance.abs() < 1e-9 * bolt,
+            "step {k}: knife y balance {balance}"
+        );
+        // Both free bodies are reported.
+        let names: Vec<&str> = steps[k]["free_bodies"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|b| b["body"].as_str().unwrap())
+            .collect();
+        assert_eq!(names, ["knife", "clamp"]);
+    }
+    // Fig. 7b: the cutting load reduces the actual contact at both interfaces ...
+    for pair in 0..2 {
+        let l0 = steps[0]["pairs"][pair]["contact_length_m"]
+            .as_f64()
+            .unwrap();
+        let l1 = steps[1]["pairs"][pair]["contact_length_m"]
+            .as_f64()
+            .unwrap();
+        assert!(l1 < 0.95 * l0, "pair {pair}: contact {l0} -> {l1}");
+    }
+    // ... and raises the clamp-knife pressure sharply at the clamp's left edge (x = 45 mm),
+    // the knife's rotation point.
+    let p0 = &steps[0]["pairs"][1]["max_pressure"];
+    let p1 = &steps[1]["pairs"][1]["max_pressure"];
+    let x1 = p1["at_m"][0].as_f64().unwrap();
+    assert!((x1 - 45e-3).abs() < 0.5e-3, "peak at x = {x1}");
+    assert!(p1["value"].as_f64().unwrap() > 5.0 * p0["value"].as_f64().unwrap());
+    // Damage sweep: psi = sigma_int / limit on one field, so psi_max scales as 1/limit
+    // exactly (8.7 / 2.9 = 3, round-off), and V, Psi fall monotonically.
+    let d = &s["damage"];
+    assert_eq!(d["region"], "knife");
+    let f = d["sweep_factors"].as_array().unwrap();
+    assert!((f[2].as_f64().unwrap() - 3.0).abs() < 1e-9, "{f:?}");
+    let sweep = d["sweep"].as_array().unwrap();
+    assert_eq!(sweep.len(), 7);
+    for w in sweep.windows(2) {
+        assert!(w[1]["dangerous_area_m2"].as_f64() <= w[0]["dangerous_area_m2"].as_f64());
+        assert!(w[1]["damageability_m2"].as_f64() < w[0]["damageability_m2"].as_f64());
+    }
+    assert_eq!(d["paper_sweep_factors"][0].as_f64(), Some(27.0));
+    // Comparison: the cast-iron knife, 20 % softer, strains more (eps_int up by about the
+    // modulus ratio where the load path is force-controlled); the paper's changes are listed.
+    let c = &s["compare"];
+    let rows = c["rows"].as_array().unwrap();
+    assert_eq!(rows[0]["material"], "steel");
+    assert_eq!(rows[1]["material"], "cast_iron");
+    let metrics: Vec<&str> = c["metrics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m.as_str().unwrap())
+        .collect();
+    let eps = metrics.iter().position(|m| *m == "eps_int_max").unwrap();
+    let change = rows[1]["change_percent"][eps].as_f64().unwrap();
+    assert!(change > 10.0 && change < 30.0, "eps_int change {change} %");
+    assert!(c["paper_change_percent"].is_array());
+    for f in [
+        "interfaces.csv",
+        "interfaces.png",
+        "fields_clamping.vtu",
+        "fields_clamping_cutting.vtu",
+        "sigma_xx_clamping_cutting.png",
+        "sigma_int_clamping_cutting.png",
+        "psi_sigma_int.png",
+        "damage_sweep.csv",
+        "damage_sweep.png",
+        "compare.csv",
+        "compare.png",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    let vtu = std::fs::read_to_string(out.join("fields_clamping_cutting.vtu")).unwrap();
+    assert!(vtu.contains("Name=\"psi\""));
+}

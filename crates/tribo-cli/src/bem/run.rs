@@ -416,7 +416,7 @@ pub fn run_variant(
                 residual: r.residual,
                 pairs: r.pairs,
                 rigid: r.rigid,
-                free_bodies: Vec::new(), // STUBFB
+                free_bodies: r.free_bodies,
                 solution: r.solution,
             });
         }
