@@ -1,8 +1,8 @@
 //! End-to-end tests of 2D boundary element cases (`kind = "bem2d"`): closed forms through
-#![allow(clippy::needless_range_loop)] // step and pair indices read like the summary
 //! the command line, the clamp-knife-base example against the paper's statements and
 //! equilibrium, and bad input.
 
+#![allow(clippy::needless_range_loop)] // step and pair indices read like the summary
 mod common;
 use common::tribo;
 use std::path::{Path, PathBuf};
