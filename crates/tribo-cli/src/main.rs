@@ -36,7 +36,9 @@ Conventions:
   * The composite modulus is 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.
 
 A case file is TOML; `tribo example` lists ready-made ones and `tribo example NAME` prints
-one. Exit codes: 0 ok, 2 bad input, 3 solver did not converge, 1 anything else.";
+one. A case with `kind = \"bem2d\"` is a 2D boundary element model of n bodies (regions from
+outlines, conditions per named segment, frictional contact pairs, load steps): see
+`tribo example clamp-knife-base` and the README. Exit codes: 0 ok, 2 bad input, 3 solver did not converge, 1 anything else.";
 
 const AFTER_HELP: &str = "\
 Examples:
@@ -48,6 +50,7 @@ Examples:
   tribo example crowned-roller | tribo run - -o roller --json
   tribo example roller-shaft-bending | tribo run - -o fig2a   the back effect (Fig. 2a)
   tribo example roller-shaft-normal | tribo run - -o normal   normal contact only
+  tribo example clamp-knife-base | tribo run - -o knife   2D BEM, the paper's Sec. 7
   tribo validate                        the verification table
   tribo fatigue fit data.csv -o fit     Woehler curve fits (E739, max. likelihood), Fig. 3
   tribo example fatigue-diagram | tribo fatigue diagram -   limiting states, Fig. 4";
@@ -96,6 +99,12 @@ With a [field] section (the subsurface stress field, direct sum; z the depth, do
                          max shear, principal stresses, hydrostatic, octahedral shear,
                          strain energy density (and parts), strains
   sigma_xx_y0.png, sigma_xx_z05a.png, von_mises_y0.png   sections
+
+A 2D boundary element case (kind = \"bem2d\") writes instead: summary.json, interfaces.csv
+and interfaces.png (contact pressure and shear along every pair, each step),
+fields_<step>.vtu (VTK unstructured grid: displacement, stresses, sigma_int, strains, psi),
+sigma_xx_<step>.png, sigma_int_<step>.png, and with [damage] psi_<quantity>.png,
+damage_sweep.csv/png, with [compare] compare.csv/png.
 
 A short summary goes to stdout (--json: the summary JSON instead); progress to stderr.
 Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3).")]
