@@ -105,6 +105,11 @@ mod tests {
                 assert!(d.is_ok(), "{}: {}", e.name, d.unwrap_err());
                 continue;
             }
+            if crate::bem::is_bem_text(e.text) {
+                let c = crate::bem::case::parse(e.text, e.name, Path::new("."));
+                assert!(c.is_ok(), "{}: {}", e.name, c.unwrap_err());
+                continue;
+            }
             let c = parse_case(e.text, e.name, Path::new("."));
             assert!(c.is_ok(), "{}: {}", e.name, c.unwrap_err());
         }
