@@ -214,7 +214,10 @@ fn cmd_run(
 ) -> CliResult<u8> {
     let (text, source, base_dir) = read_case(case)?;
     if bem::is_bem_text(&text) {
-        return bem::run_text(&text, &source, &base_dir, out, json, quiet, dry_run);
+        let Some(summary) = bem::run_text(&text, &source, &base_dir, out, quiet, dry_run)? else {
+            return Ok(EXIT_OK);
+        };
+        return print_summary(&summary, &summary.human(out), json);
     }
     let case = case::parse_case(&text, &source, &base_dir)?;
     let prepared = run::prepare(&case)?;
@@ -233,14 +236,19 @@ fn cmd_run(
     }
     let outcome = run::solve(&case, prepared, quiet)?;
     let summary = output::write_all(out, &case, &outcome)?;
+    print_summary(&summary, &summary.human(out), json)
+}
+
+/// Prints the summary: as JSON with `json`, else the human text.
+fn print_summary(summary: &impl serde::Serialize, human: &str, json: bool) -> CliResult<u8> {
     if json {
-        let text = serde_json::to_string_pretty(&summary).map_err(|e| CliError::Output {
+        let text = serde_json::to_string_pretty(summary).map_err(|e| CliError::Output {
             what: "summary".into(),
             detail: e.to_string(),
         })?;
         println!("{text}");
     } else {
-        print!("{}", summary.human(out));
+        print!("{human}");
     }
     Ok(EXIT_OK)
 }

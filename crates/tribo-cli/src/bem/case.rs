@@ -301,18 +301,7 @@ fn bad(
 
 /// Parse and validate the text of a `kind = "bem2d"` case.
 pub fn parse(text: &str, source: &str, base_dir: &Path) -> CliResult<BemCase> {
-    let raw: RawBemCase = toml::from_str(text).map_err(|e| CliError::Parse {
-        path: source.to_string(),
-        message: e.to_string().trim_end().to_string(),
-    })?;
-    let table: toml::Table = toml::from_str(text).map_err(|e| CliError::Parse {
-        path: source.to_string(),
-        message: e.to_string(),
-    })?;
-    let echo = serde_json::to_value(&table).map_err(|e| CliError::Parse {
-        path: source.to_string(),
-        message: e.to_string(),
-    })?;
+    let (raw, echo) = crate::case::parse_raw::<RawBemCase>(text, source)?;
     validate(raw, source, base_dir, echo)
 }
 

@@ -10,7 +10,7 @@ pub mod template;
 
 use std::path::Path;
 
-use crate::error::{CliError, CliResult, EXIT_OK};
+use crate::error::CliResult;
 
 /// Whether the case text is a boundary element case (`kind = "bem2d"`); None where the text
 /// is not TOML (the caller's parser reports the error).
@@ -18,16 +18,16 @@ pub fn is_bem_text(text: &str) -> bool {
     toml::from_str::<toml::Table>(text).is_ok_and(|t| case::is_bem(&t))
 }
 
-/// `tribo run` on a boundary element case.
+/// `tribo run` on a boundary element case: solves and writes the outputs, returning the
+/// summary; with `dry_run` validates, prints the model and returns None.
 pub fn run_text(
     text: &str,
     source: &str,
     base_dir: &Path,
     out: &Path,
-    json: bool,
     quiet: bool,
     dry_run: bool,
-) -> CliResult<u8> {
+) -> CliResult<Option<output::BemSummary>> {
     let case = case::parse(text, source, base_dir)?;
     if dry_run {
         let model = run::model(&case, None)?;
@@ -52,18 +52,8 @@ pub fn run_text(
         }
         let names: Vec<&str> = mesh.segments.iter().map(|s| s.name.as_str()).collect();
         println!("  segments: {}", names.join(", "));
-        return Ok(EXIT_OK);
+        return Ok(None);
     }
     let outcome = run::solve(&case, quiet)?;
-    let summary = output::write_all(out, &case, &outcome)?;
-    if json {
-        let text = serde_json::to_string_pretty(&summary).map_err(|e| CliError::Output {
-            what: "summary".into(),
-            detail: e.to_string(),
-        })?;
-        println!("{text}");
-    } else {
-        print!("{}", summary.human(out));
-    }
-    Ok(EXIT_OK)
+    Ok(Some(output::write_all(out, &case, &outcome)?))
 }

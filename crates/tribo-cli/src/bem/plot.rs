@@ -5,22 +5,7 @@
 use plotters::prelude::*;
 use std::path::Path;
 
-use crate::output::plot::{register_font, viridis};
-
-const FAMILY: &str = "sans-serif";
-
-fn e<E: std::fmt::Display>(err: E) -> String {
-    err.to_string()
-}
-
-fn tick(v: &f64) -> String {
-    let r = (v * 1e6).round() / 1e6;
-    if r == 0.0 {
-        "0".into()
-    } else {
-        format!("{r}")
-    }
-}
+use crate::output::plot::{e, legend_box, register_font, tick, viridis, FAMILY};
 
 /// Blue-white-red for signed values, `t` in [-1, 1].
 pub fn diverging(t: f64) -> RGBColor {
@@ -287,14 +272,7 @@ pub fn panels(
                     .draw_series(pts.iter().map(|&p| Circle::new(p, 4, c.filled())))
                     .map_err(e)?;
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .label_font((FAMILY, 13))
-                .draw()
-                .map_err(e)?;
+            legend_box(&mut chart)?;
         } else {
             let pad = 0.08
                 * (y1 - y0)
@@ -345,14 +323,7 @@ pub fn panels(
                         });
                 }
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .label_font((FAMILY, 13))
-                .draw()
-                .map_err(e)?;
+            legend_box(&mut chart)?;
         }
     }
     root.present().map_err(e)?;
