@@ -541,30 +541,25 @@ impl Case {
 /// Parse and validate a case file's text. `source` names it in errors; `base_dir` resolves
 /// relative file paths (height maps).
 pub fn parse_case(text: &str, source: &str, base_dir: &Path) -> CliResult<Case> {
-    let raw: RawCase = toml::from_str(text).map_err(|e| CliError::Parse {
-        path: source.to_string(),
-        message: e.to_string().trim_end().to_string(),
-    })?;
-    let table: toml::Table = toml::from_str(text).map_err(|e| CliError::Parse {
-        path: source.to_string(),
-        message: e.to_string(),
-    })?;
-    let echo = serde_json::to_value(&table).map_err(|e| CliError::Parse {
-        path: source.to_string(),
-        message: e.to_string(),
-    })?;
+    let (raw, echo) = parse_raw::<RawCase>(text, source)?;
     validate(raw, source, base_dir, echo)
 }
 
-/// Read and validate a case file.
-pub fn load_case(path: &Path) -> CliResult<Case> {
-    let text = std::fs::read_to_string(path).map_err(|source| CliError::Unreadable {
-        field: "case".into(),
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    parse_case(&text, &path.display().to_string(), &base)
+/// The case text parsed into the raw (serde) schema `T`, and the case as JSON (echoed in
+/// the summary). Errors name `source` and carry the parser's line and column.
+pub fn parse_raw<T: serde::de::DeserializeOwned>(
+    text: &str,
+    source: &str,
+) -> CliResult<(T, serde_json::Value)> {
+    let parse_error = |message: String| CliError::Parse {
+        path: source.to_string(),
+        message,
+    };
+    let raw: T =
+        toml::from_str(text).map_err(|e| parse_error(e.to_string().trim_end().to_string()))?;
+    let table: toml::Table = toml::from_str(text).map_err(|e| parse_error(e.to_string()))?;
+    let echo = serde_json::to_value(&table).map_err(|e| parse_error(e.to_string()))?;
+    Ok((raw, echo))
 }
 
 fn validate(

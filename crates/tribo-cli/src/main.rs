@@ -1,6 +1,7 @@
 //! `tribo`: the command line of the tribo suite. Case files in; summaries, fields and plots
 //! out. See README.md and `tribo --help`.
 
+mod bem;
 mod case;
 mod error;
 mod examples;
@@ -35,7 +36,9 @@ Conventions:
   * The composite modulus is 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.
 
 A case file is TOML; `tribo example` lists ready-made ones and `tribo example NAME` prints
-one. Exit codes: 0 ok, 2 bad input, 3 solver did not converge, 1 anything else.";
+one. A case with `kind = \"bem2d\"` is a 2D boundary element model of n bodies (regions from
+outlines, conditions per named segment, frictional contact pairs, load steps): see
+`tribo example clamp-knife-base` and the README. Exit codes: 0 ok, 2 bad input, 3 solver did not converge, 1 anything else.";
 
 const AFTER_HELP: &str = "\
 Examples:
@@ -47,6 +50,7 @@ Examples:
   tribo example crowned-roller | tribo run - -o roller --json
   tribo example roller-shaft-bending | tribo run - -o fig2a   the back effect (Fig. 2a)
   tribo example roller-shaft-normal | tribo run - -o normal   normal contact only
+  tribo example clamp-knife-base | tribo run - -o knife   2D BEM, the paper's Sec. 7
   tribo validate                        the verification table
   tribo fatigue fit data.csv -o fit     Woehler curve fits (E739, max. likelihood), Fig. 3
   tribo example fatigue-diagram | tribo fatigue diagram -   limiting states, Fig. 4";
@@ -95,6 +99,12 @@ With a [field] section (the subsurface stress field, direct sum; z the depth, do
                          max shear, principal stresses, hydrostatic, octahedral shear,
                          strain energy density (and parts), strains
   sigma_xx_y0.png, sigma_xx_z05a.png, von_mises_y0.png   sections
+
+A 2D boundary element case (kind = \"bem2d\") writes instead: summary.json, interfaces.csv
+and interfaces.png (contact pressure and shear along every pair, each step),
+fields_<step>.vtu (VTK unstructured grid: displacement, stresses, sigma_int, strains, psi),
+sigma_xx_<step>.png, sigma_int_<step>.png, and with [damage] psi_<quantity>.png,
+damage_sweep.csv/png, with [compare] compare.csv/png.
 
 A short summary goes to stdout (--json: the summary JSON instead); progress to stderr.
 Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3).")]
@@ -158,14 +168,19 @@ fn main() -> ExitCode {
     }
 }
 
-fn load(case: Option<&Path>) -> CliResult<case::Case> {
+/// The case text, its name for errors, and the folder relative paths resolve against.
+fn read_case(case: Option<&Path>) -> CliResult<(String, String, PathBuf)> {
     match case {
         None => {
             let ex = examples::find(examples::DEFAULT).ok_or_else(|| CliError::UnknownExample {
                 name: examples::DEFAULT.into(),
                 known: examples::names(),
             })?;
-            case::parse_case(ex.text, &format!("<embedded {}>", ex.name), Path::new("."))
+            Ok((
+                ex.text.to_string(),
+                format!("<embedded {}>", ex.name),
+                PathBuf::from("."),
+            ))
         }
         Some(p) if p.as_os_str() == "-" => {
             let mut text = String::new();
@@ -176,9 +191,17 @@ fn load(case: Option<&Path>) -> CliResult<case::Case> {
                     path: p.to_path_buf(),
                     source,
                 })?;
-            case::parse_case(&text, "<stdin>", Path::new("."))
+            Ok((text, "<stdin>".into(), PathBuf::from(".")))
         }
-        Some(p) => case::load_case(p),
+        Some(p) => {
+            let text = std::fs::read_to_string(p).map_err(|source| CliError::Unreadable {
+                field: "case".into(),
+                path: p.to_path_buf(),
+                source,
+            })?;
+            let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
+            Ok((text, p.display().to_string(), base))
+        }
     }
 }
 
@@ -189,7 +212,14 @@ fn cmd_run(
     quiet: bool,
     dry_run: bool,
 ) -> CliResult<u8> {
-    let case = load(case)?;
+    let (text, source, base_dir) = read_case(case)?;
+    if bem::is_bem_text(&text) {
+        let Some(summary) = bem::run_text(&text, &source, &base_dir, out, quiet, dry_run)? else {
+            return Ok(EXIT_OK);
+        };
+        return print_summary(&summary, &summary.human(out), json);
+    }
+    let case = case::parse_case(&text, &source, &base_dir)?;
     let prepared = run::prepare(&case)?;
     if dry_run {
         let g = &prepared.grid;
@@ -206,14 +236,19 @@ fn cmd_run(
     }
     let outcome = run::solve(&case, prepared, quiet)?;
     let summary = output::write_all(out, &case, &outcome)?;
+    print_summary(&summary, &summary.human(out), json)
+}
+
+/// Prints the summary: as JSON with `json`, else the human text.
+fn print_summary(summary: &impl serde::Serialize, human: &str, json: bool) -> CliResult<u8> {
     if json {
-        let text = serde_json::to_string_pretty(&summary).map_err(|e| CliError::Output {
+        let text = serde_json::to_string_pretty(summary).map_err(|e| CliError::Output {
             what: "summary".into(),
             detail: e.to_string(),
         })?;
         println!("{text}");
     } else {
-        print!("{}", summary.human(out));
+        print!("{human}");
     }
     Ok(EXIT_OK)
 }

@@ -12,6 +12,9 @@ pub enum Dim {
     Length,
     /// Force: N, kN, MN, mN.
     Force,
+    /// Force per unit length (a line load, or a 2D model's force per unit thickness):
+    /// N/m, kN/m, MN/m, N/mm.
+    LineForce,
 }
 
 impl Dim {
@@ -27,6 +30,7 @@ impl Dim {
                 ("m", 1.0),
             ],
             Dim::Force => &[("kN", 1e3), ("MN", 1e6), ("mN", 1e-3), ("N", 1.0)],
+            Dim::LineForce => &[("kN/m", 1e3), ("MN/m", 1e6), ("N/mm", 1e3), ("N/m", 1.0)],
         }
     }
 
@@ -35,6 +39,7 @@ impl Dim {
             Dim::Pressure => "Pa",
             Dim::Length => "m",
             Dim::Force => "N",
+            Dim::LineForce => "N/m",
         }
     }
 }
@@ -152,6 +157,10 @@ mod tests {
         assert!((q("5 µm", Dim::Length).unwrap() - 5e-6).abs() < 1e-20);
         assert_eq!(q("0.3 m", Dim::Length).unwrap(), 0.3);
         assert_eq!(q("2 kN", Dim::Force).unwrap(), 2000.0);
+        assert!((q("16.475 kN/m", Dim::LineForce).unwrap() - 16475.0).abs() < 1e-9);
+        assert_eq!(q("3 N/mm", Dim::LineForce).unwrap(), 3000.0);
+        assert_eq!(q("7 N/m", Dim::LineForce).unwrap(), 7.0);
+        assert!(q("7 N", Dim::LineForce).is_err());
         assert!(q("10 mm", Dim::Pressure).is_err());
         assert!(q("ten mm", Dim::Length).is_err());
         assert!(q("10", Dim::Length).is_err());

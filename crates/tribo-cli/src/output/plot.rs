@@ -12,7 +12,7 @@ use tribo::SurfaceGrid;
 static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
 /// The font family name the plots use.
-const FAMILY: &str = "sans-serif";
+pub(crate) const FAMILY: &str = "sans-serif";
 
 /// Register the shipped font as `sans-serif` (once per process).
 pub fn register_font() -> Result<(), String> {
@@ -24,12 +24,12 @@ pub fn register_font() -> Result<(), String> {
     .clone()
 }
 
-fn e<E: std::fmt::Display>(err: E) -> String {
+pub(crate) fn e<E: std::fmt::Display>(err: E) -> String {
     err.to_string()
 }
 
 /// Axis tick labels: rounded to 1e-6 of the unit, without a "-0".
-fn tick(v: &f64) -> String {
+pub(crate) fn tick(v: &f64) -> String {
     let r = (v * 1e6).round() / 1e6;
     if r == 0.0 {
         "0".into()
@@ -500,7 +500,7 @@ pub fn lines(
 /// A reference curve q(x, y) (Pa) and its legend label.
 pub type Reference<'a> = (&'a dyn Fn(f64, f64) -> f64, &'a str);
 
-fn legend_box<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
+pub(crate) fn legend_box<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
     chart: &mut ChartContext<'a, DB, CT>,
 ) -> Result<(), String>
 where

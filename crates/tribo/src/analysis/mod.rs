@@ -1,6 +1,7 @@
 //! Layer 4: pure functions of fields: error measures against reference solutions, the
 //! stress field, volume damageability and the energy criterion.
 
+pub mod bem_field;
 pub mod damage;
 pub mod energy_criterion;
 pub mod hertz_error;

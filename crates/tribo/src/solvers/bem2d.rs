@@ -15,6 +15,8 @@
 //! Rigid-body modes: a body (regions joined by interfaces) whose prescribed displacements do
 //! not restrain both translations and the rotation is reported as an
 //! [`Error::InvalidParameter`] naming the body and the free mode, before any factorization.
+//! (In a contact problem a body that takes part in a contact pair may leave modes free: they
+//! are held by contact and friction, see [`contact`].)
 //!
 //! Body forces (the volume terms `L^(V)(q)` of (9)-(12)): gravity `rho g` and rotation
 //! `rho omega^2 (x - c)` per region ([`crate::operators::bem2d::BodyForce`],
@@ -37,7 +39,8 @@
 //! 5.6e-6 of max sigma_t (plane stress; plane strain alike); two bonded rotating rings
 //! (steel/aluminium, plane strain) 2.8e-3, 3.6e-4, 4.4e-5 in u_r and 2.8e-4, 9.9e-5, 2.9e-5 in
 //! stress (1 mm from the bond); a block on a base under gravity in contact: contact force =
-//! weight to 1e-12, uniform pressure to 1.3e-10.
+//! weight to 1e-12 (rigid top segment) and 2e-13 (free block, automatic support), uniform
+//! pressure to 1.3e-10.
 //!
 //! Interior points (11): the Somigliana identities for u and sigma with the adaptive
 //! near-singular rule of the operators (pieces subdivided until their distance is at least
@@ -48,7 +51,16 @@
 //! at 1e-6 h, O(1) at 1e-8 h. Therefore a point closer than [`BOUNDARY_LAYER`] = 1e-4 of the
 //! nearest element's length (including points on the boundary, or just outside it) is
 //! evaluated at that distance along the inward normal from its foot point: an O(1e-4 h
-//! grad sigma) shift, far below the discretization error. Boundary nodal stresses (in
+//! grad sigma) shift, far below the discretization error. A point that close to elements
+//! of two segments (a corner or any segment junction, where the discontinuous end nodes let
+//! the interpolated u jump by the nodal error) takes the boundary-recovered displacement
+//! of those elements at its foot points, averaged, and at a corner the stress that the
+//! tractions of its sides determine (sigma n_k = t_k, least squares), elsewhere their
+//! averaged recovered stress (below): the identities near a jump of u carry an error
+//! ~ G |jump| / d (measured on the Lame cylinder's corners: O(1) of sigma at 1e-4 h, 5e-2
+//! at 1.4e-4 h off both sides), the corner tractions 1e-3 at n = 8. Interior
+//! points closer than about 1e-2 h to a segment junction (but outside the layer) still see
+//! that error; a triangulation from [`crate::analysis::bem_field`] has none so close. Boundary nodal stresses (in
 //! [`BemSolution::segment_results`]) are recovered from the traction and the tangential
 //! derivative of the boundary displacement (Hooke's law in the boundary frame; Brebbia &
 //! Dominguez sec. 5.6).
@@ -173,10 +185,16 @@ impl SegmentBc {
     }
 }
 
-/// Boundary conditions by segment name.
+/// Boundary conditions by segment name, each optionally in a named load group.
+///
+/// Load groups matter only for the load steps of [`contact::ContactProblem`], where each
+/// group has its own factor ([`contact::LoadStep::groups`]; ungrouped conditions take
+/// [`contact::LoadStep::external`]). [`BemProblem::solve`] applies every condition with
+/// factor 1, whatever its group.
 #[derive(Debug, Clone, Default)]
 pub struct BoundaryConditions {
-    entries: Vec<(String, SegmentBc)>,
+    /// (segment, condition, load group or None).
+    entries: Vec<(String, SegmentBc, Option<String>)>,
 }
 
 impl BoundaryConditions {
@@ -185,10 +203,31 @@ impl BoundaryConditions {
         Self::default()
     }
 
-    /// Adds the condition of segment `name`.
+    /// Adds the condition of segment `name` (in no load group).
     pub fn set(mut self, name: &str, bc: SegmentBc) -> Self {
-        self.entries.push((name.to_string(), bc));
+        self.entries.push((name.to_string(), bc, None));
         self
+    }
+
+    /// Adds the condition of segment `name` in load group `group` (scaled in each load step
+    /// by that group's factor; see [`contact::LoadStep`]).
+    pub fn set_in_group(mut self, name: &str, bc: SegmentBc, group: &str) -> Self {
+        self.entries
+            .push((name.to_string(), bc, Some(group.to_string())));
+        self
+    }
+
+    /// The named load groups, in the order of their first use.
+    pub fn groups(&self) -> Vec<String> {
+        let mut out: Vec<String> = Vec::new();
+        for (_, _, g) in &self.entries {
+            if let Some(g) = g {
+                if !out.contains(g) {
+                    out.push(g.clone());
+                }
+            }
+        }
+        out
     }
 }
 
@@ -313,7 +352,7 @@ impl BemProblem {
     fn dofs(&self, bcs: &BoundaryConditions) -> Result<(Vec<Vec<[Dof; 2]>>, usize)> {
         let mesh = &self.mesh;
         let mut given: Vec<Option<&SegmentBc>> = vec![None; mesh.segments.len()];
-        for (name, bc) in &bcs.entries {
+        for (name, bc, _) in &bcs.entries {
             let s = mesh.segment_index(name).ok_or_else(|| {
                 Error::invalid(
                     "boundary_condition.segment",
@@ -406,9 +445,9 @@ impl BemProblem {
         Ok((dofs, col))
     }
 
-    /// Rigid-body check: every body (regions joined by interfaces) must have prescribed
-    /// displacements that restrain x and y translation and the rotation.
-    fn check_restraint(&self, dofs: &[Vec<[Dof; 2]>]) -> Result<()> {
+    /// The bodies (regions joined by bonded interfaces), each as its sorted member regions,
+    /// ordered by their union-find roots.
+    fn bodies(&self) -> Vec<Vec<usize>> {
         let mesh = &self.mesh;
         let nr = mesh.regions.len();
         let mut body: Vec<usize> = (0..nr).collect();
@@ -426,13 +465,31 @@ impl BemProblem {
                 body[a] = b;
             }
         }
+        let mut out = Vec::new();
         for root in 0..nr {
             if find(&mut body, root) != root {
                 continue;
             }
-            let members: Vec<usize> = (0..nr).filter(|&r| find(&mut body, r) == root).collect();
+            out.push((0..nr).filter(|&r| find(&mut body, r) == root).collect());
+        }
+        out
+    }
+
+    /// Rigid-body check: every body (regions joined by interfaces) must have prescribed
+    /// displacements that restrain x and y translation and the rotation.
+    fn check_restraint(&self, dofs: &[Vec<[Dof; 2]>]) -> Result<()> {
+        for members in self.bodies() {
+            self.check_body_restraint(dofs, &members)?;
+        }
+        Ok(())
+    }
+
+    /// The rigid-body check of one body (its member regions).
+    fn check_body_restraint(&self, dofs: &[Vec<[Dof; 2]>], members: &[usize]) -> Result<()> {
+        let mesh = &self.mesh;
+        {
             let mut rows: Vec<(usize, [f64; 2])> = Vec::new();
-            for &r in &members {
+            for &r in members {
                 for (node, d) in mesh.regions[r].nodes.iter().zip(&dofs[r]) {
                     for (dir, dof) in d.iter().enumerate() {
                         if matches!(dof, Dof::T { .. }) {
@@ -612,6 +669,16 @@ impl BemProblem {
     }
 }
 
+/// Where a point is evaluated (see [`BemSolution::locate_in`]).
+#[derive(Debug, Clone)]
+enum Site {
+    /// The Somigliana identities at this point (inside the region).
+    Interior([f64; 2]),
+    /// A segment junction (corner): the boundary-recovered fields of these elements at
+    /// these local coordinates, averaged.
+    Junction(Vec<(usize, f64)>),
+}
+
 /// Points closer to the boundary than this fraction of the nearest element's length are
 /// evaluated at this distance along the inward normal (see the module docs).
 pub const BOUNDARY_LAYER: f64 = 1e-4;
@@ -630,49 +697,11 @@ impl BemSolution {
 
     /// The region holding `p` and the point to evaluate (p itself, or p moved to
     /// [`BOUNDARY_LAYER`] of an element length inside the boundary).
-    fn locate(&self, p: [f64; 2]) -> Result<(usize, [f64; 2])> {
-        if !(p[0].is_finite() && p[1].is_finite()) {
-            return Err(Error::invalid(
-                "point",
-                format!("({}, {})", p[0], p[1]),
-                "must be finite",
-            ));
-        }
-        for (r, region) in self.mesh.regions.iter().enumerate() {
-            // Boundary proximity first.
-            let mut nearest: Option<(f64, usize, f64, f64)> = None;
-            for (k, e) in region.elements.iter().enumerate() {
-                let (d, len) = piece_distance(e, p, -1.0, 1.0);
-                if d < 0.6 * len {
-                    let xi = nearest_xi(e, p);
-                    let dd = dist(e.point(xi), p);
-                    if nearest.map_or(true, |n| dd < n.0) {
-                        nearest = Some((dd, k, xi, len));
-                    }
-                }
-            }
-            if let Some((dd, k, xi, len)) = nearest {
-                if dd < BOUNDARY_LAYER * len {
-                    let e = &region.elements[k];
-                    let foot = e.point(xi);
-                    let (n, _) = e.normal_jacobian(xi);
-                    let h = BOUNDARY_LAYER * len;
-                    return Ok((r, [foot[0] - h * n[0], foot[1] - h * n[1]]));
-                }
-            }
-            // Winding number over 8 chords per element.
-            let mut wn = 0.0;
-            for e in &region.elements {
-                for m in 0..8 {
-                    let a = e.point(-1.0 + m as f64 / 4.0);
-                    let b = e.point(-1.0 + (m + 1) as f64 / 4.0);
-                    let (ax, ay) = (a[0] - p[0], a[1] - p[1]);
-                    let (bx, by) = (b[0] - p[0], b[1] - p[1]);
-                    wn += (ax * by - ay * bx).atan2(ax * bx + ay * by);
-                }
-            }
-            if wn > std::f64::consts::PI {
-                return Ok((r, p));
+    fn locate(&self, p: [f64; 2]) -> Result<(usize, Site)> {
+        finite(p)?;
+        for r in 0..self.mesh.regions.len() {
+            if let Some(q) = self.locate_in(r, p) {
+                return Ok((r, q));
             }
         }
         Err(Error::invalid(
@@ -682,37 +711,172 @@ impl BemSolution {
         ))
     }
 
+    /// The point at which to evaluate `p` in region `r`: `p` moved to [`BOUNDARY_LAYER`] of
+    /// an element length inside the boundary where it is closer than that to one of the
+    /// region's elements (on the boundary or just outside it), `p` itself where it is
+    /// inside the region (winding number over 8 chords per element), `None` where it is
+    /// outside. `p` must be finite.
+    fn locate_in(&self, r: usize, p: [f64; 2]) -> Option<Site> {
+        let region = &self.mesh.regions[r];
+        // Boundary proximity first: every element closer than BOUNDARY_LAYER of its length,
+        // with its foot point and outward normal there.
+        // (distance, foot, outward normal, layer, element, xi)
+        type Near = (f64, [f64; 2], [f64; 2], f64, usize, f64);
+        let mut near: Vec<Near> = Vec::new();
+        for (k, e) in region.elements.iter().enumerate() {
+            let (d, len) = piece_distance(e, p, -1.0, 1.0);
+            if d < 0.6 * len {
+                let xi = nearest_xi(e, p);
+                let foot = e.point(xi);
+                let dd = dist(foot, p);
+                if dd < BOUNDARY_LAYER * len {
+                    let (n, _) = e.normal_jacobian(xi);
+                    near.push((dd, foot, n, BOUNDARY_LAYER * len, k, xi));
+                }
+            }
+        }
+        let first = near.first().map(|q| region.elements[q.4].segment);
+        if near
+            .iter()
+            .any(|q| Some(region.elements[q.4].segment) != first)
+        {
+            // A junction of segments: their discontinuous end nodes make u jump there, and
+            // the identities at distance d carry an error ~ G |jump| / d (module docs).
+            return Some(Site::Junction(near.iter().map(|q| (q.4, q.5)).collect()));
+        }
+        if let Some(&(_, foot, n, h, _, _)) = near.iter().min_by(|a, b| a.0.total_cmp(&b.0)) {
+            return Some(Site::Interior([foot[0] - h * n[0], foot[1] - h * n[1]]));
+        }
+        // Winding number over 8 chords per element.
+        let mut wn = 0.0;
+        for e in &region.elements {
+            for m in 0..8 {
+                let a = e.point(-1.0 + m as f64 / 4.0);
+                let b = e.point(-1.0 + (m + 1) as f64 / 4.0);
+                let (ax, ay) = (a[0] - p[0], a[1] - p[1]);
+                let (bx, by) = (b[0] - p[0], b[1] - p[1]);
+                wn += (ax * by - ay * bx).atan2(ax * bx + ay * by);
+            }
+        }
+        (wn > std::f64::consts::PI).then_some(Site::Interior(p))
+    }
+
+    /// Displacement (m), stress (Pa) and strain at `p` in the known region `region`, without
+    /// searching the other regions; the [`BOUNDARY_LAYER`] rule applies to the region's own
+    /// boundary as in [`BemSolution::stress_at`]. The same bits as
+    /// [`BemSolution::displacement_at`], [`BemSolution::stress_at`] and
+    /// [`BemSolution::strain_at`] where `region` is the first region holding `p`.
+    ///
+    /// Errors: `region` out of range, `p` not finite, or `p` outside the region (farther
+    /// than the boundary layer).
+    pub(crate) fn fields_in_region(
+        &self,
+        region: usize,
+        p: [f64; 2],
+    ) -> Result<([f64; 2], Stress2d, Strain2d)> {
+        let nr = self.mesh.regions.len();
+        if region >= nr {
+            return Err(Error::invalid(
+                "region",
+                region,
+                format!("must be a region index < {nr} (the model's region count)"),
+            ));
+        }
+        finite(p)?;
+        let q = self.locate_in(region, p).ok_or_else(|| {
+            Error::invalid(
+                "point",
+                format!("({:.6e}, {:.6e})", p[0], p[1]),
+                format!("lies outside region '{}'", self.mesh.regions[region].name),
+            )
+        })?;
+        let (u, s) = self.evaluate(region, &q);
+        let k = &self.mesh.regions[region].kernels;
+        Ok((u, self.stress2d(region, s), strain2d(k, s)))
+    }
+
+    fn stress2d(&self, r: usize, s: [f64; 3]) -> Stress2d {
+        Stress2d {
+            xx: s[0],
+            yy: s[1],
+            xy: s[2],
+            zz: self.mesh.regions[r].kernels.sigma_zz(s[0], s[1]),
+        }
+    }
+
     /// Displacement at `p` (inside a region or on its boundary), m.
     pub fn displacement_at(&self, p: [f64; 2]) -> Result<[f64; 2]> {
         let (r, q) = self.locate(p)?;
-        Ok(self.interior(r, q).0)
+        Ok(self.evaluate(r, &q).0)
     }
 
     /// Stress at `p` (inside a region or on its boundary), Pa.
     pub fn stress_at(&self, p: [f64; 2]) -> Result<Stress2d> {
         let (r, q) = self.locate(p)?;
-        let s = self.interior(r, q).1;
-        let zz = self.mesh.regions[r].kernels.sigma_zz(s[0], s[1]);
-        Ok(Stress2d {
-            xx: s[0],
-            yy: s[1],
-            xy: s[2],
-            zz,
-        })
+        Ok(self.stress2d(r, self.evaluate(r, &q).1))
     }
 
     /// Strain at `p` (Hooke's law of the local material), dimensionless.
     pub fn strain_at(&self, p: [f64; 2]) -> Result<Strain2d> {
-        let (r, _) = self.locate(p)?;
-        let s = self.stress_at(p)?;
-        let k = &self.mesh.regions[r].kernels;
-        let e = k.strain_from_stress([s.xx, s.yy, s.xy]);
-        Ok(Strain2d {
-            xx: e[0],
-            yy: e[1],
-            xy: e[2],
-            zz: k.eps_zz(s.xx, s.yy),
-        })
+        let (r, q) = self.locate(p)?;
+        let s = self.evaluate(r, &q).1;
+        Ok(strain2d(&self.mesh.regions[r].kernels, s))
+    }
+
+    /// Displacement and in-plane stress [xx, yy, xy] at a located site of region r.
+    fn evaluate(&self, r: usize, site: &Site) -> ([f64; 2], [f64; 3]) {
+        match site {
+            Site::Interior(p) => self.interior(r, *p),
+            Site::Junction(feet) => {
+                let region = &self.mesh.regions[r];
+                let w = 1.0 / feet.len() as f64;
+                let mut u = [0.0; 2];
+                let mut s = [0.0; 3];
+                // Normal equations of sigma n_k = t_k over the elements (unknowns sxx, syy,
+                // sxy; rows [n_x, 0, n_y] and [0, n_y, n_x]).
+                let mut ata = [[0.0; 3]; 3];
+                let mut atb = [0.0; 3];
+                let mut normals = Vec::with_capacity(feet.len());
+                for &(k, xi) in feet {
+                    let e = &region.elements[k];
+                    let nk = e.field_shape(xi);
+                    let (ue, te) = self.nodal(r, e);
+                    let mut t = [0.0; 2];
+                    for d in 0..2 {
+                        u[d] += w * (0..3).map(|m| nk[m] * ue[m][d]).sum::<f64>();
+                        t[d] = (0..3).map(|m| nk[m] * te[m][d]).sum::<f64>();
+                    }
+                    let st = self.boundary_stress(r, k, xi);
+                    for c in 0..3 {
+                        s[c] += w * st[c];
+                    }
+                    let (n, _) = e.normal_jacobian(xi);
+                    for (row, b) in [([n[0], 0.0, n[1]], t[0]), ([0.0, n[1], n[0]], t[1])] {
+                        for i in 0..3 {
+                            atb[i] += row[i] * b;
+                            for j in 0..3 {
+                                ata[i][j] += row[i] * row[j];
+                            }
+                        }
+                    }
+                    normals.push(n);
+                }
+                // A corner (normals at least ~12 deg apart): the tractions of its two sides
+                // determine the whole in-plane stress, more accurately than the tangential
+                // strain of the discontinuous end elements (Lame corners: 1e-3 against
+                // 5e-3 of sigma). Along a smooth junction: the mean recovered stress.
+                let corner = normals
+                    .iter()
+                    .enumerate()
+                    .any(|(i, a)| normals[i + 1..].iter().any(|b| cross2(*a, *b).abs() > 0.2));
+                if corner {
+                    if let Some(x) = solve3(ata, atb) {
+                        s = x;
+                    }
+                }
+                (u, s)
+            }
+        }
     }
 
     /// Interior displacement and stress: the particular solution at p plus the Somigliana
@@ -801,6 +965,57 @@ impl BemSolution {
             });
         }
         Ok(out)
+    }
+}
+
+fn cross2(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+/// Solution of the 3 x 3 system a x = b by Cramer's rule, `None` where a is singular to
+/// round-off.
+fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
+    let det = |m: [[f64; 3]; 3]| {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    };
+    let d = det(a);
+    let scale = a.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+    if !d.is_finite() || d.abs() <= 1e-12 * scale.powi(3) {
+        return None;
+    }
+    let mut x = [0.0; 3];
+    for c in 0..3 {
+        let mut m = a;
+        for r in 0..3 {
+            m[r][c] = b[r];
+        }
+        x[c] = det(m) / d;
+    }
+    Some(x)
+}
+
+fn finite(p: [f64; 2]) -> Result<()> {
+    if p[0].is_finite() && p[1].is_finite() {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            "point",
+            format!("({}, {})", p[0], p[1]),
+            "must be finite",
+        ))
+    }
+}
+
+/// Strain of the in-plane stress `s` = [xx, yy, xy] (Pa) by the region's Hooke's law.
+fn strain2d(k: &Kelvin2d, s: [f64; 3]) -> Strain2d {
+    let e = k.strain_from_stress(s);
+    Strain2d {
+        xx: e[0],
+        yy: e[1],
+        xy: e[2],
+        zz: k.eps_zz(s[0], s[1]),
     }
 }
 

@@ -71,7 +71,7 @@ mod cycle;
 mod mesh;
 mod quantity;
 mod study;
-mod sum;
+pub(crate) mod sum;
 #[cfg(test)]
 mod tests;
 

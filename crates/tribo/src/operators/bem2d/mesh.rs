@@ -408,6 +408,7 @@ impl BemMesh {
                 body_force,
             });
         }
+        super::overlap::check_overlap(&regions)?;
         Ok(Self {
             plane: model.plane,
             regions,

@@ -13,6 +13,7 @@ pub mod assemble;
 pub mod geometry;
 pub(crate) mod integrate;
 pub mod mesh;
+mod overlap;
 
 pub use assemble::{assemble, RegionOperators};
 pub use geometry::{

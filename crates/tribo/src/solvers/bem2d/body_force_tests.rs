@@ -434,13 +434,14 @@ fn block_on_base_under_gravity_carries_its_weight() {
         .set("base_bottom", SegmentBc::roller_y());
     let pairs = [ContactPair::new("block_bottom", "base_top", 0.3)];
     let mut cp = ContactProblem::new(&model, &bcs, &pairs, &["block_top"]).unwrap();
-    let top = |lam: f64| LoadStep {
-        external: lam,
-        rigid: vec![RigidControl::new(
+    let top = |lam: f64| {
+        let mut step = LoadStep::new(lam);
+        step.rigid = vec![RigidControl::new(
             "block_top",
             Control::Displacement(0.0),
             Control::Force(0.0),
-        )],
+        )];
+        step
     };
     let res = cp
         .solve_steps(&[top(0.5), top(1.0)], &ContactOptions::default())
@@ -475,6 +476,27 @@ fn block_on_base_under_gravity_carries_its_weight() {
             .iter()
             .all(|n| n.state == super::contact::ContactState::Stick));
     }
+    // The same block with a free top (no rigid segment): its free y translation gets an
+    // automatic support and the free-body equilibrium, whose body-force term is
+    // -int_S t_p . r ds; the contact carries the weight again.
+    let mut free = ContactProblem::new(&model, &bcs, &pairs, &[]).unwrap();
+    let res = free
+        .solve_steps(&[LoadStep::new(1.0)], &ContactOptions::default())
+        .unwrap();
+    let pr = &res[0].pairs[0];
+    let ef = (pr.slave_force[1] - weight)
+        .abs()
+        .max(pr.slave_force[0].abs())
+        / weight;
+    let p0 = rho * G * h;
+    let ep = pr
+        .nodes
+        .iter()
+        .map(|n| (n.pressure - p0).abs())
+        .fold(0.0_f64, f64::max)
+        / p0;
+    eprintln!("free block on base: force {ef:.2e}, pressure {ep:.2e}");
+    assert!(ef < 1e-8 && ep < 1e-8, "{ef:.2e} {ep:.2e}");
 }
 
 /// (e) Bad body-force input: a typed error naming the region, the item and the field.

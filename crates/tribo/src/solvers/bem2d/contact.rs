@@ -39,32 +39,90 @@
 //! # Condensation
 //!
 //! Every body (regions joined by bonded interfaces) is factored once: contact-segment nodes
-//! take their traction as a parameter and rigid-load segments (below) their displacement, so
-//! `A_b x_b = b_b(external) + B_b c_b` with c_b the body's contact tractions and rigid
-//! translations. One LU of A_b and `1 + dim c_b` solves give the response of the contact-node
-//! displacements and of the rigid-segment force resultants: a dense flexibility of the
-//! slave-node gaps, slips and rigid forces on the contact unknowns (p, q, rigid translations)
-//! z, `g = g0 + lambda g_ext + W_n z`, `s = lambda s_ext + W_t z`, `F = lambda F_ext + K z`.
-//! Each load step then solves only small dense systems of size dim z.
+//! take their traction as a parameter, rigid-load segments (below) and the artificial supports
+//! of free bodies (below) their displacement, so `A_b x_b = sum_g b_b,g + B_b c_b` with b_b,g
+//! the right-hand side of load group g (the ungrouped conditions are group 0) and c_b the
+//! body's contact tractions, rigid translations and free-mode amplitudes. One LU of A_b and
+//! `n_groups + dim c_b` solves give the response of the contact-node displacements and of the
+//! rigid-segment force resultants: a dense flexibility of the slave-node gaps, slips and
+//! rigid forces on the contact unknowns z (p, q, rigid translations, free-mode amplitudes),
+//! `g = g0 + sum_g lambda_g g_g + W_n z`, `s = sum_g lambda_g s_g + W_t z`, `F = sum_g
+//! lambda_g F_g + K z`, lambda_g the step's factor of group g. Each load step then solves only
+//! small dense systems of size dim z.
 //!
 //! # Loads, rigid-body modes and steps
 //!
-//! A body held only by contact (a cylinder pressed on a block) is loaded through a *rigid
-//! segment*: a named segment that moves as a rigid translation (no rotation: a guided face),
-//! each component either force-controlled (the resultant of the traction on the segment is
-//! prescribed, the translation unknown) or displacement-controlled. This removes the body's
-//! rigid-body modes from the BEM system (the segment is a displacement boundary for the
-//! factorization) and returns them to the contact problem, where contact and friction hold
-//! them. A force-controlled component that neither contact nor friction restrains (a
-//! frictionless pair pushed sideways) makes the step's system singular and is reported as an
-//! [`Error::Numerical`]; a body with no displacement condition and no rigid segment at all is
-//! rejected before factorization (the BEM restraint check, an [`Error::InvalidParameter`]).
+//! A body held only by contact (a cylinder pressed on a block, a clamp plate pressed by a bolt
+//! onto a knife) is loaded either through a *rigid segment* or by ordinary traction and
+//! pressure conditions.
 //!
-//! Friction is path dependent, so loads are applied in [`LoadStep`]s: each sets the factor of
-//! the external boundary conditions (and of the regions' body forces, which enter the same
-//! external column; the displacements are totals, so the gaps include the particular
-//! solution) and the controls of every rigid segment. The Coulomb law
-//! is written on the slip increment of the step, `ds_i = s_i - s_i(previous step)`:
+//! *Rigid segment*: a named segment that moves as a rigid translation (no rotation: a guided
+//! face), each component either force-controlled (the resultant of the traction on the
+//! segment is prescribed, the translation unknown) or displacement-controlled. This removes
+//! the body's rigid-body modes from the BEM system (the segment is a displacement boundary
+//! for the factorization) and returns them to the contact problem. A force-controlled
+//! component that neither contact nor friction restrains makes the step's system singular
+//! and is reported as an [`Error::Numerical`].
+//!
+//! *Free bodies* (automatic rigid-body modes): a body that takes part in a contact pair and
+//! whose displacement conditions leave rigid modes free. The free modes are the null space of
+//! the prescribed displacement components on the rigid modes r = (x translation, y
+//! translation, rotation about the boundary centroid scaled by the body size L, so that all
+//! three amplitudes are lengths), found from the eigenvalues of the 3 x 3 Gram matrix
+//! (threshold: the 1e-6 of the BEM restraint check); u_x = 0 on a vertical face leaves y free,
+//! no condition leaves all three. For each free mode one traction-type boundary node
+//! component off the contact and rigid segments becomes an *artificial support*: its
+//! displacement is a parameter u_pin = R_pin a with a the body's free-mode amplitudes, chosen
+//! by pivoting (the component whose rigid-mode row has the largest part orthogonal to the rows
+//! already chosen; among near ties the one farthest from the contact), i.e. a statically
+//! determinate set of supports far apart. With the supports the body's BEM system is regular
+//! (one LU as before) and a joins z. The equations that determine a are the free body's
+//! equilibrium in each free mode k, the virtual work of all its boundary tractions on r_k,
+//!
+//! `sum_i (int N_i r_k ds) . t_i = 0`,
+//!
+//! summed over the prescribed tractions (at the supports their prescribed values; scaled by
+//! the step's group factors), the body forces (`int_V b . r_k dV = -int_S t_p . r_k ds`,
+//! ungrouped) and the contact tractions (slave p n + q tau, master the
+//! transferred traction), the interpolated fields integrated by 8-point Gauss rules
+//! (prescribed displacement components do no work on a free mode). So the contact tractions
+//! balance the applied loads in every free mode to round-off. The supports' own reactions
+//! (their BEM tractions minus the prescribed values) are then the BEM's equilibrium defect of
+//! the body (the discrete `H u = G t` balances only to discretization error): the step result
+//! reports their resultant ([`FreeBodyResult::support_force`]; measured 6e-6 and 8e-5 of the
+//! load in the Hertz tests, 1e-13 in the uniform state) and the boundary state reports the
+//! prescribed traction at the supports. The alternative, prescribing the supports' tractions
+//! exactly and leaving equilibrium to the BEM, moves the same defect into the balance of
+//! contact and applied forces; the choice here makes the contact force equal the applied load.
+//! The reported motion ([`FreeBodyResult`]) is the least-squares rigid motion of the body's
+//! boundary displacement (independent of the supports): translation = arc-length mean of u,
+//! rotation = `int r x u ds / int abs(r)^2 ds` about the boundary centroid.
+//!
+//! A free mode must be held by the contact rows of the step (the gap rows of nodes in contact
+//! and the stick rows): in each active-set iteration, while the amplitude columns of these
+//! rows are rank deficient (smallest singular value below 1e-8; the entries are
+//! dimensionless), the open node with the smallest gap whose rows act on the deficient
+//! combination is brought into contact (a single initial contact node does not hold the
+//! rotation of a free cylinder). Where no node can, the step stops with an
+//! [`Error::InvalidParameter`] naming the body and the mode (e.g. "body \[blk\] = free
+//! rigid-body translation in x": a frictionless contact holds no tangential motion, also
+//! without a tangential load, since the position is then undetermined; use a symmetry or
+//! displacement condition); where the last solve opened every contact node of the body (its
+//! loads pull it off or vanish), with [`Error::NoContact`]. A body with free modes that is in
+//! no contact pair is rejected before factorization (the BEM restraint check, an
+//! [`Error::InvalidParameter`]).
+//!
+//! Friction is path dependent, so loads are applied in [`LoadStep`]s: each sets the factors of
+//! the external boundary conditions per *load group* and the controls of every rigid segment.
+//! Conditions set with [`BoundaryConditions::set`] are ungrouped (factor
+//! [`LoadStep::external`]); those set with [`BoundaryConditions::set_in_group`] take their
+//! group's factor from [`LoadStep::groups`], 0 where the step does not list the group (so a
+//! step 1 "bolt" and a step 2 "bolt + cut" are `LoadStep::new(0.0).with_group("bolt", 1.0)`
+//! and the same `.with_group("cut", 1.0)`). A displacement condition in a group is scaled
+//! too. The regions' body forces are external loads of the ungrouped column (factor
+//! [`LoadStep::external`]); the displacements are totals, so the gaps include the particular
+//! solution. The Coulomb law is written on the slip increment of the step,
+//! `ds_i = s_i - s_i(previous step)`:
 //!
 //! * open: `p = 0, q = 0` (g >= 0);
 //! * stick: `g = 0, ds = 0, |q| <= f p`;
@@ -89,7 +147,8 @@
 //! The force-controlled resultants on rigid segments are equations of the step system and
 //! hold to round-off; the transferred master traction carries exactly the slave's force
 //! (round-off); the balance of a body's whole boundary (contact force against the loaded
-//! face) holds to the BEM discretization error (1e-5 relative in the Hertz test).
+//! face) holds to the BEM discretization error (1e-5 relative in the Hertz test), except for
+//! free bodies, whose equilibrium in their free modes is an equation (round-off, see above).
 //!
 //! # Verification (tests in `contact/tests.rs`)
 //!
@@ -105,6 +164,13 @@
 //! | unloading to Q = 0 | reverse-slip c'/a | 0.854 vs 0.866 |
 //! | f = 1e-9 vs f = 0 | pressure difference | 8e-11 p0 |
 //! | block of two bonded regions vs one piece | pressure difference | 1.2e-5 p0 |
+//! | free block on base, uniform pressure (exact uniform state), f = 0 (y free) and 0.3 (all free) | p, q, rigid motion; force, moment | 1.6e-10 p, 1e-11 p, 2e-11; 1e-15, 1e-13 |
+//! | free plate on free knife on base (chain) | p, rigid y motions | 1.6e-10 p, < 1e-7 |
+//! | Hertz, cylinder held only by contact (face load), f = 0 (y, rotation free) / 0.3 (all free) | b, p0, max abs(p - p_H)/p0; support force | -0.09 %, +0.02 %, 0.21 % / 0.18 %; 8e-5 / 6e-6 P |
+//! | free block pushed sideways, f = 0.3, Q = 0.6 f P (groups bolt, cut) | Coulomb at every node; force, moment | round-off; 1e-16, 5e-16 |
+//! | free mode that nothing holds (f = 0 pushed sideways or not; f = 0.3, Q = 1.1 f P) | error naming body and mode | yes |
+//! | load groups, f = 0: two steps vs one, and unloading a group | p, u | identical (0) |
+//! | load groups, f = 0.3: bulk load applied and removed vs never applied | locked-in q | 0.37 f p0 (p within 0.5 % p0) |
 //!
 //! Timing (`contact_timing`, release, 2 cores shared with other builds, load average 4.4):
 //! 932 BEM DOF / 196 contact unknowns: assembly 0.04 s, factorization + condensation 0.09 s,
@@ -211,12 +277,45 @@ impl RigidControl {
 }
 
 /// One load step.
+///
+/// The boundary conditions given to [`ContactProblem::new`] are scaled per load group: the
+/// ungrouped ones (set with [`BoundaryConditions::set`]) by `external`, those of a named group
+/// (set with [`BoundaryConditions::set_in_group`]) by that group's factor in `groups`. **A
+/// group not listed in a step has factor 0 in that step** (a group is off unless the step
+/// turns it on, so that adding a group to a model never changes steps written before it).
 #[derive(Debug, Clone, PartialEq)]
 pub struct LoadStep {
-    /// Factor on the external boundary conditions given to [`ContactProblem::new`].
+    /// Factor on the ungrouped external boundary conditions.
     pub external: f64,
     /// The control of every rigid segment.
     pub rigid: Vec<RigidControl>,
+    /// Factor of each named load group (unlisted groups: 0). Each name must be a group of the
+    /// boundary conditions and appear once.
+    pub groups: Vec<(String, f64)>,
+}
+
+impl LoadStep {
+    /// A step with factor `external` on the ungrouped conditions, no rigid controls and every
+    /// named group at factor 0.
+    pub fn new(external: f64) -> Self {
+        Self {
+            external,
+            rigid: Vec::new(),
+            groups: Vec::new(),
+        }
+    }
+
+    /// The same step with load group `name` at factor `factor`.
+    pub fn with_group(mut self, name: &str, factor: f64) -> Self {
+        self.groups.push((name.to_string(), factor));
+        self
+    }
+
+    /// The same step with one more rigid-segment control.
+    pub fn with_rigid(mut self, control: RigidControl) -> Self {
+        self.rigid.push(control);
+        self
+    }
 }
 
 /// Solver settings.
@@ -311,6 +410,28 @@ pub struct RigidResult {
     pub force: [f64; 2],
 }
 
+/// The motion of a body held only by contact and friction (a body with free rigid-body
+/// modes, see the module docs) in one step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FreeBodyResult {
+    /// The name of the body's first region.
+    pub body: String,
+    /// Translation of the reference point under the least-squares rigid motion of the body's
+    /// boundary displacement (the arc-length mean of u over the boundary), m.
+    pub translation: [f64; 2],
+    /// Rotation of that least-squares rigid motion, rad, counter-clockwise positive:
+    /// `int (r x u) ds / int abs(r)^2 ds` with r = x - reference_point.
+    pub rotation: f64,
+    /// The arc-length centroid of the body's boundary (initial configuration), m.
+    pub reference_point: [f64; 2],
+    /// The rigid-body modes left free by the body's displacement conditions (held by contact
+    /// and friction), in words.
+    pub free_modes: Vec<String>,
+    /// Resultant of the reactions of the body's artificial supports, N/m: the BEM's own
+    /// equilibrium defect of the body, small against the contact force (see the module docs).
+    pub support_force: [f64; 2],
+}
+
 /// The solved state after one load step.
 #[derive(Debug, Clone)]
 pub struct ContactStepResult {
@@ -322,6 +443,8 @@ pub struct ContactStepResult {
     pub pairs: Vec<PairResult>,
     /// Per rigid segment.
     pub rigid: Vec<RigidResult>,
+    /// Per body with free rigid-body modes (in the order of the bodies).
+    pub free_bodies: Vec<FreeBodyResult>,
     /// The full boundary state of all bodies (interior stresses via
     /// [`BemSolution::stress_at`]).
     pub solution: BemSolution,
@@ -371,6 +494,46 @@ enum Param {
     },
     /// Translation of rigid segment j in direction d.
     Rigid { j: usize, d: usize },
+    /// Amplitude of a free mode of free body f.
+    Free { f: usize },
+}
+
+/// An artificial support of a free body: a traction-type node component made a
+/// displacement unknown-as-parameter, u = row . a (a: the body's free-mode amplitudes).
+#[derive(Debug, Clone)]
+struct Pin {
+    region: usize,
+    node: usize,
+    d: usize,
+    /// Prescribed traction at factor 1 of its load group, Pa.
+    t: f64,
+    /// Load-group column of the prescribed traction.
+    group: usize,
+    /// Displacement per unit amplitude of each free mode.
+    row: Vec<f64>,
+    /// int N ds of the node, m.
+    weight: f64,
+}
+
+/// A body whose displacement conditions leave rigid-body modes free.
+#[derive(Debug, Clone)]
+struct FreeBody {
+    /// Name of the first region.
+    name: String,
+    /// "body [regions]".
+    field: String,
+    regions: Vec<usize>,
+    /// Arc-length centroid of the boundary, m.
+    center: [f64; 2],
+    /// Largest distance of a boundary node from the centroid, m (scales the rotation).
+    size: f64,
+    /// Orthonormal basis of the free modes in (tx, ty, size * rotation).
+    modes: Vec<[f64; 3]>,
+    /// Column of the first amplitude in z.
+    zcol: usize,
+    /// Index of the first amplitude parameter.
+    param0: usize,
+    pins: Vec<Pin>,
 }
 
 #[derive(Debug, Clone)]
@@ -381,8 +544,8 @@ struct Body {
     cols: Vec<usize>,
     /// Global parameter indices of the body.
     params: Vec<usize>,
-    /// Solutions: column 0 for the external loads (factor 1), column 1 + k for unit
-    /// parameter k of the body.
+    /// Solutions: column g for load group g (0: ungrouped; factor 1), column `next + k` for
+    /// unit parameter k of the body (next = 1 + number of named groups).
     x: Mat<f64>,
 }
 
@@ -399,16 +562,30 @@ pub struct ContactProblem {
     rigid: Vec<(String, usize)>,
     params: Vec<Param>,
     bodies: Vec<Body>,
-    /// Unknowns z = [p (n), q (n), rigid translations (2 per rigid segment)].
+    /// Named load groups (column 1 + index).
+    groups: Vec<String>,
+    /// Load-group column of every segment (0: ungrouped).
+    seg_group: Vec<usize>,
+    /// Bodies with free rigid-body modes.
+    free: Vec<FreeBody>,
+    /// Unknowns z = [p (n), q (n), rigid translations (2 per rigid segment), free-mode
+    /// amplitudes (per free body)].
     n: usize,
     /// Map z -> parameters.
     pz: Mat<f64>,
     wn: Mat<f64>,
     wt: Mat<f64>,
     kf: Mat<f64>,
-    gn_ext: Vec<f64>,
-    st_ext: Vec<f64>,
-    f_ext: Vec<f64>,
+    /// External responses, one column per load group.
+    gn_ext: Mat<f64>,
+    st_ext: Mat<f64>,
+    f_ext: Mat<f64>,
+    /// Free-body equilibrium rows: eq_z z + eq_ext lambda = 0.
+    eq_z: Mat<f64>,
+    eq_ext: Mat<f64>,
+    /// Largest prescribed traction of each load group at factor 1 (a prescribed displacement
+    /// counted as shear modulus * u / model size), Pa: the load scale of a step.
+    group_load: Vec<f64>,
     /// Largest relative residual of the body factorizations.
     lu_residual: f64,
     /// Total slip at the end of the last solved step (path memory).
@@ -458,16 +635,20 @@ impl ContactProblem {
     /// Meshes and assembles `model`, validates the pairs and rigid segments, factors every
     /// body once and condenses the BEM systems onto the contact unknowns.
     ///
-    /// `bcs` are the external boundary conditions (scaled by [`LoadStep::external`]); they
-    /// must not name contact or rigid segments. `rigid` names the rigid (load) segments.
+    /// `bcs` are the external boundary conditions (scaled per load group: ungrouped ones by
+    /// [`LoadStep::external`], grouped ones by [`LoadStep::groups`]); they must not name
+    /// contact or rigid segments. `rigid` names the rigid (load) segments. A body in a contact
+    /// pair may leave rigid-body modes free (held by contact and friction; see the module
+    /// docs).
     ///
     /// Errors ([`Error::InvalidParameter`] naming the item): an unknown segment in a pair or
     /// in `rigid`; a segment used twice (in two pairs, as rigid and contact, or with a boundary
     /// condition); a bonded interface used as contact or rigid segment; slave and master in the
     /// same body; a friction coefficient that is negative or not finite; a pair whose slave
     /// nodes all miss the master; initial penetration deeper than 1e-6 of the slave's
-    /// smallest element; an unrestrained body. [`Error::Numerical`] where a factorization
-    /// fails.
+    /// smallest element; an unrestrained body in no contact pair; an empty load-group name; a
+    /// free body with no traction-loaded node off its contact segments for an artificial
+    /// support. [`Error::Numerical`] where a factorization fails.
     pub fn new(
         model: &BemModel,
         bcs: &BoundaryConditions,
@@ -536,7 +717,7 @@ impl ContactProblem {
             let s = claim(name, format!("rigid segment {j}"), "rigid_segment")?;
             rigid_segs.push((name.to_string(), s));
         }
-        for (name, _) in &bcs.entries {
+        for (name, _, _) in &bcs.entries {
             if let Some(s) = mesh.segment_index(name) {
                 if let Some(what) = role.get(&s) {
                     return Err(Error::invalid(
@@ -585,8 +766,42 @@ impl ContactProblem {
         for (name, _) in &rigid_segs {
             full = full.set(name, SegmentBc::fixed());
         }
-        let (dofs, ncol) = problem.dofs(&full)?;
-        problem.check_restraint(&dofs)?;
+        let (mut dofs, ncol) = problem.dofs(&full)?;
+        // --- load groups: column 0 ungrouped, 1 + g for named group g.
+        let groups = bcs.groups();
+        let mut seg_group = vec![0; mesh.segments.len()];
+        for (name, _, g) in &bcs.entries {
+            if let Some(g) = g {
+                if g.trim().is_empty() {
+                    return Err(Error::invalid(
+                        format!("boundary_condition '{name}'.group"),
+                        "\"\"",
+                        "a load group name must not be empty",
+                    ));
+                }
+                if let Some(s) = mesh.segment_index(name) {
+                    seg_group[s] = 1 + groups.iter().position(|x| x == g).unwrap_or(0);
+                }
+            }
+        }
+        let next = 1 + groups.len();
+        // --- restraint: a body in no contact pair must be restrained by its displacement
+        // conditions; a body in a pair may leave rigid modes free (held by contact).
+        let mut in_pair = vec![false; mesh.regions.len()];
+        for &(s, m) in &pair_segs {
+            in_pair[mesh.segments[s].owner] = true;
+            in_pair[mesh.segments[m].owner] = true;
+        }
+        let mut free: Vec<FreeBody> = Vec::new();
+        for members in problem.bodies() {
+            if !members.iter().any(|&r| in_pair[r]) {
+                problem.check_body_restraint(&dofs, &members)?;
+                continue;
+            }
+            if let Some(fb) = free_body(&problem, &mut dofs, &members, &role, &seg_group)? {
+                free.push(fb);
+            }
+        }
         let scale = mesh
             .regions
             .iter()
@@ -794,7 +1009,11 @@ impl ContactProblem {
         }
         let n = offset;
         let nrig = 2 * rigid_segs.len();
-        let nz = 2 * n + nrig;
+        let mut nz = 2 * n + nrig;
+        for fb in free.iter_mut() {
+            fb.zcol = nz;
+            nz += fb.modes.len();
+        }
 
         // --- parameters and the map z -> parameters.
         let mut params: Vec<Param> = Vec::new();
@@ -822,6 +1041,18 @@ impl ContactProblem {
                 params.push(Param::Rigid { j, d });
             }
         }
+        for (f, fb) in free.iter_mut().enumerate() {
+            fb.param0 = params.len();
+            for _ in 0..fb.modes.len() {
+                params.push(Param::Free { f });
+            }
+        }
+        let mut pin_of: HashMap<(usize, usize, usize), (usize, usize)> = HashMap::new();
+        for (f, fb) in free.iter().enumerate() {
+            for (q, pin) in fb.pins.iter().enumerate() {
+                pin_of.insert((pin.region, pin.node, pin.d), (f, q));
+            }
+        }
         let np = params.len();
         let mut pz = Mat::<f64>::zeros(np, nz);
         for p in &pdata {
@@ -846,6 +1077,98 @@ impl ContactProblem {
         }
         for j in 0..nrig {
             pz[(rigid_base + j, 2 * n + j)] = 1.0;
+        }
+        for fb in &free {
+            for k in 0..fb.modes.len() {
+                pz[(fb.param0 + k, fb.zcol + k)] = 1.0;
+            }
+        }
+
+        // --- free-body equilibrium: for each free mode r_k, the virtual work of the
+        // boundary tractions, sum_i (int N_i r_k ds) . t_i = 0, over the prescribed tractions
+        // (the pins' included) and the contact tractions (the parameters).
+        let mtot: usize = free.iter().map(|fb| fb.modes.len()).sum();
+        let mut eq_param = Mat::<f64>::zeros(mtot, np);
+        let mut eq_ext = Mat::<f64>::zeros(mtot, next);
+        let mut row0 = 0;
+        for fb in &free {
+            for &r in &fb.regions {
+                for e in &mesh.regions[r].elements {
+                    if mesh.segments[e.segment].partner.is_some() {
+                        continue;
+                    }
+                    for (&xi, &w) in gx.iter().zip(&gw) {
+                        let x = e.point(xi);
+                        let (_, jac) = e.normal_jacobian(xi);
+                        let nsh = e.field_shape(xi);
+                        for a in 0..3 {
+                            let o = e.nodes[a];
+                            for d in 0..2 {
+                                let rr = rigid_row(d, x, fb.center, fb.size);
+                                for (k, mode) in fb.modes.iter().enumerate() {
+                                    let wk = w * jac * nsh[a] * dot3(rr, *mode);
+                                    if let Some(&(f, q)) = pin_of.get(&(r, o, d)) {
+                                        let pin = &free[f].pins[q];
+                                        eq_ext[(row0 + k, pin.group)] += wk * pin.t;
+                                    } else if let Some(&pk) = param_of.get(&(r, o, d)) {
+                                        eq_param[(row0 + k, pk)] += wk;
+                                    } else if let Dof::U { t, .. } = dofs[r][o][d] {
+                                        let g = seg_group[self_segment(&problem, r, o)];
+                                        eq_ext[(row0 + k, g)] += wk * t;
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            // Body forces (ungrouped column 0): int_V b . r_k dV = -int_S t_p . r_k ds
+            // (div sigma_p = -b and r_k a rigid mode: Gauss's theorem), over every region
+            // boundary of the body, interfaces included (t_p jumps there).
+            for &r in &fb.regions {
+                let region = &mesh.regions[r];
+                if region.body_force.is_none() {
+                    continue;
+                }
+                for e in &region.elements {
+                    for (&xi, &w) in gx.iter().zip(&gw) {
+                        let x = e.point(xi);
+                        let (n, jac) = e.normal_jacobian(xi);
+                        let (_, sp) = region.particular_at(x);
+                        let tp = [sp[0] * n[0] + sp[2] * n[1], sp[2] * n[0] + sp[1] * n[1]];
+                        for d in 0..2 {
+                            let rr = rigid_row(d, x, fb.center, fb.size);
+                            for (k, mode) in fb.modes.iter().enumerate() {
+                                eq_ext[(row0 + k, 0)] -= w * jac * tp[d] * dot3(rr, *mode);
+                            }
+                        }
+                    }
+                }
+            }
+            row0 += fb.modes.len();
+        }
+        let eq_z = &eq_param * &pz;
+        let mut group_load = vec![0.0_f64; next];
+        for (r, region) in mesh.regions.iter().enumerate() {
+            for (o, node) in region.nodes.iter().enumerate() {
+                if role.contains_key(&node.segment) {
+                    continue;
+                }
+                let g = seg_group[node.segment];
+                for d in 0..2 {
+                    let v = match dofs[r][o][d] {
+                        Dof::U { t, .. } => t.abs(),
+                        Dof::T { u, .. } => scale * u.abs() / length,
+                        Dof::Interface { .. } => 0.0,
+                    };
+                    group_load[g] = group_load[g].max(v);
+                }
+            }
+        }
+        for fb in &free {
+            for pin in &fb.pins {
+                group_load[pin.group] = group_load[pin.group].max(pin.t.abs());
+            }
         }
 
         // --- bodies: assemble, factor once, solve for the external load and unit params.
@@ -888,12 +1211,13 @@ impl ContactProblem {
                 .filter(|&k| match params[k] {
                     Param::Traction { region, .. } => body_of[region] == root,
                     Param::Rigid { j, .. } => body_of[mesh.segments[rigid_segs[j].1].owner] == root,
+                    Param::Free { f, .. } => body_of[free[f].regions[0]] == root,
                 })
                 .collect();
             let bp_index: HashMap<usize, usize> =
                 bparams.iter().enumerate().map(|(i, &k)| (k, i)).collect();
             let mut a = Mat::<f64>::zeros(rows, rows);
-            let mut rhs = Mat::<f64>::zeros(rows, 1 + bparams.len());
+            let mut rhs = Mat::<f64>::zeros(rows, next + bparams.len());
             for &(r, off) in &regions {
                 let ops = &problem.operators[r];
                 let n2 = ops.h.nrows();
@@ -901,30 +1225,40 @@ impl ContactProblem {
                     for (dir, dof) in d.iter().enumerate() {
                         let c = 2 * node + dir;
                         let (hc, gc) = (ops.h.col(c), ops.g.col(c));
+                        let seg = self_segment(&problem, r, node);
+                        let grp = seg_group[seg];
                         match *dof {
                             Dof::U { col, t } => {
                                 let lc = local[&col];
                                 let pk = param_of.get(&(r, node, dir)).map(|k| bp_index[k]);
                                 for row in 0..n2 {
                                     a[(off + row, lc)] += hc[row];
-                                    rhs[(off + row, 0)] += gc[row] * t;
+                                    rhs[(off + row, grp)] += gc[row] * t;
                                     if let Some(pk) = pk {
-                                        rhs[(off + row, 1 + pk)] += gc[row];
+                                        rhs[(off + row, next + pk)] += gc[row];
                                     }
                                 }
                             }
                             Dof::T { col, u } => {
                                 let lc = local[&col];
-                                let seg = self_segment(&problem, r, node);
                                 let rj = rigid_segs.iter().position(|&(_, s)| s == seg);
                                 for row in 0..n2 {
                                     a[(off + row, lc)] -= gc[row] * scale;
-                                    rhs[(off + row, 0)] -= hc[row] * u;
+                                    rhs[(off + row, grp)] -= hc[row] * u;
                                 }
                                 if let Some(j) = rj {
                                     let pk = bp_index[&(rigid_base + 2 * j + dir)];
                                     for row in 0..n2 {
-                                        rhs[(off + row, 1 + pk)] -= hc[row];
+                                        rhs[(off + row, next + pk)] -= hc[row];
+                                    }
+                                }
+                                if let Some(&(f, q)) = pin_of.get(&(r, node, dir)) {
+                                    let fb = &free[f];
+                                    for (k, &v) in fb.pins[q].row.iter().enumerate() {
+                                        let pk = bp_index[&(fb.param0 + k)];
+                                        for row in 0..n2 {
+                                            rhs[(off + row, next + pk)] -= hc[row] * v;
+                                        }
                                     }
                                 }
                             }
@@ -1002,14 +1336,20 @@ impl ContactProblem {
             rigid: rigid_segs,
             params,
             bodies,
+            groups,
+            seg_group,
+            free,
             n,
             pz,
             wn: Mat::zeros(0, 0),
             wt: Mat::zeros(0, 0),
             kf: Mat::zeros(0, 0),
-            gn_ext: Vec::new(),
-            st_ext: Vec::new(),
-            f_ext: Vec::new(),
+            gn_ext: Mat::zeros(0, 0),
+            st_ext: Mat::zeros(0, 0),
+            f_ext: Mat::zeros(0, 0),
+            eq_z,
+            eq_ext,
+            group_load,
             lu_residual,
             slip: vec![0.0; n],
             states: Vec::new(),
@@ -1042,24 +1382,26 @@ impl ContactProblem {
     fn condense(&mut self) {
         let n = self.n;
         let nz = self.pz.ncols();
-        // A row in parameter space (length np) + external coefficient, for a displacement.
+        let next = self.next();
+        // A row in parameter space (length np) + external coefficients (per load group), for
+        // a displacement.
         let urow =
-            |this: &Self, region: usize, node: usize, d: usize| -> (f64, Vec<(usize, f64)>) {
+            |this: &Self, region: usize, node: usize, d: usize| -> (Vec<f64>, Vec<(usize, f64)>) {
                 let (b, row) = this.displacement_row(region, node, d);
                 let body = &this.bodies[b];
-                let ext = body.x[(row, 0)];
+                let ext = (0..next).map(|g| body.x[(row, g)]).collect();
                 let coef = body
                     .params
                     .iter()
                     .enumerate()
-                    .map(|(k, &gp)| (gp, body.x[(row, 1 + k)]))
+                    .map(|(k, &gp)| (gp, body.x[(row, next + k)]))
                     .collect();
                 (ext, coef)
             };
         // Relative displacement rows in parameter space.
         let np = self.params.len();
         let mut rel = Mat::<f64>::zeros(2 * n, np);
-        let mut rel_ext = vec![0.0; 2 * n];
+        let mut rel_ext = Mat::<f64>::zeros(2 * n, next);
         for p in &self.pairs {
             let sinfo = &self.problem.mesh.segments[p.slave_seg];
             let minfo = &self.problem.mesh.segments[p.master_seg];
@@ -1076,7 +1418,9 @@ impl ContactProblem {
                                 continue;
                             }
                             let (e, c) = urow(self, sinfo.owner, o, d);
-                            rel_ext[2 * i + d] += m / wb * e;
+                            for g in 0..next {
+                                rel_ext[(2 * i + d, g)] += m / wb * e[g];
+                            }
                             for (gp, v) in c {
                                 rel[(2 * i + d, gp)] += m / wb * v;
                             }
@@ -1087,7 +1431,9 @@ impl ContactProblem {
                                 continue;
                             }
                             let (e, c) = urow(self, minfo.owner, o, d);
-                            rel_ext[2 * i + d] -= m / wb * e;
+                            for g in 0..next {
+                                rel_ext[(2 * i + d, g)] -= m / wb * e[g];
+                            }
                             for (gp, v) in c {
                                 rel[(2 * i + d, gp)] -= m / wb * v;
                             }
@@ -1097,14 +1443,18 @@ impl ContactProblem {
                 }
                 for d in 0..2 {
                     let (e, c) = urow(self, sinfo.owner, sn.region_node, d);
-                    rel_ext[2 * i + d] += e;
+                    for g in 0..next {
+                        rel_ext[(2 * i + d, g)] += e[g];
+                    }
                     for (gp, v) in c {
                         rel[(2 * i + d, gp)] += v;
                     }
                     for a in 0..3 {
                         let o = minfo.owner_nodes[mn[a]];
                         let (e, c) = urow(self, minfo.owner, o, d);
-                        rel_ext[2 * i + d] -= sh[a] * e;
+                        for g in 0..next {
+                            rel_ext[(2 * i + d, g)] -= sh[a] * e[g];
+                        }
                         for (gp, v) in c {
                             rel[(2 * i + d, gp)] -= sh[a] * v;
                         }
@@ -1115,14 +1465,16 @@ impl ContactProblem {
         let relz = &rel * &self.pz;
         let mut wn = Mat::<f64>::zeros(n, nz);
         let mut wt = Mat::<f64>::zeros(n, nz);
-        let mut gn_ext = vec![0.0; n];
-        let mut st_ext = vec![0.0; n];
+        let mut gn_ext = Mat::<f64>::zeros(n, next);
+        let mut st_ext = Mat::<f64>::zeros(n, next);
         for p in &self.pairs {
             for (b, sn) in p.nodes.iter().enumerate() {
                 let i = p.offset + b;
                 for d in 0..2 {
-                    gn_ext[i] += sn.normal[d] * rel_ext[2 * i + d];
-                    st_ext[i] += sn.tangent[d] * rel_ext[2 * i + d];
+                    for g in 0..next {
+                        gn_ext[(i, g)] += sn.normal[d] * rel_ext[(2 * i + d, g)];
+                        st_ext[(i, g)] += sn.tangent[d] * rel_ext[(2 * i + d, g)];
+                    }
                     for c in 0..nz {
                         wn[(i, c)] += sn.normal[d] * relz[(2 * i + d, c)];
                         wt[(i, c)] += sn.tangent[d] * relz[(2 * i + d, c)];
@@ -1133,7 +1485,7 @@ impl ContactProblem {
         // Rigid force rows: F_d = sum_node w_node * t_d(node).
         let nrig = 2 * self.rigid.len();
         let mut frow = Mat::<f64>::zeros(nrig, np);
-        let mut f_ext = vec![0.0; nrig];
+        let mut f_ext = Mat::<f64>::zeros(nrig, next);
         for (j, (_, seg)) in self.rigid.iter().enumerate() {
             let info = &self.problem.mesh.segments[*seg];
             let weights = node_weights(&self.problem, *seg);
@@ -1151,9 +1503,11 @@ impl ContactProblem {
                     let body = &self.bodies[b];
                     let row = body.cols.binary_search(&col).expect("column");
                     let w = weights[k] * self.scale;
-                    f_ext[2 * j + d] += w * body.x[(row, 0)];
+                    for g in 0..next {
+                        f_ext[(2 * j + d, g)] += w * body.x[(row, g)];
+                    }
                     for (kk, &gp) in body.params.iter().enumerate() {
-                        frow[(2 * j + d, gp)] += w * body.x[(row, 1 + kk)];
+                        frow[(2 * j + d, gp)] += w * body.x[(row, next + kk)];
                     }
                 }
             }
@@ -1197,7 +1551,18 @@ impl ContactProblem {
         self.states = states;
     }
 
-    /// Number of contact unknowns (2 per slave node plus 2 per rigid segment).
+    /// Number of external-load columns: 1 (ungrouped) + the named load groups.
+    fn next(&self) -> usize {
+        1 + self.groups.len()
+    }
+
+    /// The named load groups of the boundary conditions, in the order of their first use.
+    pub fn load_groups(&self) -> &[String] {
+        &self.groups
+    }
+
+    /// Number of contact unknowns (2 per slave node, 2 per rigid segment, and one per free
+    /// rigid-body mode of each body held only by contact).
     pub fn contact_unknowns(&self) -> usize {
         self.pz.ncols()
     }
@@ -1216,7 +1581,10 @@ impl ContactProblem {
     /// (use [`ContactProblem::reset`] to start again from the unloaded state).
     ///
     /// Errors: a step that misses or repeats a rigid segment, or names an unknown one, or a
-    /// non-finite load ([`Error::InvalidParameter`]); [`Error::NotConverged`] with the
+    /// non-finite load, or names an unknown load group or one twice
+    /// ([`Error::InvalidParameter`]); a free rigid-body mode that neither contact nor
+    /// friction holds ([`Error::InvalidParameter`] naming the body and the mode); a free
+    /// body whose loads do not press it onto a contact ([`Error::NoContact`]); [`Error::NotConverged`] with the
     /// complementarity residual when the active sets cycle or the iteration limit is
     /// reached; [`Error::NoContact`] when no node is in contact and a force-controlled body
     /// floats; [`Error::Numerical`] for a singular step system (a rigid-body mode that
@@ -1249,7 +1617,8 @@ impl ContactProblem {
         Ok(out)
     }
 
-    fn controls(&self, k: usize, step: &LoadStep) -> Result<Vec<Control>> {
+    /// The rigid controls of a step and its load factors per load-group column.
+    fn controls(&self, k: usize, step: &LoadStep) -> Result<(Vec<Control>, Vec<f64>)> {
         let field = format!("load_step[{k}]");
         if !step.external.is_finite() {
             return Err(Error::invalid(
@@ -1257,6 +1626,37 @@ impl ContactProblem {
                 step.external,
                 "must be finite",
             ));
+        }
+        let mut lamv = vec![0.0; self.next()];
+        lamv[0] = step.external;
+        let mut seen = vec![false; self.groups.len()];
+        for (name, f) in &step.groups {
+            let g = self.groups.iter().position(|x| x == name).ok_or_else(|| {
+                Error::invalid(
+                    format!("{field}.groups"),
+                    name,
+                    format!(
+                        "names no load group of the boundary conditions (groups: [{}])",
+                        self.groups.join(", ")
+                    ),
+                )
+            })?;
+            if seen[g] {
+                return Err(Error::invalid(
+                    format!("{field}.groups"),
+                    name,
+                    "is given twice in the step",
+                ));
+            }
+            if !f.is_finite() {
+                return Err(Error::invalid(
+                    format!("{field}.groups '{name}'"),
+                    f,
+                    "the factor must be finite",
+                ));
+            }
+            seen[g] = true;
+            lamv[1 + g] = *f;
         }
         let mut ctl: Vec<Option<Control>> = vec![None; 2 * self.rigid.len()];
         for rc in &step.rigid {
@@ -1292,7 +1692,8 @@ impl ContactProblem {
                 ctl[2 * j + d] = Some(c);
             }
         }
-        ctl.into_iter()
+        let ctl = ctl
+            .into_iter()
             .enumerate()
             .map(|(i, c)| {
                 c.ok_or_else(|| {
@@ -1303,7 +1704,70 @@ impl ContactProblem {
                     )
                 })
             })
-            .collect()
+            .collect::<Result<Vec<_>>>()?;
+        Ok((ctl, lamv))
+    }
+
+    /// A combination of free-mode amplitudes (unit vector over all free bodies' amplitudes)
+    /// that the contact rows of the current sets do not hold, if any: the eigenvector of the
+    /// smallest eigenvalue of M^T M, M = the amplitude columns of the gap rows of the nodes in
+    /// contact and of the stick rows (f > 0), where its singular value is below 1e-8 (the
+    /// entries are dimensionless, O(1): a translation moves every node by its amplitude).
+    fn unheld_mode(&self, states: &[ContactState], fric: &[f64]) -> Option<Vec<f64>> {
+        let first = self.free.first()?;
+        let c0 = first.zcol;
+        let nz = self.pz.ncols();
+        let m = nz - c0;
+        let mut gram = vec![vec![0.0; m]; m];
+        let mut add = |row: &dyn Fn(usize) -> f64| {
+            for a in 0..m {
+                let ra = row(c0 + a);
+                if ra == 0.0 {
+                    continue;
+                }
+                for b in 0..m {
+                    gram[a][b] += ra * row(c0 + b);
+                }
+            }
+        };
+        for (i, st) in states.iter().enumerate() {
+            if matches!(st, ContactState::Open | ContactState::Outside) {
+                continue;
+            }
+            add(&|c| self.wn[(i, c)]);
+            if fric[i] > 0.0 && *st == ContactState::Stick {
+                add(&|c| self.wt[(i, c)]);
+            }
+        }
+        let (vals, vecs) = symmetric_eigen(gram);
+        let k = (0..m).min_by(|&a, &b| vals[a].total_cmp(&vals[b]))?;
+        if vals[k].max(0.0).sqrt() < 1e-8 {
+            Some((0..m).map(|i| vecs[i][k]).collect())
+        } else {
+            None
+        }
+    }
+
+    /// The free body and rigid motion that dominate amplitude combination `v`.
+    fn name_mode(&self, v: &[f64]) -> (&FreeBody, String) {
+        let c0 = self.free[0].zcol;
+        let mut best = (0.0, 0);
+        for (f, fb) in self.free.iter().enumerate() {
+            let a = fb.zcol - c0;
+            let w: f64 = (0..fb.modes.len()).map(|k| v[a + k] * v[a + k]).sum();
+            if w > best.0 {
+                best = (w, f);
+            }
+        }
+        let fb = &self.free[best.1];
+        let a = fb.zcol - c0;
+        let mut mode = [0.0; 3];
+        for (k, m) in fb.modes.iter().enumerate() {
+            for c in 0..3 {
+                mode[c] += v[a + k] * m[c];
+            }
+        }
+        (fb, describe_mode(mode, fb.center, fb.size))
     }
 
     fn friction_of(&self) -> Vec<f64> {
@@ -1322,11 +1786,25 @@ impl ContactProblem {
         step: &LoadStep,
         options: &ContactOptions,
     ) -> Result<ContactStepResult> {
-        let ctl = self.controls(k, step)?;
+        let (ctl, lamv) = self.controls(k, step)?;
         let n = self.n;
         let nz = self.pz.ncols();
-        let lam = step.external;
+        let nrig = 2 * self.rigid.len();
+        let next = self.next();
+        let ext = |m: &Mat<f64>, i: usize| -> f64 { (0..next).map(|g| lamv[g] * m[(i, g)]).sum() };
+        let gl: Vec<f64> = (0..n).map(|i| ext(&self.gn_ext, i)).collect();
+        let sl: Vec<f64> = (0..n).map(|i| ext(&self.st_ext, i)).collect();
         let fric = self.friction_of();
+        // The step's load scale (Pa): prescribed tractions, displacements and rigid controls.
+        let mut load_scale = (0..next)
+            .map(|g| lamv[g].abs() * self.group_load[g])
+            .fold(0.0_f64, f64::max);
+        for c in &ctl {
+            load_scale = load_scale.max(match *c {
+                Control::Force(f) => f.abs() / self.length,
+                Control::Displacement(u) => self.scale * u.abs() / self.length,
+            });
+        }
         let g0: Vec<f64> = self
             .pairs
             .iter()
@@ -1352,7 +1830,7 @@ impl ContactProblem {
             let mut g = vec![0.0; n];
             let mut s = vec![0.0; n];
             for i in 0..n {
-                let (mut a, mut b) = (g0[i] + lam * self.gn_ext[i], lam * self.st_ext[i]);
+                let (mut a, mut b) = (g0[i] + gl[i], sl[i]);
                 for c in 0..nz {
                     a += self.wn[(i, c)] * z[c];
                     b += self.wt[(i, c)] * z[c];
@@ -1364,6 +1842,76 @@ impl ContactProblem {
         };
         loop {
             iterations += 1;
+            // A body held only by contact: while the sets leave one of its free modes unheld,
+            // bring the open node that would hold it with the smallest gap into contact. If
+            // none can, the mode is held by neither contact nor friction: a clear error.
+            if !self.free.is_empty() {
+                let mut checked = false;
+                while let Some(v) = self.unheld_mode(&states, &fric) {
+                    let c0 = self.free[0].zcol;
+                    let (g, _) = evaluate(&z);
+                    let weight = |i: usize, w: &Mat<f64>| -> f64 {
+                        (0..v.len()).map(|a| w[(i, c0 + a)] * v[a]).sum::<f64>()
+                    };
+                    if !checked && iterations > 1 {
+                        // The last solve left no contact node of the body with a pressure
+                        // above round-off of the step's loads: its loads do not press it onto
+                        // a contact (or vanish).
+                        let (fb, _) = self.name_mode(&v);
+                        let touching = (0..n).any(|i| {
+                            !matches!(states[i], ContactState::Open | ContactState::Outside)
+                                && load_scale > 0.0
+                                && z[i] > 1e-9 * load_scale
+                                && (0..fb.modes.len())
+                                    .any(|a| self.wn[(i, fb.zcol + a)].abs() > 1e-6)
+                        });
+                        if !touching {
+                            let (fb, mode) = self.name_mode(&v);
+                            return Err(Error::NoContact {
+                                detail: format!(
+                                    "load step {k}: {} is held only by contact and friction \
+                                     (free rigid-body {mode}), but its loads do not press it \
+                                     onto a contact: every contact node opens",
+                                    fb.field
+                                ),
+                            });
+                        }
+                    }
+                    checked = true;
+                    let mut best: Option<(f64, usize)> = None;
+                    for i in 0..n {
+                        if states[i] != ContactState::Open {
+                            continue;
+                        }
+                        let hold = weight(i, &self.wn).abs().max(if fric[i] > 0.0 {
+                            weight(i, &self.wt).abs()
+                        } else {
+                            0.0
+                        });
+                        if hold > 1e-6 && best.map_or(true, |b| g[i] < b.0) {
+                            best = Some((g[i], i));
+                        }
+                    }
+                    match best {
+                        Some((_, i)) => states[i] = ContactState::Stick,
+                        None => {
+                            let (fb, mode) = self.name_mode(&v);
+                            return Err(Error::invalid(
+                                fb.field.clone(),
+                                format!("free rigid-body {mode}"),
+                                format!(
+                                    "in load step {k} neither contact nor friction holds this \
+                                     mode of a body held only by contact (a frictionless contact \
+                                     holds no tangential motion; with friction, every contact \
+                                     node slips: the tangential load reaches the friction limit): \
+                                     add friction, a symmetry or displacement condition, or a \
+                                     rigid segment, or reduce the tangential load"
+                                ),
+                            ));
+                        }
+                    }
+                }
+            }
             // Build the linear system of the current sets.
             let mut a = Mat::<f64>::zeros(nz, nz);
             let mut rhs = vec![0.0; nz];
@@ -1379,14 +1927,14 @@ impl ContactProblem {
                         for c in 0..nz {
                             a[(i, c)] = self.wn[(i, c)];
                         }
-                        rhs[i] = -(g0[i] + lam * self.gn_ext[i]);
+                        rhs[i] = -(g0[i] + gl[i]);
                         if fric[i] == 0.0 {
                             a[(n + i, n + i)] = 1.0;
                         } else if st == ContactState::Stick {
                             for c in 0..nz {
                                 a[(n + i, c)] = self.wt[(i, c)];
                             }
-                            rhs[n + i] = self.slip[i] - lam * self.st_ext[i];
+                            rhs[n + i] = self.slip[i] - sl[i];
                         } else {
                             let sigma = if st == ContactState::SlipPositive {
                                 -1.0
@@ -1407,13 +1955,21 @@ impl ContactProblem {
                         for cc in 0..nz {
                             a[(row, cc)] = self.kf[(j, cc)];
                         }
-                        rhs[row] = f - lam * self.f_ext[j];
+                        rhs[row] = f - ext(&self.f_ext, j);
                     }
                     Control::Displacement(u) => {
                         a[(row, row)] = 1.0;
                         rhs[row] = u;
                     }
                 }
+            }
+            // Free-body equilibrium in every free mode.
+            for q in 0..self.eq_z.nrows() {
+                let row = 2 * n + nrig + q;
+                for cc in 0..nz {
+                    a[(row, cc)] = self.eq_z[(q, cc)];
+                }
+                rhs[row] = -ext(&self.eq_ext, q);
             }
             // Open and outside nodes have p = q = 0: only the unknowns of contact nodes and the
             // rigid translations enter the solve. Equilibrate: columns by the unknowns'
@@ -1472,7 +2028,21 @@ impl ContactProblem {
             for (r, &c) in act.iter().enumerate() {
                 z[c] = y[(r, 0)] * colscale[c];
             }
-            if let Some(j) = (0..nz - 2 * n).find(|&j| z[2 * n + j].abs() > self.length) {
+            if let Some(fb) = self
+                .free
+                .iter()
+                .find(|fb| (0..fb.modes.len()).any(|k| z[fb.zcol + k].abs() > self.length))
+            {
+                return Err(Error::Numerical {
+                    context: "2D BEM contact step",
+                    detail: format!(
+                        "load step {k}: {} (held only by contact) moves more than the model \
+                         size: a free rigid-body mode is held by neither contact nor friction",
+                        fb.field
+                    ),
+                });
+            }
+            if let Some(j) = (0..nrig).find(|&j| z[2 * n + j].abs() > self.length) {
                 return Err(Error::Numerical {
                     context: "2D BEM contact step",
                     detail: format!(
@@ -1555,8 +2125,10 @@ impl ContactProblem {
                         if m < p.nodes.len() && states[p.offset + m] == ContactState::Outside {
                             return Err(Error::ContactReachesWindow {
                                 detail: format!(
-                                    "contact pair '{}' / '{}': the contact reaches the end of \
-                                     the master segment; extend the master segment",
+                                    "contact pair '{}' / '{}': the contact reaches an end of \
+                                     the master segment; extend the master segment, or, where \
+                                     the master ends at a corner of its body (a punch edge), \
+                                     end the slave segment at the same place",
                                     p.pair.slave, p.pair.master
                                 ),
                             });
@@ -1632,7 +2204,7 @@ impl ContactProblem {
         for (j, (name, _)) in self.rigid.iter().enumerate() {
             let mut force = [0.0; 2];
             for d in 0..2 {
-                let mut f = lam * self.f_ext[2 * j + d];
+                let mut f = ext(&self.f_ext, 2 * j + d);
                 for c in 0..nz {
                     f += self.kf[(2 * j + d, c)] * z[c];
                 }
@@ -1644,7 +2216,8 @@ impl ContactProblem {
                 force,
             });
         }
-        let solution = self.boundary_state(lam, &z);
+        let (solution, pin_traction) = self.boundary_state(&lamv, &z);
+        let free_bodies = self.free_results(&solution, &lamv, &pin_traction);
         // Path memory for the next step.
         for i in 0..n {
             if states[i] != ContactState::Outside {
@@ -1657,12 +2230,76 @@ impl ContactProblem {
             residual,
             pairs,
             rigid,
+            free_bodies,
             solution,
         })
     }
 
-    /// The full boundary state for external factor `lam` and contact unknowns `z`.
-    fn boundary_state(&self, lam: f64, z: &[f64]) -> BemSolution {
+    /// The least-squares rigid motion of each free body's boundary displacement and its
+    /// support reactions.
+    fn free_results(
+        &self,
+        solution: &BemSolution,
+        lamv: &[f64],
+        pin_traction: &[Vec<f64>],
+    ) -> Vec<FreeBodyResult> {
+        let mesh = &self.problem.mesh;
+        let (gx, gw) = gauss_legendre(8);
+        let mut out = Vec::new();
+        for (f, fb) in self.free.iter().enumerate() {
+            let c = fb.center;
+            let (mut len, mut ru2, mut rxu) = (0.0, 0.0, 0.0);
+            let mut um = [0.0; 2];
+            for &r in &fb.regions {
+                for e in &mesh.regions[r].elements {
+                    if mesh.segments[e.segment].partner.is_some() {
+                        continue;
+                    }
+                    for (&xi, &w) in gx.iter().zip(&gw) {
+                        let x = e.point(xi);
+                        let (_, jac) = e.normal_jacobian(xi);
+                        let nsh = e.field_shape(xi);
+                        let mut u = [0.0; 2];
+                        for a in 0..3 {
+                            for d in 0..2 {
+                                u[d] += nsh[a] * solution.displacement[r][e.nodes[a]][d];
+                            }
+                        }
+                        let ds = w * jac;
+                        let rv = [x[0] - c[0], x[1] - c[1]];
+                        len += ds;
+                        um[0] += u[0] * ds;
+                        um[1] += u[1] * ds;
+                        ru2 += (rv[0] * rv[0] + rv[1] * rv[1]) * ds;
+                        rxu += (rv[0] * u[1] - rv[1] * u[0]) * ds;
+                    }
+                }
+            }
+            let mut support = [0.0; 2];
+            for (q, pin) in fb.pins.iter().enumerate() {
+                support[pin.d] += pin.weight * (pin_traction[f][q] - lamv[pin.group] * pin.t);
+            }
+            out.push(FreeBodyResult {
+                body: fb.name.clone(),
+                translation: [um[0] / len, um[1] / len],
+                rotation: rxu / ru2.max(f64::MIN_POSITIVE),
+                reference_point: c,
+                free_modes: fb
+                    .modes
+                    .iter()
+                    .map(|m| describe_mode(*m, fb.center, fb.size))
+                    .collect(),
+                support_force: support,
+            });
+        }
+        out
+    }
+
+    /// The full boundary state for load factors `lamv` (per load-group column) and contact
+    /// unknowns `z`, and the BEM traction at every pin (per free body, per pin). Pins report
+    /// their prescribed traction in the state (see the module docs).
+    fn boundary_state(&self, lamv: &[f64], z: &[f64]) -> (BemSolution, Vec<Vec<f64>>) {
+        let next = self.next();
         let np = self.params.len();
         let mut param = vec![0.0; np];
         for k in 0..np {
@@ -1675,9 +2312,12 @@ impl ContactProblem {
         let mut x = vec![0.0; self.ncol];
         for body in &self.bodies {
             for (li, &col) in body.cols.iter().enumerate() {
-                let mut v = lam * body.x[(li, 0)];
+                let mut v = 0.0;
+                for g in 0..next {
+                    v += lamv[g] * body.x[(li, g)];
+                }
                 for (k, &gp) in body.params.iter().enumerate() {
-                    v += body.x[(li, 1 + k)] * param[gp];
+                    v += body.x[(li, next + k)] * param[gp];
                 }
                 x[col] = v;
             }
@@ -1695,7 +2335,25 @@ impl ContactProblem {
                         over_u.insert((info.owner, o, d), param[k]);
                     }
                 }
+                Param::Free { .. } => {}
             }
+        }
+        let mut pin_traction = Vec::with_capacity(self.free.len());
+        for fb in &self.free {
+            let mut tp = Vec::with_capacity(fb.pins.len());
+            for pin in &fb.pins {
+                let u: f64 = (0..fb.modes.len())
+                    .map(|k| pin.row[k] * param[fb.param0 + k])
+                    .sum();
+                over_u.insert((pin.region, pin.node, pin.d), u);
+                over_t.insert((pin.region, pin.node, pin.d), lamv[pin.group] * pin.t);
+                if let Dof::T { col, .. } = self.dofs[pin.region][pin.node][pin.d] {
+                    tp.push(x[col] * self.scale);
+                } else {
+                    tp.push(0.0);
+                }
+            }
+            pin_traction.push(tp);
         }
         let mut displacement = Vec::new();
         let mut traction = Vec::new();
@@ -1705,6 +2363,7 @@ impl ContactProblem {
             for (node, dn) in d.iter().enumerate() {
                 let mut un = [0.0; 2];
                 let mut tn = [0.0; 2];
+                let lam = lamv[self.seg_group[self_segment(&self.problem, r, node)]];
                 for dir in 0..2 {
                     match dn[dir] {
                         Dof::U { col, t } => {
@@ -1713,7 +2372,10 @@ impl ContactProblem {
                         }
                         Dof::T { col, u } => {
                             un[dir] = over_u.get(&(r, node, dir)).copied().unwrap_or(lam * u);
-                            tn[dir] = x[col] * self.scale;
+                            tn[dir] = over_t
+                                .get(&(r, node, dir))
+                                .copied()
+                                .unwrap_or(x[col] * self.scale);
                         }
                         Dof::Interface { u_col, t_col, sign } => {
                             un[dir] = x[u_col];
@@ -1727,13 +2389,16 @@ impl ContactProblem {
             displacement.push(u);
             traction.push(t);
         }
-        BemSolution {
-            mesh: self.problem.mesh.clone(),
-            displacement,
-            traction,
-            residual: self.lu_residual,
-            body_force_factor: lam,
-        }
+        (
+            BemSolution {
+                mesh: self.problem.mesh.clone(),
+                displacement,
+                traction,
+                residual: self.lu_residual,
+                body_force_factor: lamv[0],
+            },
+            pin_traction,
+        )
     }
 }
 
@@ -1763,6 +2428,311 @@ fn node_weights(problem: &BemProblem, seg: usize) -> Vec<f64> {
         }
     }
     w
+}
+
+/// The displacement of node component d at `p` per unit amplitude of the rigid modes
+/// (translation x, translation y, rotation about `c` scaled by `size`: amplitude = size *
+/// angle, so that all three are lengths).
+fn rigid_row(d: usize, p: [f64; 2], c: [f64; 2], size: f64) -> [f64; 3] {
+    if d == 0 {
+        [1.0, 0.0, -(p[1] - c[1]) / size]
+    } else {
+        [0.0, 1.0, (p[0] - c[0]) / size]
+    }
+}
+
+fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Eigenvalues and eigenvectors (columns: `v[i][k]` is component i of vector k) of a small
+/// symmetric matrix by the cyclic Jacobi method (Golub & Van Loan, *Matrix Computations*,
+/// 4th ed., alg. 8.5.3).
+fn symmetric_eigen(mut a: Vec<Vec<f64>>) -> (Vec<f64>, Vec<Vec<f64>>) {
+    let m = a.len();
+    let mut v: Vec<Vec<f64>> = (0..m)
+        .map(|i| (0..m).map(|j| if i == j { 1.0 } else { 0.0 }).collect())
+        .collect();
+    let norm: f64 = a.iter().flatten().map(|x| x * x).sum::<f64>().sqrt();
+    for _ in 0..60 {
+        let off: f64 = (0..m)
+            .flat_map(|i| (0..m).filter(move |&j| j != i).map(move |j| (i, j)))
+            .map(|(i, j)| a[i][j] * a[i][j])
+            .sum::<f64>()
+            .sqrt();
+        if off <= 1e-15 * norm || off == 0.0 {
+            break;
+        }
+        for p in 0..m {
+            for q in p + 1..m {
+                if a[p][q] == 0.0 {
+                    continue;
+                }
+                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let c = 1.0 / (t * t + 1.0).sqrt();
+                let s = t * c;
+                for k in 0..m {
+                    let (akp, akq) = (a[k][p], a[k][q]);
+                    a[k][p] = c * akp - s * akq;
+                    a[k][q] = s * akp + c * akq;
+                }
+                for k in 0..m {
+                    let (apk, aqk) = (a[p][k], a[q][k]);
+                    a[p][k] = c * apk - s * aqk;
+                    a[q][k] = s * apk + c * aqk;
+                }
+                for k in 0..m {
+                    let (vkp, vkq) = (v[k][p], v[k][q]);
+                    v[k][p] = c * vkp - s * vkq;
+                    v[k][q] = s * vkp + c * vkq;
+                }
+            }
+        }
+    }
+    ((0..m).map(|i| a[i][i]).collect(), v)
+}
+
+/// The rigid modes (tx, ty, size * rotation about `c`) that the prescribed displacement
+/// components `rows` (direction, position) leave free: an orthonormal basis of the null space
+/// of the constraint matrix (eigenvalues of its Gram matrix below 1e-12 per row, i.e. the
+/// 1e-6 of the BEM restraint check), built from the projections of tx, ty and the rotation in
+/// turn (largest first), so that a single free translation or rotation comes out as itself.
+fn free_modes(rows: &[(usize, [f64; 2])], c: [f64; 2], size: f64) -> Vec<[f64; 3]> {
+    let mut gram = vec![vec![0.0; 3]; 3];
+    for (d, p) in rows {
+        let r = rigid_row(*d, *p, c, size);
+        for i in 0..3 {
+            for j in 0..3 {
+                gram[i][j] += r[i] * r[j];
+            }
+        }
+    }
+    let (vals, vecs) = symmetric_eigen(gram);
+    let tol = 1e-12 * rows.len().max(1) as f64;
+    let null: Vec<[f64; 3]> = (0..3)
+        .filter(|&k| vals[k] <= tol)
+        .map(|k| [vecs[0][k], vecs[1][k], vecs[2][k]])
+        .collect();
+    let mut basis: Vec<[f64; 3]> = Vec::new();
+    for _ in 0..null.len() {
+        let mut best = (0.0, [0.0; 3]);
+        for e in 0..3 {
+            let mut w = [0.0; 3];
+            for nv in &null {
+                for i in 0..3 {
+                    w[i] += nv[e] * nv[i];
+                }
+            }
+            for b in &basis {
+                let d = dot3(w, *b);
+                for i in 0..3 {
+                    w[i] -= d * b[i];
+                }
+            }
+            let nw = dot3(w, w).sqrt();
+            if nw > best.0 + 1e-12 {
+                best = (nw, w.map(|x| x / nw));
+            }
+        }
+        basis.push(best.1);
+    }
+    basis
+}
+
+/// A rigid motion (tx, ty, size * rotation about `c`) in words.
+fn describe_mode(mode: [f64; 3], c: [f64; 2], size: f64) -> String {
+    let nrm = dot3(mode, mode).sqrt().max(f64::MIN_POSITIVE);
+    let [a, b, r] = mode.map(|x| x / nrm);
+    if r.abs() < 1e-6 {
+        if b.abs() < 1e-6 {
+            "translation in x".to_string()
+        } else if a.abs() < 1e-6 {
+            "translation in y".to_string()
+        } else {
+            let h = a.hypot(b);
+            format!("translation along ({:.4}, {:.4})", a / h, b / h)
+        }
+    } else {
+        // u = (a - theta (y - cy), b + theta (x - cx)) vanishes at the centre.
+        let theta = r / size;
+        format!(
+            "rotation about ({:.6e}, {:.6e}) m",
+            c[0] - b / theta,
+            c[1] + a / theta
+        )
+    }
+}
+
+/// Arc-length centroid of a body's boundary (its regions' elements off bonded interfaces)
+/// and the largest distance of a boundary point from it, m.
+fn boundary_centroid(problem: &BemProblem, members: &[usize]) -> ([f64; 2], f64) {
+    let mesh = &problem.mesh;
+    let (gx, gw) = gauss_legendre(8);
+    let (mut len, mut sx, mut sy) = (0.0, 0.0, 0.0);
+    for &r in members {
+        for e in &mesh.regions[r].elements {
+            if mesh.segments[e.segment].partner.is_some() {
+                continue;
+            }
+            for (&xi, &w) in gx.iter().zip(&gw) {
+                let x = e.point(xi);
+                let (_, jac) = e.normal_jacobian(xi);
+                len += w * jac;
+                sx += w * jac * x[0];
+                sy += w * jac * x[1];
+            }
+        }
+    }
+    let c = [sx / len, sy / len];
+    let mut size = 0.0_f64;
+    for &r in members {
+        for e in &mesh.regions[r].elements {
+            for g in &e.geometry {
+                size = size.max((g[0] - c[0]).hypot(g[1] - c[1]));
+            }
+        }
+    }
+    (c, size.max(f64::MIN_POSITIVE))
+}
+
+/// int N ds of node `o` of region `r` (over the elements that hold it), m.
+fn node_weight(problem: &BemProblem, r: usize, o: usize) -> f64 {
+    let (gx, gw) = gauss_legendre(8);
+    let mut w = 0.0;
+    for e in &problem.mesh.regions[r].elements {
+        if let Some(a) = e.nodes.iter().position(|&q| q == o) {
+            for (&xi, &wq) in gx.iter().zip(&gw) {
+                let (_, jac) = e.normal_jacobian(xi);
+                w += wq * jac * e.field_shape(xi)[a];
+            }
+        }
+    }
+    w
+}
+
+/// The free rigid-body modes of a body that takes part in a contact pair, and its artificial
+/// supports: for each free mode one traction-type node component off the contact and rigid
+/// segments, chosen by pivoting (the component whose rigid-mode row has the largest part
+/// orthogonal to the rows chosen before; among near ties, the one farthest from the contact),
+/// so that the supports are statically determinate and far apart. The chosen components
+/// become displacement unknowns-as-parameters in `dofs`. None where the body is restrained.
+fn free_body(
+    problem: &BemProblem,
+    dofs: &mut [Vec<[Dof; 2]>],
+    members: &[usize],
+    role: &HashMap<usize, String>,
+    seg_group: &[usize],
+) -> Result<Option<FreeBody>> {
+    let mesh = &problem.mesh;
+    let (center, size) = boundary_centroid(problem, members);
+    let mut rows = Vec::new();
+    for &r in members {
+        for (node, d) in mesh.regions[r].nodes.iter().zip(&dofs[r]) {
+            for (dir, dof) in d.iter().enumerate() {
+                if matches!(dof, Dof::T { .. }) {
+                    rows.push((dir, node.position));
+                }
+            }
+        }
+    }
+    let modes = free_modes(&rows, center, size);
+    if modes.is_empty() {
+        return Ok(None);
+    }
+    let names: Vec<&str> = members
+        .iter()
+        .map(|&r| mesh.regions[r].name.as_str())
+        .collect();
+    let field = format!("body [{}]", names.join(", "));
+    let contact: Vec<[f64; 2]> = members
+        .iter()
+        .flat_map(|&r| mesh.regions[r].nodes.iter())
+        .filter(|n| role.contains_key(&n.segment))
+        .map(|n| n.position)
+        .collect();
+    let mut cand: Vec<(usize, usize, usize, Vec<f64>, f64)> = Vec::new();
+    for &r in members {
+        for (o, node) in mesh.regions[r].nodes.iter().enumerate() {
+            if role.contains_key(&node.segment) || mesh.segments[node.segment].partner.is_some() {
+                continue;
+            }
+            for d in 0..2 {
+                if let Dof::U { .. } = dofs[r][o][d] {
+                    let rr = rigid_row(d, node.position, center, size);
+                    let row: Vec<f64> = modes.iter().map(|m| dot3(rr, *m)).collect();
+                    let far = contact
+                        .iter()
+                        .map(|p| (p[0] - node.position[0]).hypot(p[1] - node.position[1]))
+                        .fold(f64::INFINITY, f64::min);
+                    cand.push((r, o, d, row, far));
+                }
+            }
+        }
+    }
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    let mut pins = Vec::new();
+    for step in 0..modes.len() {
+        let resid: Vec<Vec<f64>> = cand
+            .iter()
+            .map(|c| {
+                let mut v = c.3.clone();
+                for b in &basis {
+                    let dt: f64 = v.iter().zip(b).map(|(x, y)| x * y).sum();
+                    v.iter_mut().zip(b).for_each(|(x, y)| *x -= dt * y);
+                }
+                v
+            })
+            .collect();
+        let norms: Vec<f64> = resid
+            .iter()
+            .map(|v| v.iter().map(|x| x * x).sum::<f64>().sqrt())
+            .collect();
+        let best = norms.iter().cloned().fold(0.0_f64, f64::max);
+        if best < 1e-6 {
+            return Err(Error::invalid(
+                field,
+                format!(
+                    "free rigid-body {}",
+                    describe_mode(modes[step.min(modes.len() - 1)], center, size)
+                ),
+                "the body is held only by contact, and it has no traction-loaded boundary node                  off its contact segments to carry the artificial support of this mode",
+            ));
+        }
+        let mut pick = usize::MAX;
+        for i in 0..cand.len() {
+            if norms[i] >= 0.999 * best && (pick == usize::MAX || cand[i].4 > cand[pick].4) {
+                pick = i;
+            }
+        }
+        basis.push(resid[pick].iter().map(|x| x / norms[pick]).collect());
+        let (r, o, d, row, _) = cand.swap_remove(pick);
+        let (col, t) = match dofs[r][o][d] {
+            Dof::U { col, t } => (col, t),
+            _ => unreachable!("candidates are traction-type"),
+        };
+        dofs[r][o][d] = Dof::T { col, u: 0.0 };
+        pins.push(Pin {
+            region: r,
+            node: o,
+            d,
+            t,
+            group: seg_group[mesh.regions[r].nodes[o].segment],
+            row,
+            weight: node_weight(problem, r, o),
+        });
+    }
+    Ok(Some(FreeBody {
+        name: mesh.regions[members[0]].name.clone(),
+        field,
+        regions: members.to_vec(),
+        center,
+        size,
+        modes,
+        zcol: 0,
+        param0: 0,
+        pins,
+    }))
 }
 
 #[cfg(test)]

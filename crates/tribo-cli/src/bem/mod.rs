@@ -1,0 +1,59 @@
+//! 2D boundary element cases (`kind = "bem2d"`): n bodies of bonded regions, boundary
+//! conditions per named segment in load groups, frictional contact pairs, load steps,
+//! interior fields, damage and a material comparison (the paper's Sec. 7 workflow).
+
+pub mod case;
+pub mod output;
+pub mod plot;
+pub mod run;
+pub mod template;
+
+use std::path::Path;
+
+use crate::error::CliResult;
+
+/// Whether the case text is a boundary element case (`kind = "bem2d"`); None where the text
+/// is not TOML (the caller's parser reports the error).
+pub fn is_bem_text(text: &str) -> bool {
+    toml::from_str::<toml::Table>(text).is_ok_and(|t| case::is_bem(&t))
+}
+
+/// `tribo run` on a boundary element case: solves and writes the outputs, returning the
+/// summary; with `dry_run` validates, prints the model and returns None.
+pub fn run_text(
+    text: &str,
+    source: &str,
+    base_dir: &Path,
+    out: &Path,
+    quiet: bool,
+    dry_run: bool,
+) -> CliResult<Option<output::BemSummary>> {
+    let case = case::parse(text, source, base_dir)?;
+    if dry_run {
+        let model = run::model(&case, None)?;
+        let mesh = tribo::operators::bem2d::BemMesh::new(&model)?;
+        println!(
+            "{}: valid; plane {}, {} regions, {} segments, {} boundary unknowns, {} contact pairs, {} steps",
+            case.title,
+            run::plane_name(case.plane),
+            mesh.regions.len(),
+            mesh.segments.len(),
+            mesh.dof(),
+            case.pairs.len(),
+            case.steps.len()
+        );
+        for r in &mesh.regions {
+            println!(
+                "  region {}: {} elements, {} nodes",
+                r.name,
+                r.elements.len(),
+                r.nodes.len()
+            );
+        }
+        let names: Vec<&str> = mesh.segments.iter().map(|s| s.name.as_str()).collect();
+        println!("  segments: {}", names.join(", "));
+        return Ok(None);
+    }
+    let outcome = run::solve(&case, quiet)?;
+    Ok(Some(output::write_all(out, &case, &outcome)?))
+}

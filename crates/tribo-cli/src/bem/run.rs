@@ -1,0 +1,571 @@
+//! Solving a 2D boundary element case: the model, the contact steps, the interior fields on
+//! a triangulation of each region, the damage of one region and the material comparison.
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use tribo::analysis::bem_field::{sample_region, triangulate_region, FieldSample};
+use tribo::analysis::damage::{
+    dangerous_region, DamageMesh, DamageQuantity, DangerousRegion, Execution, TensorKind,
+};
+use tribo::kernels::kelvin2d::PlaneCondition;
+use tribo::kernels::subsurface::StressTensor;
+use tribo::operators::bem2d::{BemMesh, BemModel, LoopItem, Region, SegmentShape};
+use tribo::solvers::bem2d::contact::{
+    ContactProblem, FreeBodyResult, LoadStep, PairResult, RigidControl, RigidResult,
+};
+use tribo::solvers::bem2d::{
+    BemProblem, BemSolution, BoundaryConditions, Component, Profile, SegmentBc, Stress2d,
+};
+use tribo::ElasticMaterial;
+
+use super::case::{BcKind, BemCase, ComponentSpec, ProfileSpec};
+use crate::error::{CliError, CliResult};
+use crate::run::spinner;
+
+/// One solved step.
+#[derive(Debug, Clone)]
+pub struct StepOutcome {
+    /// Step name.
+    pub name: String,
+    /// Active-set iterations (0 without contact).
+    pub iterations: usize,
+    /// Complementarity residual (0 without contact).
+    pub residual: f64,
+    /// Contact pairs.
+    pub pairs: Vec<PairResult>,
+    /// Rigid segments.
+    pub rigid: Vec<RigidResult>,
+    /// Bodies held by contact only: their rigid motion.
+    pub free_bodies: Vec<FreeBodyResult>,
+    /// The boundary solution.
+    pub solution: BemSolution,
+}
+
+/// The field of one region: its triangulation and the samples of every step.
+#[derive(Debug, Clone)]
+pub struct RegionField {
+    /// Region name.
+    pub region: String,
+    /// Region index in the mesh.
+    pub index: usize,
+    /// Material.
+    pub material: ElasticMaterial,
+    /// Triangle vertices, m.
+    pub nodes: Vec<[f64; 2]>,
+    /// Triangles (counter-clockwise).
+    pub triangles: Vec<[usize; 3]>,
+    /// Samples per step, per node.
+    pub samples: Vec<Vec<FieldSample>>,
+}
+
+/// Extremes of one region in one step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extremes {
+    /// max |sigma_xx|, Pa, and where.
+    pub sigma_xx: (f64, [f64; 2]),
+    /// max sigma_int (von Mises), Pa, and where.
+    pub sigma_int: (f64, [f64; 2]),
+    /// max |eps_xx|, and where.
+    pub eps_xx: (f64, [f64; 2]),
+    /// max eps_int (strain intensity), and where.
+    pub eps_int: (f64, [f64; 2]),
+}
+
+/// The damage of one region.
+#[derive(Debug, Clone)]
+pub struct DamageOutcome {
+    /// Region.
+    pub region: String,
+    /// Step assessed.
+    pub step: String,
+    /// Quantity name (e.g. sigma_int).
+    pub quantity: String,
+    /// Its unit.
+    pub unit: &'static str,
+    /// The limit of the maps, in `unit`.
+    pub limit: f64,
+    /// psi at the field nodes of the region at `limit`.
+    pub psi: Vec<f64>,
+    /// Dangerous area, damageability and psi_max at `limit`.
+    pub at_limit: DangerousRegion,
+    /// The sweep: (limit, result).
+    pub sweep: Vec<(f64, DangerousRegion)>,
+}
+
+/// Timings, s.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Timings {
+    /// Meshing, assembly, factorization and condensation.
+    pub setup: f64,
+    /// All load steps.
+    pub steps: f64,
+    /// Triangulation and field sampling.
+    pub fields: f64,
+    /// Damage and sweep.
+    pub damage: f64,
+}
+
+/// One run of the model (the case's materials, or one material of the comparison).
+#[derive(Debug, Clone)]
+pub struct Variant {
+    /// The material of the compared region (None: the case as written).
+    pub material: Option<String>,
+    /// The boundary mesh.
+    pub mesh: BemMesh,
+    /// Boundary unknowns (2 per node).
+    pub dof: usize,
+    /// Contact unknowns of the condensed problem (0 without contact).
+    pub contact_unknowns: usize,
+    /// Steps.
+    pub steps: Vec<StepOutcome>,
+    /// Fields.
+    pub fields: Vec<RegionField>,
+    /// Damage.
+    pub damage: Option<DamageOutcome>,
+    /// Timings.
+    pub timings: Timings,
+}
+
+/// A solved case.
+#[derive(Debug, Clone)]
+pub struct BemOutcome {
+    /// The case as written.
+    pub main: Variant,
+    /// The comparison: (material name, its run), in the order of `compare.materials`.
+    pub compare: Vec<(String, Variant)>,
+}
+
+/// Builds the library model, with the material of region `swap.0` replaced by `swap.1`.
+pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CliResult<BemModel> {
+    let material = |region: &str, name: &str| -> ElasticMaterial {
+        let chosen = match swap {
+            Some((r, m)) if r == region => m,
+            _ => name,
+        };
+        case.materials[chosen]
+    };
+    let mut regions: Vec<Region> = case
+        .regions
+        .iter()
+        .map(|r| Region {
+            name: r.name.clone(),
+            material: material(&r.name, &r.material),
+            loops: r.loops.clone(),
+        })
+        .collect();
+    for (i, m) in case.meshes.iter().enumerate() {
+        let lookup = |surface: &str| -> Option<ElasticMaterial> {
+            m.materials.get(surface).map(|name| material(surface, name))
+        };
+        // GMSH-PENDING
+        let imported: tribo::Result<BemModel> = Err(tribo::Error::invalid(
+            "mesh.file",
+            m.path.display(),
+            "gmsh import is not available yet",
+        ));
+        let _ = &lookup;
+        let imported = imported.map_err(|e| {
+            CliError::field(format!("mesh[{i}].file"), m.path.display(), e.to_string())
+        })?;
+        regions.extend(imported.regions);
+    }
+    Ok(BemModel::new(case.plane, regions))
+}
+
+fn segment_shapes(model: &BemModel) -> BTreeMap<String, SegmentShape> {
+    let mut out = BTreeMap::new();
+    for r in &model.regions {
+        for l in &r.loops {
+            for item in l {
+                if let LoopItem::Segment(s) = item {
+                    out.insert(s.name.clone(), s.shape);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The fraction of the segment's length from its start at the point of the segment nearest
+/// to `p` (lines and arcs).
+fn fraction(shape: &SegmentShape, p: [f64; 2]) -> Option<f64> {
+    if let SegmentShape::Line { start, end } = *shape {
+        let d = [end[0] - start[0], end[1] - start[1]];
+        let l2 = d[0] * d[0] + d[1] * d[1];
+        return Some((((p[0] - start[0]) * d[0] + (p[1] - start[1]) * d[1]) / l2).clamp(0.0, 1.0));
+    }
+    if let SegmentShape::Arc {
+        center,
+        start_angle,
+        end_angle,
+        ..
+    } = *shape
+    {
+        let a = (p[1] - center[1]).atan2(p[0] - center[0]);
+        let sweep = end_angle - start_angle;
+        // Bring a next to the arc's range.
+        let tau = std::f64::consts::TAU;
+        let mut rel = (a - start_angle) / sweep;
+        let period = tau / sweep.abs();
+        while rel < -0.5 * (period - 1.0) {
+            rel += period;
+        }
+        while rel > 1.0 + 0.5 * (period - 1.0) {
+            rel -= period;
+        }
+        return Some(rel.clamp(0.0, 1.0));
+    }
+    None
+}
+
+fn library_profile(
+    spec: &ProfileSpec,
+    factor: f64,
+    shape: Option<SegmentShape>,
+    origin: &str,
+) -> CliResult<Profile> {
+    Ok(match spec {
+        ProfileSpec::Uniform(v) => Profile::Uniform(factor * v),
+        ProfileSpec::Linear(a, b) => Profile::Linear {
+            start: factor * a,
+            end: factor * b,
+        },
+        ProfileSpec::Table(rows) => {
+            let Some(shape) = shape.filter(|s| fraction(s, s.point(0.0)).is_some()) else {
+                return Err(CliError::field(
+                    origin,
+                    "table",
+                    "tabulated profiles need a line or arc segment of an outline",
+                ));
+            };
+            let rows = rows.clone();
+            Profile::function(move |p| {
+                let t = fraction(&shape, p).unwrap_or(0.0);
+                let k = rows.partition_point(|r| r.0 <= t).clamp(1, rows.len() - 1);
+                let (t0, v0) = rows[k - 1];
+                let (t1, v1) = rows[k];
+                factor * (v0 + (v1 - v0) * (t - t0) / (t1 - t0))
+            })
+        }
+    })
+}
+
+fn library_bc(
+    kind: &BcKind,
+    factor: f64,
+    shape: Option<SegmentShape>,
+    origin: &str,
+) -> CliResult<SegmentBc> {
+    let comp = |c: &ComponentSpec| -> CliResult<Component> {
+        Ok(match c {
+            ComponentSpec::Displacement(p) => {
+                Component::Displacement(library_profile(p, factor, shape, origin)?)
+            }
+            ComponentSpec::Traction(p) => {
+                Component::Traction(library_profile(p, factor, shape, origin)?)
+            }
+        })
+    };
+    Ok(match kind {
+        BcKind::Components(x, y) => SegmentBc::Components {
+            x: comp(x)?,
+            y: comp(y)?,
+        },
+        BcKind::Pressure(p) => SegmentBc::Pressure(library_profile(p, factor, shape, origin)?),
+    })
+}
+
+/// The boundary conditions: with `factors` = None as load groups (for the contact solver),
+/// else scaled by the step's factors (for the plain BEM solve).
+fn conditions(
+    case: &BemCase,
+    model: &BemModel,
+    factors: Option<&BTreeMap<String, f64>>,
+) -> CliResult<BoundaryConditions> {
+    let shapes = segment_shapes(model);
+    let mut bcs = BoundaryConditions::new();
+    for b in &case.bcs {
+        let known = shapes.contains_key(&b.segment);
+        if !known {
+            return Err(CliError::field(
+                format!("{}.segment", b.origin),
+                format!("{:?}", b.segment),
+                "names no segment of the model",
+            ));
+        }
+        let shape = shapes.get(&b.segment).copied();
+        match (factors, &b.group) {
+            (None, Some(g)) => {
+                bcs = bcs.set_in_group(&b.segment, library_bc(&b.kind, 1.0, shape, &b.origin)?, g);
+            }
+            (None, None) => bcs = bcs.set(&b.segment, library_bc(&b.kind, 1.0, shape, &b.origin)?),
+            (Some(f), group) => {
+                let factor = group
+                    .as_ref()
+                    .map_or(1.0, |g| f.get(g).copied().unwrap_or(0.0));
+                bcs = bcs.set(&b.segment, library_bc(&b.kind, factor, shape, &b.origin)?);
+            }
+        }
+    }
+    Ok(bcs)
+}
+
+/// The region names of the fields to sample.
+fn field_regions(case: &BemCase, mesh: &BemMesh, only: Option<&[&str]>) -> CliResult<Vec<usize>> {
+    let all: Vec<String> = mesh.regions.iter().map(|r| r.name.clone()).collect();
+    let wanted: Vec<String> = match (only, &case.field.regions) {
+        (Some(list), _) => list.iter().map(|s| s.to_string()).collect(),
+        (None, Some(list)) => list.clone(),
+        (None, None) => all.clone(),
+    };
+    wanted
+        .iter()
+        .map(|w| {
+            all.iter().position(|a| a == w).ok_or_else(|| {
+                CliError::field(
+                    "field.regions",
+                    format!("{w:?}"),
+                    format!("names no region (regions: {})", all.join(", ")),
+                )
+            })
+        })
+        .collect()
+}
+
+/// The stress tensor of a 2D sample (sigma_zz from the plane condition).
+pub fn tensor(s: &Stress2d) -> StressTensor {
+    StressTensor::new(s.xx, s.yy, s.zz, s.xy, 0.0, 0.0)
+}
+
+/// Extremes of a region's samples.
+pub fn extremes(field: &RegionField, step: usize) -> Extremes {
+    let int_stress = DamageQuantity::Intensity {
+        tensor: TensorKind::Stress,
+    };
+    let int_strain = DamageQuantity::Intensity {
+        tensor: TensorKind::Strain,
+    };
+    let mut e = Extremes {
+        sigma_xx: (0.0, [0.0; 2]),
+        sigma_int: (0.0, [0.0; 2]),
+        eps_xx: (0.0, [0.0; 2]),
+        eps_int: (0.0, [0.0; 2]),
+    };
+    for (s, p) in field.samples[step].iter().zip(&field.nodes) {
+        let t = tensor(&s.stress);
+        let upd = |slot: &mut (f64, [f64; 2]), v: f64| {
+            if v > slot.0 {
+                *slot = (v, *p);
+            }
+        };
+        upd(&mut e.sigma_xx, s.stress.xx.abs());
+        upd(&mut e.sigma_int, int_stress.value(&t, &field.material));
+        upd(&mut e.eps_xx, s.strain.xx.abs());
+        upd(&mut e.eps_int, int_strain.value(&t, &field.material));
+    }
+    e
+}
+
+/// Runs the model once.
+pub fn run_variant(
+    case: &BemCase,
+    swap: Option<(&str, &str)>,
+    only_regions: Option<&[&str]>,
+    quiet: bool,
+) -> CliResult<Variant> {
+    let label = swap
+        .map(|(r, m)| format!(" ({r}: {m})"))
+        .unwrap_or_default();
+    let t0 = Instant::now();
+    let model = model(case, swap)?;
+    let pb = spinner(quiet, format!("meshing, assembling and factoring{label}"));
+    let use_contact = !case.pairs.is_empty() || !case.rigid.is_empty();
+    let mut steps = Vec::new();
+    let (dof, contact_unknowns, setup, steps_time, mesh);
+    if use_contact {
+        let bcs = conditions(case, &model, None)?;
+        let rigid: Vec<&str> = case.rigid.iter().map(String::as_str).collect();
+        let mut problem = ContactProblem::new(&model, &bcs, &case.pairs, &rigid)?;
+        setup = t0.elapsed().as_secs_f64();
+        dof = problem.bem().dof();
+        contact_unknowns = problem.contact_unknowns();
+        mesh = problem.bem().mesh.clone();
+        pb.set_message(format!("contact steps{label}"));
+        let load_steps: Vec<LoadStep> = case
+            .steps
+            .iter()
+            .map(|s| {
+                let mut step = LoadStep::new(1.0);
+                for g in &case.groups {
+                    step = step.with_group(g, s.factors.get(g).copied().unwrap_or(0.0));
+                }
+                for (seg, x, y) in &s.rigid {
+                    step = step.with_rigid(RigidControl::new(seg, *x, *y));
+                }
+                step
+            })
+            .collect();
+        let t1 = Instant::now();
+        let results = problem.solve_steps(&load_steps, &case.options)?;
+        steps_time = t1.elapsed().as_secs_f64();
+        for (s, r) in case.steps.iter().zip(results) {
+            steps.push(StepOutcome {
+                name: s.name.clone(),
+                iterations: r.iterations,
+                residual: r.residual,
+                pairs: r.pairs,
+                rigid: r.rigid,
+                free_bodies: r.free_bodies,
+                solution: r.solution,
+            });
+        }
+    } else {
+        let problem = BemProblem::new(&model)?;
+        setup = t0.elapsed().as_secs_f64();
+        dof = problem.dof();
+        contact_unknowns = 0;
+        mesh = problem.mesh.clone();
+        let t1 = Instant::now();
+        for s in &case.steps {
+            pb.set_message(format!("step {}{label}", s.name));
+            let bcs = conditions(case, &model, Some(&s.factors))?;
+            let solution = problem.solve(&bcs)?;
+            steps.push(StepOutcome {
+                name: s.name.clone(),
+                iterations: 0,
+                residual: 0.0,
+                pairs: Vec::new(),
+                rigid: Vec::new(),
+                free_bodies: Vec::new(),
+                solution,
+            });
+        }
+        steps_time = t1.elapsed().as_secs_f64();
+    }
+    // Fields.
+    pb.set_message(format!("interior fields{label}"));
+    let t2 = Instant::now();
+    let mut fields = Vec::new();
+    for r in field_regions(case, &mesh, only_regions)? {
+        let tri = triangulate_region(&mesh, r, case.field.size)?;
+        let mut samples = Vec::with_capacity(steps.len());
+        for s in &steps {
+            samples.push(sample_region(&s.solution, r, &tri.nodes)?);
+        }
+        fields.push(RegionField {
+            region: mesh.regions[r].name.clone(),
+            index: r,
+            material: mesh.regions[r].material,
+            nodes: tri.nodes,
+            triangles: tri.triangles,
+            samples,
+        });
+    }
+    let fields_time = t2.elapsed().as_secs_f64();
+    // Damage.
+    let t3 = Instant::now();
+    let damage = match &case.damage {
+        None => None,
+        Some(d) => {
+            let Some(f) = fields.iter().find(|f| f.region == d.region) else {
+                return Err(CliError::field(
+                    "damage.region",
+                    format!("{:?}", d.region),
+                    "is not among field.regions (its field is needed)",
+                ));
+            };
+            let dm = DamageMesh::triangles(f.nodes.clone(), f.triangles.clone())?;
+            let phi: Vec<f64> = f.samples[d.step]
+                .iter()
+                .map(|s| d.quantity.value(&tensor(&s.stress), &f.material))
+                .collect();
+            let region_at = |limit: f64| -> CliResult<(Vec<f64>, DangerousRegion)> {
+                let psi: Vec<f64> = phi.iter().map(|v| v / limit).collect();
+                let r = dangerous_region(&dm, &psi, Execution::Parallel)?;
+                Ok((psi, r))
+            };
+            let (psi, at_limit) = region_at(d.limit)?;
+            let mut sweep = Vec::new();
+            if let Some((a, b, n)) = d.sweep {
+                for k in 0..n {
+                    let limit = a + (b - a) * k as f64 / (n - 1) as f64;
+                    sweep.push((limit, region_at(limit)?.1));
+                }
+            }
+            Some(DamageOutcome {
+                region: d.region.clone(),
+                step: case.steps[d.step].name.clone(),
+                quantity: d.quantity.name(),
+                unit: d.quantity.unit(),
+                limit: d.limit,
+                psi,
+                at_limit,
+                sweep,
+            })
+        }
+    };
+    let damage_time = t3.elapsed().as_secs_f64();
+    pb.finish_and_clear();
+    Ok(Variant {
+        material: swap.map(|(_, m)| m.to_string()),
+        mesh,
+        dof,
+        contact_unknowns,
+        steps,
+        fields,
+        damage,
+        timings: Timings {
+            setup,
+            steps: steps_time,
+            fields: fields_time,
+            damage: damage_time,
+        },
+    })
+}
+
+/// Solves the case and its comparison.
+pub fn solve(case: &BemCase, quiet: bool) -> CliResult<BemOutcome> {
+    let main = run_variant(case, None, None, quiet)?;
+    let mut compare = Vec::new();
+    if let Some(c) = &case.compare {
+        let own = main
+            .mesh
+            .regions
+            .iter()
+            .position(|r| r.name == c.region)
+            .ok_or_else(|| {
+                CliError::field(
+                    "compare.region",
+                    format!("{:?}", c.region),
+                    "names no region of the model",
+                )
+            })?;
+        let mut only = vec![c.region.as_str()];
+        if let Some(d) = &case.damage {
+            if d.region != c.region {
+                only.push(d.region.as_str());
+            }
+        }
+        for m in &c.materials {
+            let same = case.materials[m] == main.mesh.regions[own].material;
+            let v = if same {
+                let mut v = main.clone();
+                v.material = Some(m.clone());
+                v
+            } else {
+                run_variant(case, Some((&c.region, m)), Some(&only), quiet)?
+            };
+            compare.push((m.clone(), v));
+        }
+    }
+    Ok(BemOutcome { main, compare })
+}
+
+/// The plane condition's name.
+pub fn plane_name(p: PlaneCondition) -> &'static str {
+    match p {
+        PlaneCondition::Strain => "strain",
+        PlaneCondition::Stress => "stress",
+    }
+}

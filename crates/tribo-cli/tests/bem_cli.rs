@@ -1,0 +1,397 @@
+//! End-to-end tests of 2D boundary element cases (`kind = "bem2d"`): closed forms through
+//! the command line, the clamp-knife-base example against the paper's statements and
+//! equilibrium, and bad input.
+
+#![allow(clippy::needless_range_loop)] // step and pair indices read like the summary
+mod common;
+use common::tribo;
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn run_case(text: &str, extra: &[&str]) -> (Output, PathBuf, tempfile::TempDir) {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case.toml");
+    std::fs::write(&case, text).unwrap();
+    let out = dir.path().join("out");
+    let mut args = vec![
+        "run",
+        case.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    args.extend_from_slice(extra);
+    let o = tribo(&args, None);
+    (o, out, dir)
+}
+
+fn read_json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// A 10 mm square plate: u_x = 0 on the left, u_y = 0 on the bottom (rollers), a traction
+/// on the right; `RIGHT` is replaced by the right face's condition.
+const PLATE: &str = r#"
+kind = "bem2d"
+title = "plate in tension"
+plane = "strain"
+[materials.steel]
+E = "200 GPa"
+nu = 0.3
+[[regions]]
+name = "plate"
+material = "steel"
+start = [0, 0]
+outline = [
+  { name = "bottom", to = ["10 mm", 0], elements = 4 },
+  { name = "right", to = ["10 mm", "10 mm"], elements = 4 },
+  { name = "top", to = [0, "10 mm"], elements = 4 },
+  { name = "left", to = [0, 0], elements = 4 },
+]
+[[bc]]
+segment = "left"
+ux = 0
+[[bc]]
+segment = "bottom"
+uy = 0
+[[bc]]
+segment = "right"
+RIGHT
+[field]
+size = "1 mm"
+"#;
+
+#[test]
+fn a_plate_in_uniform_tension_gives_the_applied_stress_everywhere() {
+    let text = PLATE.replace("RIGHT", "tx = \"100 MPa\"");
+    let (o, out, _d) = run_case(&text, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let r = &s["steps"][0]["regions"][0];
+    // Uniform stress: quadratic elements represent the linear displacement exactly, so the
+    // interior values carry only quadrature and round-off error (1e-6 relative is 100x
+    // above what we measure and far below any discretization error a wrong method gives).
+    let sxx = r["sigma_xx_max_abs"]["value"].as_f64().unwrap();
+    assert!((sxx / 100e6 - 1.0).abs() < 1e-6, "sigma_xx {sxx}");
+    // Plane strain: sigma_zz = nu sigma_xx = 30 MPa; von Mises of (100, 0, 30) MPa is
+    // sqrt(7900) MPa.
+    let sint = r["sigma_int_max"]["value"].as_f64().unwrap();
+    assert!(
+        (sint / (7900f64.sqrt() * 1e6) - 1.0).abs() < 1e-6,
+        "sigma_int {sint}"
+    );
+    // Strain: eps_xx = (1 - nu^2) sigma / E in plane strain.
+    let exx = r["eps_xx_max_abs"]["value"].as_f64().unwrap();
+    assert!(
+        (exx / (0.91 * 100e6 / 200e9) - 1.0).abs() < 1e-6,
+        "eps_xx {exx}"
+    );
+    for f in [
+        "summary.json",
+        "fields_step1.vtu",
+        "sigma_xx_step1.png",
+        "sigma_int_step1.png",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    let vtu = std::fs::read_to_string(out.join("fields_step1.vtu")).unwrap();
+    assert!(vtu.contains("UnstructuredGrid") && vtu.contains("Name=\"sigma_int_Pa\""));
+}
+
+#[test]
+fn tabulated_and_linear_profiles_agree() {
+    // In-plane bending by a linear traction on the right face; the table with two rows is
+    // the same function, so the results agree to round-off.
+    let lin = PLATE.replace("RIGHT", "tx = { linear = [\"50 MPa\", \"-50 MPa\"] }");
+    let tab = PLATE.replace(
+        "RIGHT",
+        "tx = { table = [[0, \"50 MPa\"], [0.5, 0], [1, \"-50 MPa\"]] }",
+    );
+    let (o1, out1, _d1) = run_case(&lin, &[]);
+    let (o2, out2, _d2) = run_case(&tab, &[]);
+    assert_eq!(o1.status.code(), Some(0), "{}", stderr(&o1));
+    assert_eq!(o2.status.code(), Some(0), "{}", stderr(&o2));
+    let a = read_json(&out1.join("summary.json"))["steps"][0]["regions"][0]["sigma_xx_max_abs"]
+        ["value"]
+        .as_f64()
+        .unwrap();
+    let b = read_json(&out2.join("summary.json"))["steps"][0]["regions"][0]["sigma_xx_max_abs"]
+        ["value"]
+        .as_f64()
+        .unwrap();
+    assert!((a / b - 1.0).abs() < 1e-12, "{a} vs {b}");
+    assert!(a > 40e6 && a < 60e6, "{a}");
+}
+
+/// Runs the bad case and returns stderr, checking exit code 2 and that nothing was written.
+fn refused(text: &str) -> String {
+    let (o, out, _d) = run_case(text, &[]);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "stdout {} stderr {}",
+        stdout(&o),
+        stderr(&o)
+    );
+    assert!(!out.exists(), "an invalid case must write nothing");
+    stderr(&o)
+}
+
+#[test]
+fn bad_models_are_refused_naming_the_item() {
+    let ok = PLATE.replace("RIGHT", "tx = \"1 MPa\"");
+    // Open outline.
+    let e = refused(&ok.replace(
+        "{ name = \"left\", to = [0, 0], elements = 4 }",
+        "{ name = \"left\", to = [0, \"1 mm\"], elements = 4 }",
+    ));
+    assert!(
+        e.contains("regions[0].outline") && e.contains("open"),
+        "{e}"
+    );
+    // A segment named twice.
+    let e = refused(&ok.replace("name = \"top\"", "name = \"bottom\""));
+    assert!(e.contains("named twice"), "{e}");
+    // A zero-length segment.
+    let e = refused(&ok.replace(
+        "{ name = \"left\", to = [0, 0], elements = 4 }",
+        "{ name = \"left\", to = [0, 0], elements = 4 },\n  { name = \"dot\", to = [0, 0] }",
+    ));
+    assert!(e.contains("dot") && e.contains("length"), "{e}");
+    // Self-intersecting outline (a bow tie).
+    let bow = ok
+        .replace("to = [\"10 mm\", \"10 mm\"]", "to = [0, \"10 mm\"]")
+        .replace(
+            "to = [0, \"10 mm\"], elements = 4 },\n  { name = \"left\"",
+            "to = [\"10 mm\", \"10 mm\"], elements = 4 },\n  { name = \"left\"",
+        );
+    let e = refused(&bow);
+    assert!(e.contains("intersect") || e.contains("signed area"), "{e}");
+    // Unknown material.
+    let e = refused(&ok.replace("material = \"steel\"", "material = \"unobtanium\""));
+    assert!(
+        e.contains("regions[0].material") && e.contains("unobtanium"),
+        "{e}"
+    );
+    // A load on an unknown segment.
+    let e = refused(&ok.replace("segment = \"right\"", "segment = \"rigth\""));
+    assert!(e.contains("bc[2].segment") && e.contains("rigth"), "{e}");
+    // Displacement and traction in one direction.
+    let e = refused(&ok.replace("tx = \"1 MPa\"", "tx = \"1 MPa\"\nux = 0"));
+    assert!(e.contains("bc[2]") && e.contains("not both"), "{e}");
+    // A factor of an unknown load group.
+    let e = refused(&format!(
+        "{ok}\n[[steps]]\nname = \"s\"\nfactors = {{ wind = 1 }}\n"
+    ));
+    assert!(e.contains("steps[0].factors.wind"), "{e}");
+    // A contact pair naming an unknown segment.
+    let e = refused(&format!(
+        "{ok}\n[[contact]]\nslave = \"top\"\nmaster = \"lid\"\nfriction = 0.2\n"
+    ));
+    assert!(e.contains("lid"), "{e}");
+    // Two bodies that overlap (a second plate 0.5 mm into the first).
+    let second = r#"
+[[regions]]
+name = "lid"
+material = "steel"
+start = ["9.5 mm", 0]
+outline = [
+  { name = "lid_bottom", to = ["20 mm", 0], elements = 4 },
+  { name = "lid_right", to = ["20 mm", "10 mm"], elements = 4 },
+  { name = "lid_top", to = ["9.5 mm", "10 mm"], elements = 4 },
+  { name = "lid_left", to = ["9.5 mm", 0], elements = 4 },
+]
+"#;
+    let e = refused(&ok.replace(
+        "[[bc]]\nsegment = \"left\"",
+        &format!("{second}\n[[bc]]\nsegment = \"left\""),
+    ));
+    assert!(
+        e.contains("'plate'") && e.contains("'lid'") && e.contains("overlap"),
+        "{e}"
+    );
+    // Unrestrained: no displacement condition at all.
+    let free = ok
+        .replace("[[bc]]\nsegment = \"left\"\nux = 0\n", "")
+        .replace("[[bc]]\nsegment = \"bottom\"\nuy = 0\n", "");
+    let e = refused(&free);
+    assert!(
+        e.contains("plate") && (e.contains("restrain") || e.contains("rigid")),
+        "{e}"
+    );
+}
+
+#[test]
+fn the_clamp_knife_base_example_prints_and_validates() {
+    let o = tribo(&["example", "clamp-knife-base"], None);
+    assert_eq!(o.status.code(), Some(0));
+    let text = stdout(&o);
+    assert!(text.contains("48.4 MPa") && text.contains("16.475 kN/m"));
+    assert!(text.contains("ASSUMPTION"));
+    let v = tribo(&["run", "-", "--dry-run"], Some(&text));
+    assert_eq!(v.status.code(), Some(0), "{}", stderr(&v));
+    assert!(stdout(&v).contains("knife_top_contact"));
+    // Template parameters are checked.
+    let e = refused(&text.replace("clamp_left = \"45 mm\"", "clamp_left = \"90 mm\""));
+    assert!(e.contains("clamp_knife_base.clamp_left"), "{e}");
+    let e = refused(&text.replace("knife_material = \"steel\"", "knife_material = \"bronze\""));
+    assert!(
+        e.contains("clamp_knife_base.knife_material") && e.contains("bronze"),
+        "{e}"
+    );
+}
+
+/// The generic case printed in the README, run as written: a block pressed on a base held
+/// only by contact and friction. The contact force equals the applied pressure times the
+/// block's width (equilibrium of the free block: the pressure is its only other load).
+#[test]
+fn the_readme_bem_case_runs_and_balances() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
+    let start = readme
+        .find("## 2D boundary element cases")
+        .expect("README section");
+    let body = &readme[start..];
+    let open = body.find("```toml\n").expect("toml block") + "```toml\n".len();
+    let close = open + body[open..].find("```").expect("block end");
+    let text = &body[open..close];
+    let (o, out, _d) = run_case(text, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let pair = &s["steps"][0]["pairs"][0];
+    let fy = pair["slave_force_n_per_m"][1].as_f64().unwrap();
+    // 50 MPa on 20 mm: 1e6 N/m on the block (upward on the slave). The free block's
+    // equilibrium is an equation of the contact problem: round-off plus the BEM's boundary
+    // integration of the traction (1e-6 relative).
+    assert!((fy / 1e6 - 1.0).abs() < 1e-6, "contact force {fy}");
+    let fx = pair["slave_force_n_per_m"][0].as_f64().unwrap();
+    assert!(fx.abs() < 1e-6 * 1e6, "tangential resultant {fx}");
+    for f in [
+        "interfaces.csv",
+        "interfaces.png",
+        "fields_clamping.vtu",
+        "psi_sigma_int.png",
+        "damage_sweep.csv",
+        "damage_sweep.png",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+}
+
+/// `tribo example clamp-knife-base | tribo run -`: equilibrium of the two bodies held by
+/// contact, the paper's statements on Fig. 7b, the damage sweep and the comparison.
+#[test]
+fn the_clamp_knife_base_example_balances_and_shows_the_papers_effects() {
+    let text = stdout(&tribo(&["example", "clamp-knife-base"], None));
+    let (o, out, _d) = run_case(&text, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let steps = s["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 2);
+    let (bolt, cutting) = (48.4e6 * 12e-3, 16.475e3);
+    let force = |k: usize, pair: usize, d: usize| {
+        steps[k]["pairs"][pair]["slave_force_n_per_m"][d]
+            .as_f64()
+            .unwrap()
+    };
+    for k in 0..2 {
+        // The clamp is held only by the knife: the knife-clamp contact force equals the bolt
+        // force p_n w (a free-body equation of the contact problem: round-off, 1e-9).
+        assert!(
+            (-force(k, 1, 1) / bolt - 1.0).abs() < 1e-9,
+            "step {k}: {}",
+            force(k, 1, 1)
+        );
+        assert!(
+            force(k, 1, 0).abs() < 1e-9 * bolt,
+            "clamp friction resultant {}",
+            force(k, 1, 0)
+        );
+        // The knife is free in y: base + clamp + cutting load balance (round-off).
+        let cut = if k == 1 { cutting } else { 0.0 };
+        let balance = force(k, 0, 1) + force(k, 1, 1) + cut;
+        assert!(
+            balance.abs() < 1e-9 * bolt,
+            "step {k}: knife y balance {balance}"
+        );
+        // Both free bodies are reported.
+        let names: Vec<&str> = steps[k]["free_bodies"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|b| b["body"].as_str().unwrap())
+            .collect();
+        assert_eq!(names, ["knife", "clamp"]);
+    }
+    // Fig. 7b: the cutting load reduces the actual contact at both interfaces ...
+    for pair in 0..2 {
+        let l0 = steps[0]["pairs"][pair]["contact_length_m"]
+            .as_f64()
+            .unwrap();
+        let l1 = steps[1]["pairs"][pair]["contact_length_m"]
+            .as_f64()
+            .unwrap();
+        assert!(l1 < 0.95 * l0, "pair {pair}: contact {l0} -> {l1}");
+    }
+    // ... and raises the clamp-knife pressure sharply at the clamp's left edge (x = 45 mm),
+    // the knife's rotation point.
+    let p0 = &steps[0]["pairs"][1]["max_pressure"];
+    let p1 = &steps[1]["pairs"][1]["max_pressure"];
+    let x1 = p1["at_m"][0].as_f64().unwrap();
+    assert!((x1 - 45e-3).abs() < 0.5e-3, "peak at x = {x1}");
+    assert!(p1["value"].as_f64().unwrap() > 5.0 * p0["value"].as_f64().unwrap());
+    // Damage sweep: psi = sigma_int / limit on one field, so psi_max scales as 1/limit
+    // exactly (8.7 / 2.9 = 3, round-off), and V, Psi fall monotonically.
+    let d = &s["damage"];
+    assert_eq!(d["region"], "knife");
+    let f = d["sweep_factors"].as_array().unwrap();
+    assert!((f[2].as_f64().unwrap() - 3.0).abs() < 1e-9, "{f:?}");
+    let sweep = d["sweep"].as_array().unwrap();
+    assert_eq!(sweep.len(), 7);
+    for w in sweep.windows(2) {
+        assert!(w[1]["dangerous_area_m2"].as_f64() <= w[0]["dangerous_area_m2"].as_f64());
+        assert!(w[1]["damageability_m2"].as_f64() < w[0]["damageability_m2"].as_f64());
+    }
+    assert_eq!(d["paper_sweep_factors"][0].as_f64(), Some(27.0));
+    // Comparison: the cast-iron knife, 20 % softer, strains more (eps_int up by about the
+    // modulus ratio where the load path is force-controlled); the paper's changes are listed.
+    let c = &s["compare"];
+    let rows = c["rows"].as_array().unwrap();
+    assert_eq!(rows[0]["material"], "steel");
+    assert_eq!(rows[1]["material"], "cast_iron");
+    let metrics: Vec<&str> = c["metrics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m.as_str().unwrap())
+        .collect();
+    let eps = metrics.iter().position(|m| *m == "eps_int_max").unwrap();
+    let change = rows[1]["change_percent"][eps].as_f64().unwrap();
+    assert!(change > 10.0 && change < 30.0, "eps_int change {change} %");
+    assert!(c["paper_change_percent"].is_array());
+    for f in [
+        "interfaces.csv",
+        "interfaces.png",
+        "fields_clamping.vtu",
+        "fields_clamping_cutting.vtu",
+        "sigma_xx_clamping_cutting.png",
+        "sigma_int_clamping_cutting.png",
+        "psi_sigma_int.png",
+        "damage_sweep.csv",
+        "damage_sweep.png",
+        "compare.csv",
+        "compare.png",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    let vtu = std::fs::read_to_string(out.join("fields_clamping_cutting.vtu")).unwrap();
+    assert!(vtu.contains("Name=\"psi\""));
+}
