@@ -395,3 +395,77 @@ fn the_clamp_knife_base_example_balances_and_shows_the_papers_effects() {
     let vtu = std::fs::read_to_string(out.join("fields_clamping_cutting.vtu")).unwrap();
     assert!(vtu.contains("Name=\"psi\""));
 }
+
+/// A steel block resting under its own weight on a fixed base, held only by contact and
+/// friction: the contact force equals the weight rho g A per unit thickness (the free
+/// block's equilibrium, round-off), and spinning the block about its centre adds no net
+/// force (the centrifugal load of a rotation about the centroid has zero resultant).
+#[test]
+fn a_block_under_its_own_weight_rests_on_the_base_with_its_weight() {
+    let case = |body_force: &str| {
+        format!(
+            r#"
+kind = "bem2d"
+[materials.steel]
+E = "206 GPa"
+nu = 0.3
+[[regions]]
+name = "base"
+material = "steel"
+start = [0, "-10 mm"]
+outline = [
+  {{ name = "base_bottom", to = ["30 mm", "-10 mm"], elements = 6 }},
+  {{ name = "base_right", to = ["30 mm", 0], elements = 4 }},
+  {{ name = "base_top", to = [0, 0], elements = 24 }},
+  {{ name = "base_left", to = [0, "-10 mm"], elements = 4 }},
+]
+[[regions]]
+name = "block"
+material = "steel"
+start = ["10 mm", 0]
+outline = [
+  {{ name = "block_bottom", to = ["20 mm", 0], elements = 16 }},
+  {{ name = "block_right", to = ["20 mm", "10 mm"], elements = 4 }},
+  {{ name = "block_top", to = ["10 mm", "10 mm"], elements = 4 }},
+  {{ name = "block_left", to = ["10 mm", 0], elements = 4 }},
+]
+body_force = {body_force}
+[[bc]]
+segment = "base_bottom"
+ux = 0
+uy = 0
+[[contact]]
+slave = "block_bottom"
+master = "base_top"
+friction = 0.3
+"#
+        )
+    };
+    let weight = 7850.0 * 9.81 * 1e-4;
+    for (bf, expected) in [
+        ("{ density = 7850, gravity = [0, -9.81] }", weight),
+        (
+            "{ density = 7850, gravity = [0, -9.81], angular_velocity = 50, center = [\"15 mm\", \"5 mm\"] }",
+            weight,
+        ),
+    ] {
+        let (o, out, _d) = run_case(&case(bf), &[]);
+        assert_eq!(o.status.code(), Some(0), "{bf}: {}", stderr(&o));
+        let s = read_json(&out.join("summary.json"));
+        let f = &s["steps"][0]["pairs"][0]["slave_force_n_per_m"];
+        let fy = f[1].as_f64().unwrap();
+        // Round-off of the free-body equation (1e-9 relative); a missing or doubled body
+        // force would be off by 100 %.
+        assert!((fy / expected - 1.0).abs() < 1e-9, "{bf}: contact force {fy} vs {expected}");
+        assert!(f[0].as_f64().unwrap().abs() < 1e-9 * expected, "{bf}: {f}");
+    }
+    let e = refused(&case("{ gravity = [0, -9.81] }"));
+    assert!(e.contains("regions[1].body_force.density"), "{e}");
+    let e = refused(&case("{ density = 7850, angular_velocity = 50 }"));
+    assert!(
+        e.contains("regions[1].body_force") && e.contains("center"),
+        "{e}"
+    );
+    let e = refused(&case("{ density = -1, gravity = [0, -9.81] }"));
+    assert!(e.contains("block") && e.contains("density"), "{e}");
+}

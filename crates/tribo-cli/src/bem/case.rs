@@ -11,7 +11,7 @@ use serde::Deserialize;
 use toml::Value;
 use tribo::analysis::damage::DamageQuantity;
 use tribo::kernels::kelvin2d::PlaneCondition;
-use tribo::operators::bem2d::{Division, Grading, LoopItem, Segment, SegmentShape};
+use tribo::operators::bem2d::{BodyForce, Division, Grading, LoopItem, Segment, SegmentShape};
 use tribo::solvers::bem2d::contact::{ContactOptions, ContactPair, Control};
 use tribo::ElasticMaterial;
 
@@ -58,6 +58,7 @@ pub(super) struct RawRegion {
     pub start: Value,
     pub outline: Vec<toml::Table>,
     pub holes: Option<Vec<RawLoop>>,
+    pub body_force: Option<toml::Table>,
 }
 
 #[derive(Debug, Deserialize, Clone)]
@@ -152,6 +153,8 @@ pub struct RegionSpec {
     pub material: String,
     /// Loops (the first is the outer boundary, counter-clockwise; holes clockwise).
     pub loops: Vec<Vec<LoopItem>>,
+    /// Body forces (gravity, rotation), the volume terms of (9)-(12).
+    pub body_forces: Vec<BodyForce>,
 }
 
 /// A gmsh mesh to import.
@@ -418,10 +421,15 @@ fn validate(
                 &mut owned,
             )?);
         }
+        let body_forces = match &r.body_force {
+            None => Vec::new(),
+            Some(t) => body_forces(&format!("{field}.body_force"), t)?,
+        };
         regions.push(RegionSpec {
             name: r.name.clone(),
             material: r.material.clone(),
             loops,
+            body_forces,
         });
     }
     // gmsh meshes.
@@ -1152,6 +1160,74 @@ fn control(field: &str, t: &toml::Table, force: &str, disp: &str) -> CliResult<C
         (None, Some(u)) => Ok(Control::Displacement(quantity(&format!("{field}.{disp}"), u, Dim::Length)?)),
         _ => Err(bad(field, show(&Value::Table(t.clone())), format!("needs exactly one of {force} (force per unit thickness, N/m) and {disp} (translation, m)"))),
     }
+}
+
+/// `body_force = { density = 7850, gravity = [gx, gy], angular_velocity = w, center = [x, y] }`:
+/// gravity (m/s^2) and/or rotation (rad/s about the axis through `center`), density in
+/// kg/m^3 (required). The library validates the values and names the region.
+fn body_forces(field: &str, t: &toml::Table) -> CliResult<Vec<BodyForce>> {
+    for key in t.keys() {
+        if !["density", "gravity", "angular_velocity", "center"].contains(&key.as_str()) {
+            return Err(bad(
+                format!("{field}.{key}"),
+                show(&t[key]),
+                "unknown key (density, gravity, angular_velocity, center)",
+            ));
+        }
+    }
+    let density = match t.get("density") {
+        Some(v) => number(&format!("{field}.density"), v)?,
+        None => {
+            return Err(bad(
+                format!("{field}.density"),
+                "(missing)",
+                "a body force needs the density, kg/m^3",
+            ))
+        }
+    };
+    let mut out = Vec::new();
+    if let Some(g) = t.get("gravity") {
+        let pair = match g {
+            Value::Array(a) if a.len() == 2 => [
+                number(&format!("{field}.gravity[0]"), &a[0])?,
+                number(&format!("{field}.gravity[1]"), &a[1])?,
+            ],
+            other => {
+                return Err(bad(
+                    format!("{field}.gravity"),
+                    show(other),
+                    "must be [gx, gy] in m/s^2",
+                ))
+            }
+        };
+        out.push(BodyForce::gravity(density, pair));
+    }
+    match (t.get("angular_velocity"), t.get("center")) {
+        (Some(w), Some(c)) => {
+            let w = number(&format!("{field}.angular_velocity"), w)?;
+            out.push(BodyForce::centrifugal(
+                density,
+                w,
+                point(&format!("{field}.center"), c)?,
+            ));
+        }
+        (None, None) => {}
+        _ => {
+            return Err(bad(
+                field,
+                show(&Value::Table(t.clone())),
+                "a rotation needs both angular_velocity (rad/s) and center [x, y]",
+            ))
+        }
+    }
+    if out.is_empty() {
+        return Err(bad(
+            field,
+            show(&Value::Table(t.clone())),
+            "gives no body force: add gravity = [gx, gy] and/or angular_velocity with center",
+        ));
+    }
+    Ok(out)
 }
 
 /// Whether a parsed TOML table is a boundary element case.

@@ -265,6 +265,7 @@ impl ClampKnifeBase {
                 seg("knife_edge", pt(0.0, 0.0), self.edge_thickness),
             ],
             holes: None,
+            body_force: None,
         };
         let tb = self.base_thickness;
         let base = RawRegion {
@@ -278,6 +279,7 @@ impl ClampKnifeBase {
                 seg("base_left_face", pt(self.base_left, -tb), h),
             ],
             holes: None,
+            body_force: None,
         };
         let tc = self.clamp_thickness;
         let (b0, b1) = (
@@ -297,6 +299,7 @@ impl ClampKnifeBase {
                 seg("clamp_left_face", pt(self.clamp_left, t), h),
             ],
             holes: None,
+            body_force: None,
         };
         let bcs = vec![
             RawBc {
