@@ -152,6 +152,7 @@ pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CliResult<BemModel> 
             name: r.name.clone(),
             material: material(&r.name, &r.material),
             loops: r.loops.clone(),
+            body_forces: Vec::new(),
         })
         .collect();
     for (i, m) in case.meshes.iter().enumerate() {
