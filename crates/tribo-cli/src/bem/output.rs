@@ -1127,14 +1127,15 @@ impl BemSummary {
                 "Psi mm^2",
                 "psi_max"
             );
-            for x in std::iter::once(&d.at_limit).chain(&d.sweep) {
+            for (k, x) in std::iter::once(&d.at_limit).chain(&d.sweep).enumerate() {
                 let _ = writeln!(
                     s,
-                    "    {:>10.3} {:>14.4} {:>14.4} {:>10.3}",
+                    "    {:>10.3} {:>14.4} {:>14.4} {:>10.3}{}",
                     x.limit * scale,
                     x.dangerous_area_m2 * 1e6,
                     x.damageability_m2 * 1e6,
-                    x.psi_max
+                    x.psi_max,
+                    if k == 0 { "   (the case's limit)" } else { "" }
                 );
             }
             if let Some(f) = &d.sweep_factors {
