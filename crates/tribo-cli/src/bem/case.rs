@@ -1002,7 +1002,7 @@ fn parse_loop(
             }
             Some(other) => return Err(bad(format!("{f}.grading"), show(other), grading_rule)),
         };
-        if owned.insert(name.clone(), shape).is_some() {
+        if owned.insert(name.clone(), shape.clone()).is_some() {
             return Err(bad(
                 format!("{f}.name"),
                 format!("{name:?}"),

@@ -180,7 +180,7 @@ fn segment_shapes(model: &BemModel) -> BTreeMap<String, SegmentShape> {
         for l in &r.loops {
             for item in l {
                 if let LoopItem::Segment(s) = item {
-                    out.insert(s.name.clone(), s.shape);
+                    out.insert(s.name.clone(), s.shape.clone());
                 }
             }
         }
@@ -188,42 +188,10 @@ fn segment_shapes(model: &BemModel) -> BTreeMap<String, SegmentShape> {
     out
 }
 
-/// The fraction of the segment's length from its start at the point of the segment nearest
-/// to `p` (lines and arcs).
-fn fraction(shape: &SegmentShape, p: [f64; 2]) -> Option<f64> {
-    if let SegmentShape::Line { start, end } = *shape {
-        let d = [end[0] - start[0], end[1] - start[1]];
-        let l2 = d[0] * d[0] + d[1] * d[1];
-        return Some((((p[0] - start[0]) * d[0] + (p[1] - start[1]) * d[1]) / l2).clamp(0.0, 1.0));
-    }
-    if let SegmentShape::Arc {
-        center,
-        start_angle,
-        end_angle,
-        ..
-    } = *shape
-    {
-        let a = (p[1] - center[1]).atan2(p[0] - center[0]);
-        let sweep = end_angle - start_angle;
-        // Bring a next to the arc's range.
-        let tau = std::f64::consts::TAU;
-        let mut rel = (a - start_angle) / sweep;
-        let period = tau / sweep.abs();
-        while rel < -0.5 * (period - 1.0) {
-            rel += period;
-        }
-        while rel > 1.0 + 0.5 * (period - 1.0) {
-            rel -= period;
-        }
-        return Some(rel.clamp(0.0, 1.0));
-    }
-    None
-}
-
 fn library_profile(
     spec: &ProfileSpec,
     factor: f64,
-    shape: Option<SegmentShape>,
+    shape: Option<&SegmentShape>,
     origin: &str,
 ) -> CliResult<Profile> {
     Ok(match spec {
@@ -233,16 +201,17 @@ fn library_profile(
             end: factor * b,
         },
         ProfileSpec::Table(rows) => {
-            let Some(shape) = shape.filter(|s| fraction(s, s.point(0.0)).is_some()) else {
+            let Some(shape) = shape else {
                 return Err(CliError::field(
                     origin,
                     "table",
-                    "tabulated profiles need a line or arc segment of an outline",
+                    "tabulated profiles need a segment of the model",
                 ));
             };
             let rows = rows.clone();
+            let shape = shape.clone();
             Profile::function(move |p| {
-                let t = fraction(&shape, p).unwrap_or(0.0);
+                let t = shape.nearest_parameter(p);
                 let k = rows.partition_point(|r| r.0 <= t).clamp(1, rows.len() - 1);
                 let (t0, v0) = rows[k - 1];
                 let (t1, v1) = rows[k];
@@ -255,7 +224,7 @@ fn library_profile(
 fn library_bc(
     kind: &BcKind,
     factor: f64,
-    shape: Option<SegmentShape>,
+    shape: Option<&SegmentShape>,
     origin: &str,
 ) -> CliResult<SegmentBc> {
     let comp = |c: &ComponentSpec| -> CliResult<Component> {
@@ -295,7 +264,7 @@ fn conditions(
                 "names no segment of the model",
             ));
         }
-        let shape = shapes.get(&b.segment).copied();
+        let shape = shapes.get(&b.segment);
         match (factors, &b.group) {
             (None, Some(g)) => {
                 bcs = bcs.set_in_group(&b.segment, library_bc(&b.kind, 1.0, shape, &b.origin)?, g);

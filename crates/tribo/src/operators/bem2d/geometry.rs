@@ -1,5 +1,6 @@
 //! Geometry of 2D boundary element models: regions bounded by closed loops of named line and
-//! arc segments, each with its own element count (or size) and grading.
+//! arc segments, each with its own element count (or size) and grading, or of curves given
+//! by the nodes of a boundary mesh ([`MeshedCurve`], e.g. from [`super::gmsh`]).
 //!
 //! A [`BemModel`] is a list of [`Region`]s, each with one material. A region's first loop is
 //! its outer boundary, counter-clockwise (the region on the left); further loops are holes,
@@ -8,12 +9,14 @@
 //! [`LoopItem::Shared`]: it is traversed backwards and meshed identically, so the interface
 //! nodes coincide.
 
+use std::sync::Arc;
+
 use crate::error::{Error, Result};
 use crate::kernels::kelvin2d::{finite_point, PlaneCondition};
 use crate::material::ElasticMaterial;
 
 /// The shape of a boundary segment.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum SegmentShape {
     /// A straight line from `start` to `end` (m).
     Line {
@@ -34,6 +37,159 @@ pub enum SegmentShape {
         /// Polar angle of the end point, rad (|end - start| in (0, 2 pi]).
         end_angle: f64,
     },
+    /// A curve given by the nodes of a boundary mesh (a gmsh import): a chain of quadratic
+    /// pieces, each one element of the segment.
+    Meshed(MeshedCurve),
+}
+
+/// A chain of quadratic curve pieces through given nodes: piece k runs through
+/// `points[2k]`, `points[2k + 1]` (its middle node, at xi = 0) and `points[2k + 2]`, with the
+/// standard quadratic shape functions (the isoparametric geometry of the boundary elements).
+/// The segment parameter t runs along the chain in proportion to the arc length of the
+/// pieces' ends and linearly in xi inside each piece.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshedCurve {
+    points: Arc<[[f64; 2]]>,
+    /// Arc length from the start to the end of each piece, m (`pieces + 1` values from 0).
+    arc: Arc<[f64]>,
+}
+
+/// Length of the quadratic piece through p0, p1 (xi = 0), p2: the integral of |dx/dxi| by
+/// 8-point Gauss-Legendre quadrature (exact to round-off for the near-uniform
+/// parametrisations of mesh edges, whose speed |dx/dxi| is a smooth square root).
+fn quadratic_piece_length(p: [[f64; 2]; 3]) -> f64 {
+    let (x, w) = crate::kernels::quadrature::gauss_legendre(8);
+    x.iter()
+        .zip(&w)
+        .map(|(&xi, &wi)| {
+            let d = [xi - 0.5, -2.0 * xi, xi + 0.5];
+            let tx = d[0] * p[0][0] + d[1] * p[1][0] + d[2] * p[2][0];
+            let ty = d[0] * p[0][1] + d[1] * p[1][1] + d[2] * p[2][1];
+            wi * tx.hypot(ty)
+        })
+        .sum()
+}
+
+impl MeshedCurve {
+    /// A curve through `points` (m): 2 k + 1 points for k pieces (ends and middle nodes
+    /// alternating). Errors: fewer than 3 points or an even count, a point that is not
+    /// finite, a piece of zero length.
+    pub fn new(points: Vec<[f64; 2]>) -> Result<Self> {
+        if points.len() < 3 || points.len() % 2 == 0 {
+            return Err(Error::invalid(
+                "meshed curve points",
+                points.len(),
+                "a chain of quadratic pieces needs 2 k + 1 points (k >= 1)",
+            ));
+        }
+        for (i, p) in points.iter().enumerate() {
+            finite_point(&format!("meshed curve point {i}"), *p)?;
+        }
+        let scale = points
+            .iter()
+            .fold(0.0_f64, |m, p| m.max(p[0].abs()).max(p[1].abs()))
+            .max(f64::MIN_POSITIVE);
+        let mut arc = Vec::with_capacity(points.len() / 2 + 1);
+        arc.push(0.0);
+        for (k, w) in points.windows(3).step_by(2).enumerate() {
+            let l = quadratic_piece_length([w[0], w[1], w[2]]);
+            if l.is_nan() || l <= 1e-12 * scale {
+                return Err(Error::invalid(
+                    format!("meshed curve piece {k}"),
+                    l,
+                    "a piece has zero length (coincident nodes)",
+                ));
+            }
+            arc.push(arc[k] + l);
+        }
+        Ok(Self {
+            points: points.into(),
+            arc: arc.into(),
+        })
+    }
+
+    /// The nodes (ends and middle nodes alternating), m.
+    pub fn points(&self) -> &[[f64; 2]] {
+        &self.points
+    }
+
+    /// Number of quadratic pieces.
+    pub fn pieces(&self) -> usize {
+        self.points.len() / 2
+    }
+
+    /// The three nodes of piece k.
+    fn piece(&self, k: usize) -> [[f64; 2]; 3] {
+        [
+            self.points[2 * k],
+            self.points[2 * k + 1],
+            self.points[2 * k + 2],
+        ]
+    }
+
+    /// Segment parameter at the ends of each piece (`pieces + 1` values from 0 to 1).
+    fn breakpoints(&self) -> Vec<f64> {
+        let total = self.length();
+        let mut t: Vec<f64> = self.arc.iter().map(|a| a / total).collect();
+        if let Some(last) = t.last_mut() {
+            *last = 1.0;
+        }
+        t
+    }
+
+    /// Total length, m.
+    pub fn length(&self) -> f64 {
+        self.arc[self.arc.len() - 1]
+    }
+
+    fn point(&self, t: f64) -> [f64; 2] {
+        let s = t.clamp(0.0, 1.0) * self.length();
+        let k = self
+            .arc
+            .partition_point(|&a| a <= s)
+            .clamp(1, self.pieces())
+            - 1;
+        let xi = 2.0 * (s - self.arc[k]) / (self.arc[k + 1] - self.arc[k]) - 1.0;
+        let m = [0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)];
+        let p = self.piece(k);
+        [
+            m[0] * p[0][0] + m[1] * p[1][0] + m[2] * p[2][0],
+            m[0] * p[0][1] + m[1] * p[1][1] + m[2] * p[2][1],
+        ]
+    }
+
+    /// The parameter of the point of the chain nearest to `x` (through the two chords of each
+    /// piece: exact for straight pieces, within the chord's sagitta for curved ones).
+    fn nearest_parameter(&self, x: [f64; 2]) -> f64 {
+        let total = self.length();
+        let mut best = (f64::INFINITY, 0.0);
+        for k in 0..self.pieces() {
+            let p = self.piece(k);
+            for half in 0..2 {
+                let (a, b) = (p[half], p[half + 1]);
+                let s = projection(a, b, x);
+                let q = [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])];
+                let d = (q[0] - x[0]).hypot(q[1] - x[1]);
+                if d < best.0 {
+                    // xi in [-1, 0] on the first chord, [0, 1] on the second.
+                    let xi = half as f64 - 1.0 + s;
+                    let arc = self.arc[k] + 0.5 * (xi + 1.0) * (self.arc[k + 1] - self.arc[k]);
+                    best = (d, arc / total);
+                }
+            }
+        }
+        best.1
+    }
+}
+
+/// The fraction s in [0, 1] of the point of the line segment ab nearest to x.
+fn projection(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let l2 = d[0] * d[0] + d[1] * d[1];
+    if l2 == 0.0 {
+        return 0.0;
+    }
+    (((x[0] - a[0]) * d[0] + (x[1] - a[1]) * d[1]) / l2).clamp(0.0, 1.0)
 }
 
 impl SegmentShape {
@@ -53,6 +209,35 @@ impl SegmentShape {
                 let a = start_angle + t * (end_angle - start_angle);
                 [center[0] + radius * a.cos(), center[1] + radius * a.sin()]
             }
+            SegmentShape::Meshed(ref c) => c.point(t),
+        }
+    }
+
+    /// The parameter t in [0, 1] of the point of the segment nearest to `x` (for an arc:
+    /// by the polar angle of `x`, the nearer end where it lies outside the arc's range).
+    pub fn nearest_parameter(&self, x: [f64; 2]) -> f64 {
+        match *self {
+            SegmentShape::Line { start, end } => projection(start, end, x),
+            SegmentShape::Arc {
+                center,
+                start_angle,
+                end_angle,
+                ..
+            } => {
+                let a = (x[1] - center[1]).atan2(x[0] - center[0]);
+                let sweep = end_angle - start_angle;
+                // Bring the angle next to the arc's range (a full turn is 2 pi / |sweep| in t).
+                let period = std::f64::consts::TAU / sweep.abs();
+                let mut rel = (a - start_angle) / sweep;
+                while rel < -0.5 * (period - 1.0) {
+                    rel += period;
+                }
+                while rel > 1.0 + 0.5 * (period - 1.0) {
+                    rel -= period;
+                }
+                rel.clamp(0.0, 1.0)
+            }
+            SegmentShape::Meshed(ref c) => c.nearest_parameter(x),
         }
     }
 
@@ -66,6 +251,7 @@ impl SegmentShape {
                 end_angle,
                 ..
             } => radius * (end_angle - start_angle).abs(),
+            SegmentShape::Meshed(ref c) => c.length(),
         }
     }
 }
@@ -138,6 +324,18 @@ impl Segment {
         }
     }
 
+    /// A segment along the nodes of a boundary mesh: one quadratic element per piece of the
+    /// curve (the division is the curve's pieces and the grading uniform; neither applies).
+    pub fn meshed(name: &str, curve: MeshedCurve) -> Self {
+        let pieces = curve.pieces();
+        Self {
+            name: name.to_string(),
+            shape: SegmentShape::Meshed(curve),
+            division: Division::Count(pieces),
+            grading: Grading::Uniform,
+        }
+    }
+
     /// The same segment with another grading.
     pub fn graded(mut self, grading: Grading) -> Self {
         self.grading = grading;
@@ -199,6 +397,17 @@ impl Segment {
                     ));
                 }
             }
+            SegmentShape::Meshed(ref c) => {
+                if self.division != Division::Count(c.pieces()) || self.grading != Grading::Uniform
+                {
+                    return Err(Error::invalid(
+                        field("division"),
+                        format!("{:?}, {:?}", self.division, self.grading),
+                        "a meshed curve keeps its mesh's elements: the division must be its \
+                         piece count and the grading uniform (use Segment::meshed)",
+                    ));
+                }
+            }
         }
         match self.division {
             Division::Count(n) if n == 0 || n > 100_000 => {
@@ -241,6 +450,9 @@ impl Segment {
 
     /// Element break points in the segment parameter t, from 0 to 1.
     pub(crate) fn breakpoints(&self) -> Vec<f64> {
+        if let SegmentShape::Meshed(c) = &self.shape {
+            return c.breakpoints();
+        }
         let n = match self.division {
             Division::Count(n) => n,
             Division::Size(h) => ((self.shape.length() / h).ceil() as usize).max(1),
@@ -469,11 +681,14 @@ pub(crate) fn mesh_segment(segment: &Segment) -> (Vec<SegmentElement>, usize) {
     let mut out = Vec::with_capacity(n);
     for k in 0..n {
         let (t0, t1) = (t[k], t[k + 1]);
-        let geometry = [
-            segment.shape.point(t0),
-            segment.shape.point(0.5 * (t0 + t1)),
-            segment.shape.point(t1),
-        ];
+        let geometry = match &segment.shape {
+            SegmentShape::Meshed(c) => c.piece(k),
+            shape => [
+                shape.point(t0),
+                shape.point(0.5 * (t0 + t1)),
+                shape.point(t1),
+            ],
+        };
         let first = if k == 0 { -DISCONTINUOUS_OFFSET } else { -1.0 };
         let last = if k == n - 1 {
             DISCONTINUOUS_OFFSET

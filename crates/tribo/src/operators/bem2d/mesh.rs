@@ -278,7 +278,7 @@ impl BemMesh {
                     seg_mesh.push((elements, n_nodes));
                     segments.push(SegmentInfo {
                         name: s.name.clone(),
-                        shape: s.shape,
+                        shape: s.shape.clone(),
                         owner: r,
                         owner_nodes: Vec::new(),
                         partner: None,

@@ -908,6 +908,9 @@ fn bad_contact_input_is_reported() {
                                         end: [end[0], end[1] - 1e-5],
                                     }
                                 }
+                                crate::operators::bem2d::SegmentShape::Meshed(_) => {
+                                    unreachable!("the half cylinder has lines and arcs")
+                                }
                             };
                             s
                         }

@@ -1,0 +1,471 @@
+//! Tests of the gmsh import: fixtures made by gmsh 4.15.2
+//! (`tests/fixtures/gmsh/make_fixtures.py`) against tribo's own outline models and closed
+//! forms, and small hand-written meshes for the structure and the errors.
+
+use std::f64::consts::FRAC_PI_2;
+
+use super::*;
+use crate::kernels::kelvin2d::{Kelvin2d, PlaneCondition};
+use crate::operators::bem2d::{BemMesh, BemModel};
+use crate::solvers::bem2d::{BemProblem, BemSolution, BoundaryConditions, Profile, SegmentBc};
+
+fn fixture(name: &str) -> String {
+    let path = format!("{}/tests/fixtures/gmsh/{name}", env!("CARGO_MANIFEST_DIR"));
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+fn steel() -> ElasticMaterial {
+    ElasticMaterial::new(210e9, 0.3).unwrap()
+}
+
+fn all_steel(_: &str) -> Option<ElasticMaterial> {
+    Some(steel())
+}
+
+fn import(name: &str) -> GmshImport {
+    import_msh(&fixture(name), &all_steel).unwrap()
+}
+
+fn import_err(text: &str) -> String {
+    import_msh(text, &all_steel).unwrap_err().to_string()
+}
+
+fn model(g: &GmshImport) -> BemModel {
+    BemModel::new(PlaneCondition::Strain, g.regions.clone())
+}
+
+// ----------------------------------------------------------------- Lame, the quarter ring
+
+const LA: f64 = 0.010;
+const LB: f64 = 0.020;
+const LP: f64 = 100e6;
+
+/// Lame's thick cylinder under internal pressure, plane strain (BEM2D.md A1; Timoshenko &
+/// Goodier, Theory of Elasticity, sec. 28): radial displacement u_r(r).
+fn lame_ur(r: f64) -> f64 {
+    let (a2, b2) = (LA * LA, LB * LB);
+    let (nu, e) = (0.3, 210e9);
+    LP * a2 * r / (e * (b2 - a2)) * ((1.0 - nu - 2.0 * nu * nu) + b2 * (1.0 + nu) / (r * r))
+}
+
+fn lame_bcs() -> BoundaryConditions {
+    BoundaryConditions::new()
+        .set("y0", SegmentBc::roller_y())
+        .set("x0", SegmentBc::roller_x())
+        .set("inner", SegmentBc::Pressure(Profile::Uniform(LP)))
+}
+
+fn lame_native(n: usize) -> BemModel {
+    BemModel::new(
+        PlaneCondition::Strain,
+        vec![Region::new(
+            "ring",
+            steel(),
+            vec![
+                Segment::line("y0", [LA, 0.0], [LB, 0.0], n),
+                Segment::arc("outer", [0.0, 0.0], LB, 0.0, FRAC_PI_2, 2 * n),
+                Segment::line("x0", [0.0, LB], [0.0, LA], n),
+                Segment::arc("inner", [0.0, 0.0], LA, FRAC_PI_2, 0.0, 2 * n),
+            ],
+        )],
+    )
+}
+
+fn solve(m: &BemModel, bcs: &BoundaryConditions) -> BemSolution {
+    BemProblem::new(m).unwrap().solve(bcs).unwrap()
+}
+
+/// Largest nodal displacement difference of two solutions of the same mesh, segment by
+/// segment (matching nodes by position), relative to `scale`.
+fn nodal_difference(a: &BemSolution, b: &BemSolution, segments: &[&str], scale: f64) -> f64 {
+    let mut worst = 0.0_f64;
+    for s in segments {
+        let (ra, rb) = (a.segment_results(s).unwrap(), b.segment_results(s).unwrap());
+        assert_eq!(ra.len(), rb.len(), "segment {s}: node counts");
+        for (x, y) in ra.iter().zip(&rb) {
+            let d = (x.position[0] - y.position[0]).hypot(x.position[1] - y.position[1]);
+            // gmsh spaces the nodes of its transfinite arcs uniformly to about 2.3e-9 rad (its
+            // numerical arc length: 4.6e-11 m on the 20 mm arc); 1e-10 m leaves room.
+            assert!(
+                d < 1e-10,
+                "segment {s}: nodes {:?} / {:?}",
+                x.position,
+                y.position
+            );
+            for k in 0..2 {
+                worst = worst.max((x.displacement[k] - y.displacement[k]).abs() / scale);
+            }
+        }
+    }
+    worst
+}
+
+/// The second-order gmsh mesh of the quarter ring (transfinite: n elements per side, 2 n per
+/// arc, mid-nodes on the arcs) has the nodes of tribo's own outline model, so the two
+/// solutions agree to the round-off of the 16-digit node coordinates in the file.
+#[test]
+fn second_order_gmsh_ring_equals_the_outline_model() {
+    let g = import("lame_o2_n4.msh");
+    assert_eq!(g.version, "4.1");
+    assert_eq!(g.order, 2);
+    assert_eq!(g.regions.len(), 1);
+    assert_eq!(g.regions[0].name, "ring");
+    assert_eq!(g.surfaces["ring"], vec!["ring".to_string()]);
+    for (name, n) in [("y0", 4), ("outer", 8), ("x0", 4), ("inner", 8)] {
+        assert_eq!(g.curves[name], vec![name.to_string()], "{name}");
+        let seg = g.regions[0]
+            .loops
+            .iter()
+            .flatten()
+            .find_map(|i| match i {
+                LoopItem::Segment(s) if s.name == name => Some(s),
+                _ => None,
+            })
+            .unwrap();
+        assert_eq!(seg.division, super::super::Division::Count(n), "{name}");
+    }
+    let imported = solve(&model(&g), &lame_bcs());
+    let native = solve(&lame_native(4), &lame_bcs());
+    let d = nodal_difference(
+        &imported,
+        &native,
+        &["y0", "outer", "x0", "inner"],
+        lame_ur(LA),
+    );
+    // Node coordinates agree to ~2e-9 relative; the solution moves by about as much
+    // (measured 1.6e-9; an error of the method would show at 1e-4 or more).
+    assert!(d < 1e-8, "imported vs native: {d:e}");
+    // And that solution is Lame's (the native test's accuracy at n = 4).
+    let mut e = 0.0_f64;
+    for r in imported.segment_results("inner").unwrap() {
+        let p = r.position;
+        let rr = p[0].hypot(p[1]);
+        let ur = (r.displacement[0] * p[0] + r.displacement[1] * p[1]) / rr;
+        e = e.max((ur - lame_ur(rr)).abs() / lame_ur(LA));
+    }
+    // Measured 3.0e-4, the outline model's own error at n = 4 (orders 2.8-2.9 from there).
+    assert!(e < 4e-4, "u_r error at n = 4: {e:e}");
+}
+
+/// Format 2.2 and 4.1 of one mesh import to the same model.
+#[test]
+fn formats_2_2_and_4_1_give_the_same_model() {
+    let a = import("lame_o2_n4.msh");
+    let b = import("lame_o2_n4_v22.msh");
+    assert_eq!(b.version, "2.2");
+    assert_eq!(a.regions, b.regions);
+    assert_eq!(a.curves, b.curves);
+}
+
+/// First-order meshes: the middle nodes of the arcs' chords are interpolated from the
+/// neighbouring vertices (cubic in chord length), so the ring converges like the native
+/// quadratic elements on exact arcs (orders 2.8-2.9 there). Measured u_r errors on the arcs
+/// at n = 4, 8, 16: 9.8e-4, 1.3e-4, 1.7e-5 (orders 2.87, 2.95). Straight chords (the
+/// polygon) would give a first-order error (0.11, 0.054, 0.027: the pressure's normal
+/// jumps at every vertex), which the order window [2.4, 3.4] rejects.
+#[test]
+fn first_order_gmsh_ring_converges_at_third_order() {
+    let mut errors = Vec::new();
+    for n in [4, 8, 16] {
+        let g = import(&format!("lame_o1_n{n}.msh"));
+        assert_eq!(g.order, 1);
+        let sol = solve(&model(&g), &lame_bcs());
+        let mut e = 0.0_f64;
+        for seg in ["inner", "outer"] {
+            for r in sol.segment_results(seg).unwrap() {
+                let p = r.position;
+                let rr = p[0].hypot(p[1]);
+                let ur = (r.displacement[0] * p[0] + r.displacement[1] * p[1]) / rr;
+                e = e.max((ur - lame_ur(rr)).abs() / lame_ur(LA));
+            }
+        }
+        errors.push(e);
+    }
+    let orders: Vec<f64> = errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
+    eprintln!("first-order ring: u_r errors {errors:?}, orders {orders:?}");
+    for p in &orders {
+        assert!((2.4..3.4).contains(p), "order {p:.2} ({errors:?})");
+    }
+    assert!(errors[2] < 2.5e-5, "{errors:?}");
+}
+
+// ------------------------------------------------------------- bonded rings, quadrangles
+
+/// Two bonded rings from one gmsh file: physical curves spanning both rings are split per
+/// region, the unnamed bond becomes the interface `core|sleeve`, and the solution equals the
+/// outline model with the same nodes (which the solver tests check against the closed form
+/// of the compound cylinder).
+#[test]
+fn bonded_rings_from_gmsh_equal_the_outline_model() {
+    let (a, b, c, p) = (0.010, 0.015, 0.020, 100e6);
+    let aluminium = ElasticMaterial::new(70e9, 0.33).unwrap();
+    let material = |s: &str| match s {
+        "core" => Some(steel()),
+        "sleeve" => Some(aluminium),
+        _ => None,
+    };
+    let g = import_msh(&fixture("compound_o2_n4.msh"), &material).unwrap();
+    let names: Vec<&str> = g.regions.iter().map(|r| r.name.as_str()).collect();
+    assert_eq!(names, ["core", "sleeve"]);
+    assert_eq!(g.curves["y0"], ["y0.1", "y0.2"]);
+    assert_eq!(g.curves["x0"], ["x0.1", "x0.2"]);
+    assert_eq!(g.curves["core|sleeve"], ["core|sleeve"]);
+    let shared: Vec<&str> = g.regions[1]
+        .loops
+        .iter()
+        .flatten()
+        .filter_map(|i| match i {
+            LoopItem::Shared(s) => Some(s.as_str()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(shared, ["core|sleeve"]);
+    let n = 4;
+    let native = BemModel::new(
+        PlaneCondition::Strain,
+        vec![
+            Region {
+                name: "core".into(),
+                material: steel(),
+                loops: vec![vec![
+                    LoopItem::Segment(Segment::line("y0.1", [a, 0.0], [b, 0.0], n)),
+                    LoopItem::Segment(Segment::arc(
+                        "core|sleeve",
+                        [0.0, 0.0],
+                        b,
+                        0.0,
+                        FRAC_PI_2,
+                        2 * n,
+                    )),
+                    LoopItem::Segment(Segment::line("x0.1", [0.0, b], [0.0, a], n)),
+                    LoopItem::Segment(Segment::arc("bore", [0.0, 0.0], a, FRAC_PI_2, 0.0, 2 * n)),
+                ]],
+                body_forces: Vec::new(),
+            },
+            Region {
+                name: "sleeve".into(),
+                material: aluminium,
+                loops: vec![vec![
+                    LoopItem::Segment(Segment::line("y0.2", [b, 0.0], [c, 0.0], n)),
+                    LoopItem::Segment(Segment::arc("rim", [0.0, 0.0], c, 0.0, FRAC_PI_2, 2 * n)),
+                    LoopItem::Segment(Segment::line("x0.2", [0.0, c], [0.0, b], n)),
+                    LoopItem::Shared("core|sleeve".into()),
+                ]],
+                body_forces: Vec::new(),
+            },
+        ],
+    );
+    let bcs = ["y0.1", "y0.2"]
+        .iter()
+        .fold(BoundaryConditions::new(), |b, s| {
+            b.set(s, SegmentBc::roller_y())
+        });
+    let bcs = ["x0.1", "x0.2"]
+        .iter()
+        .fold(bcs, |b, s| b.set(s, SegmentBc::roller_x()))
+        .set("bore", SegmentBc::Pressure(Profile::Uniform(p)));
+    let imported = solve(&model(&g), &bcs);
+    let reference = solve(&native, &bcs);
+    let scale = p * a / 70e9;
+    let d = nodal_difference(
+        &imported,
+        &reference,
+        &["y0.1", "y0.2", "x0.1", "x0.2", "bore", "rim", "core|sleeve"],
+        scale,
+    );
+    // As for the single ring: node positions agree to about 2e-9 relative.
+    assert!(d < 1e-8, "imported vs native: {d:e}");
+}
+
+/// A plate of 9-node quadrangles in uniform tension: the linear displacement field is
+/// reproduced exactly (patch test), so the interior stress is the applied one to the
+/// quadrature's accuracy.
+#[test]
+fn quadrangle_plate_in_uniform_tension_is_exact() {
+    let g = import("plate_quad9.msh");
+    assert_eq!(g.order, 2);
+    let sigma = 50e6;
+    let bcs = BoundaryConditions::new()
+        .set("left", SegmentBc::roller_x())
+        .set("bottom", SegmentBc::roller_y())
+        .set(
+            "right",
+            SegmentBc::traction(Profile::Uniform(sigma), Profile::Uniform(0.0)),
+        );
+    let sol = solve(&model(&g), &bcs);
+    let mut worst = 0.0_f64;
+    for p in [[0.010, 0.005], [0.001, 0.009], [0.019, 0.0005]] {
+        let s = sol.stress_at(p).unwrap();
+        worst = worst
+            .max((s.xx - sigma).abs())
+            .max(s.yy.abs())
+            .max(s.xy.abs());
+    }
+    // The constant-stress patch test of the outline model reaches 1e-9 relative (quadrature);
+    // 1e-8 leaves margin.
+    assert!(worst < 1e-8 * sigma, "stress error {worst:e} Pa");
+    // The strain of the uniform state: u_x at the right edge = eps_xx * 20 mm.
+    let k = Kelvin2d::new(&steel(), PlaneCondition::Strain);
+    let eps = k.strain_from_stress([sigma, 0.0, 0.0]);
+    for r in sol.segment_results("right").unwrap() {
+        let e = (r.displacement[0] - eps[0] * 0.020).abs();
+        assert!(e < 1e-9 * eps[0] * 0.020, "u_x error {e:e}");
+    }
+}
+
+/// One physical curve around the plate is cut at the four corners into `edge.1` ...
+/// `edge.4`, each one straight side with its own discontinuous end nodes.
+#[test]
+fn a_curve_around_corners_is_cut_at_each_corner() {
+    let g = import("plate_quad9_one_group.msh");
+    assert_eq!(g.curves["edge"], ["edge.1", "edge.2", "edge.3", "edge.4"]);
+    let mesh = BemMesh::new(&model(&g)).unwrap();
+    let corners = [[0.0, 0.0], [0.020, 0.0], [0.020, 0.010], [0.0, 0.010]];
+    for s in &mesh.segments {
+        let (p, q) = (s.shape.point(0.0), s.shape.point(1.0));
+        let at_corner = |x: [f64; 2]| {
+            corners
+                .iter()
+                .any(|c| (c[0] - x[0]).hypot(c[1] - x[1]) < 1e-15)
+        };
+        assert!(at_corner(p) && at_corner(q), "{}: {p:?} -> {q:?}", s.name);
+    }
+}
+
+// --------------------------------------------------------------- hand-written small meshes
+
+/// A format 2.2 mesh from nodes (x, y) and elements (type, physical tag, nodes), with
+/// physical names (dimension, tag, name).
+fn msh22(
+    nodes: &[[f64; 2]],
+    elements: &[(u32, i64, &[u64])],
+    names: &[(u32, i64, &str)],
+) -> String {
+    let mut s = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n");
+    if !names.is_empty() {
+        s += &format!("$PhysicalNames\n{}\n", names.len());
+        for (d, t, n) in names {
+            s += &format!("{d} {t} \"{n}\"\n");
+        }
+        s += "$EndPhysicalNames\n";
+    }
+    s += &format!("$Nodes\n{}\n", nodes.len());
+    for (i, p) in nodes.iter().enumerate() {
+        s += &format!("{} {} {} 0\n", i + 1, p[0], p[1]);
+    }
+    s += &format!("$EndNodes\n$Elements\n{}\n", elements.len());
+    for (i, (kind, phys, ns)) in elements.iter().enumerate() {
+        let list: Vec<String> = ns.iter().map(|n| n.to_string()).collect();
+        s += &format!("{} {kind} 2 {phys} 1 {}\n", i + 1, list.join(" "));
+    }
+    s + "$EndElements\n"
+}
+
+/// Unit square 1-2-3-4 split into triangles 1-2-3 and 1-3-4.
+const SQUARE: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+
+#[test]
+fn unnamed_boundary_and_clockwise_elements() {
+    // The second triangle is clockwise (1-4-3): it is turned, not refused.
+    let text = msh22(
+        &SQUARE,
+        &[(2, 7, &[1, 2, 3]), (2, 7, &[1, 4, 3]), (1, 3, &[1, 2])],
+        &[(2, 7, "sq"), (1, 3, "base")],
+    );
+    let g = import_msh(&text, &all_steel).unwrap();
+    assert_eq!(g.regions.len(), 1);
+    assert_eq!(g.curves["base"], ["base"]);
+    // The other three sides have no physical curve and are cut at the corners.
+    assert_eq!(
+        g.curves["sq.boundary"],
+        ["sq.boundary.1", "sq.boundary.2", "sq.boundary.3"]
+    );
+    BemMesh::new(&model(&g)).unwrap();
+}
+
+#[test]
+fn disconnected_surface_becomes_numbered_regions_and_unnamed_groups_use_their_tag() {
+    let mut nodes = SQUARE.to_vec();
+    nodes.extend(SQUARE.iter().map(|p| [p[0] + 3.0, p[1]]));
+    let text = msh22(
+        &nodes,
+        &[
+            (2, 4, &[1, 2, 3]),
+            (2, 4, &[1, 3, 4]),
+            (2, 4, &[5, 6, 7]),
+            (2, 4, &[5, 7, 8]),
+        ],
+        &[],
+    );
+    let seen = std::cell::RefCell::new(Vec::new());
+    let g = import_msh(&text, &|s| {
+        seen.borrow_mut().push(s.to_string());
+        Some(steel())
+    })
+    .unwrap();
+    assert_eq!(seen.into_inner(), ["4"]);
+    assert_eq!(g.surfaces["4"], ["4.1", "4.2"]);
+    let names: Vec<&str> = g.regions.iter().map(|r| r.name.as_str()).collect();
+    assert_eq!(names, ["4.1", "4.2"]);
+    BemMesh::new(&model(&g)).unwrap();
+}
+
+#[test]
+fn bad_meshes_are_refused_naming_the_item() {
+    let tri = msh22(
+        &SQUARE,
+        &[(2, 1, &[1, 2, 3]), (2, 1, &[1, 3, 4])],
+        &[(2, 1, "s")],
+    );
+    let cases: Vec<(String, &str)> = vec![
+        (fixture("box_3d.msh"), "not 2D"),
+        (fixture("square_without_groups.msh"), "no physical surfaces"),
+        (tri.replace("2.2 0 8", "2.2 1 8"), "binary"),
+        (tri.replace("2.2 0 8", "4.0 0 8"), "versions 2.2 and 4.1"),
+        (tri.replace("$EndNodes\n", ""), "expected $EndNodes"),
+        (tri.replace("3 1 1 0\n", "3 1 1 0.5\n"), "z = 0"),
+        (
+            tri.replace("2 2 2 1 1 1 3 4", "2 21 2 1 1 1 3 4"),
+            "order 1 or 2",
+        ),
+        (tri.replace("1 1 3 4", "1 1 3 9"), "node 9"),
+        (tri.replace("0 1 0", "0 1 zero"), "msh line"),
+        ("hello".to_string(), "not a gmsh .msh file"),
+        (
+            msh22(&SQUARE, &[(2, 1, &[1, 2, 3]), (2, 0, &[1, 3, 4])], &[]),
+            "no physical surface",
+        ),
+        (
+            // The diagonal as a physical curve: inside the surface, on no boundary.
+            msh22(
+                &SQUARE,
+                &[(2, 1, &[1, 2, 3]), (2, 1, &[1, 3, 4]), (1, 2, &[1, 3])],
+                &[(1, 2, "crack")],
+            ),
+            "physical curve 'crack'",
+        ),
+        (
+            // The same triangle twice.
+            msh22(&SQUARE, &[(2, 1, &[1, 2, 3]), (2, 1, &[2, 3, 1])], &[]),
+            "overlap",
+        ),
+        (
+            msh22(
+                &[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]],
+                &[(2, 1, &[1, 2, 3])],
+                &[],
+            ),
+            "zero area",
+        ),
+    ];
+    for (text, expect) in cases {
+        let e = import_err(&text);
+        assert!(e.contains(expect), "expected {expect:?} in: {e}");
+    }
+    // A surface without a material.
+    let e = import_msh(&tri, &|_| None).unwrap_err().to_string();
+    assert!(
+        e.contains("physical surface 's'") && e.contains("material"),
+        "{e}"
+    );
+}
