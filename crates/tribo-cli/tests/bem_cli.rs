@@ -469,3 +469,157 @@ friction = 0.3
     let e = refused(&case("{ density = -1, gravity = [0, -9.81] }"));
     assert!(e.contains("block") && e.contains("density"), "{e}");
 }
+
+// ------------------------------------------------------------------------- gmsh meshes
+
+/// The library's gmsh fixtures (made by gmsh 4.15.2, `crates/tribo/tests/fixtures/gmsh`).
+fn gmsh_fixture(name: &str) -> String {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../tribo/tests/fixtures/gmsh")
+        .join(name);
+    // TOML basic strings take forward slashes on every platform.
+    p.to_str().unwrap().replace('\\', "/")
+}
+
+/// Lame's ring from a second-order gmsh mesh (quarter ring a = 10 mm, b = 20 mm, internal
+/// pressure 100 MPa, plane strain, symmetry rollers on the physical curves "y0" and "x0").
+const GMSH_RING: &str = r#"
+kind = "bem2d"
+title = "Lame ring from gmsh"
+plane = "strain"
+[materials.steel]
+E = "210 GPa"
+nu = 0.3
+[[mesh]]
+file = "FILE"
+materials = { ring = "steel" }
+[[bc]]
+segment = "y0"
+uy = 0
+[[bc]]
+segment = "x0"
+ux = 0
+[[bc]]
+segment = "inner"
+pressure = "100 MPa"
+[field]
+size = "1 mm"
+"#;
+
+#[test]
+fn a_gmsh_ring_gives_lames_stresses() {
+    let text = GMSH_RING.replace("FILE", &gmsh_fixture("lame_o2_n8.msh"));
+    let (o, out, _d) = run_case(&text, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let m = &s["meshes"][0];
+    assert_eq!(m["version"], "4.1");
+    assert_eq!(m["order"], 2);
+    assert_eq!(m["surfaces"]["ring"][0], "ring");
+    assert_eq!(m["curves"]["inner"][0], "inner");
+    // Lame (Timoshenko & Goodier sec. 28), at r = a: sigma_r = -p,
+    // sigma_theta = p (b^2 + a^2)/(b^2 - a^2) = 166.67 MPa, sigma_z = nu (sigma_r +
+    // sigma_theta) = 20 MPa (plane strain); the von Mises intensity there is 231.33 MPa and
+    // the largest in the ring. The field samples the bore's nodes; the native ring at this
+    // mesh recovers the boundary hoop stress to about 1e-3 (solver tests), so 0.5 %.
+    let (p, a2, b2, nu): (f64, f64, f64, f64) = (100e6, 1e-4, 4e-4, 0.3);
+    let hoop = p * (b2 + a2) / (b2 - a2);
+    let sz = nu * (hoop - p);
+    let (s1, s2, s3) = (hoop, sz, -p);
+    let exact = (((s1 - s2).powi(2) + (s2 - s3).powi(2) + (s3 - s1).powi(2)) / 2.0).sqrt();
+    let got = s["steps"][0]["regions"][0]["sigma_int_max"]["value"]
+        .as_f64()
+        .unwrap();
+    assert!(
+        (got - exact).abs() < 5e-3 * exact,
+        "sigma_int max {got:e} against {exact:e}"
+    );
+    let at = &s["steps"][0]["regions"][0]["sigma_int_max"]["at_m"];
+    let r = at[0].as_f64().unwrap().hypot(at[1].as_f64().unwrap());
+    assert!((r - 0.010).abs() < 1e-6, "the largest intensity at r = {r}");
+}
+
+/// Two bonded rings from one gmsh file: a boundary condition on a physical curve that the
+/// import cut into parts ("y0" spans both rings) applies to every part; the dry run lists
+/// the parts.
+#[test]
+fn a_gmsh_curve_cut_into_parts_takes_its_conditions_on_every_part() {
+    let text = GMSH_RING
+        .replace("FILE", &gmsh_fixture("compound_o2_n4.msh"))
+        .replace(
+            "materials = { ring = \"steel\" }",
+            "materials = { core = \"steel\", sleeve = \"aluminium\" }",
+        )
+        .replace("segment = \"inner\"", "segment = \"bore\"")
+        .replace(
+            "[[mesh]]",
+            "[materials.aluminium]\nE = \"70 GPa\"\nnu = 0.33\n[[mesh]]",
+        );
+    let (o, _out, _d) = run_case(&text, &["--dry-run"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let listing = stdout(&o);
+    assert!(listing.contains("boundary y0: y0.1, y0.2"), "{listing}");
+    assert!(listing.contains("core|sleeve"), "{listing}");
+    let (o, out, _d) = run_case(&text, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let regions = &s["steps"][0]["regions"];
+    assert_eq!(regions[0]["region"], "core");
+    assert_eq!(regions[1]["region"], "sleeve");
+    // Both rings are loaded (rollers on all four symmetry parts hold them): a ring left
+    // without its rollers would be unrestrained and the run would fail.
+    for r in 0..2 {
+        let v = regions[r]["sigma_int_max"]["value"].as_f64().unwrap();
+        assert!(v > 10e6, "region {r}: {v:e}");
+    }
+}
+
+#[test]
+fn bad_gmsh_input_is_refused_naming_the_item() {
+    let ring = GMSH_RING.replace("FILE", &gmsh_fixture("lame_o2_n4.msh"));
+    // A missing file.
+    let e = refused(&GMSH_RING.replace("FILE", "no-such-mesh.msh"));
+    assert!(
+        e.contains("mesh[0].file") && e.contains("no-such-mesh.msh"),
+        "{e}"
+    );
+    // A 3D mesh.
+    let e = refused(&GMSH_RING.replace("FILE", &gmsh_fixture("box_3d.msh")));
+    assert!(e.contains("mesh[0].file") && e.contains("not 2D"), "{e}");
+    // No physical groups.
+    let e = refused(&GMSH_RING.replace("FILE", &gmsh_fixture("square_without_groups.msh")));
+    assert!(e.contains("no physical surfaces"), "{e}");
+    // A surface without a material, and a material for a surface the file lacks.
+    let e = refused(&ring.replace("ring = \"steel\"", "rim = \"steel\""));
+    assert!(
+        e.contains("physical surface 'ring'") && e.contains("material"),
+        "{e}"
+    );
+    let e = refused(&ring.replace("ring = \"steel\"", "ring = \"steel\", rim = \"steel\""));
+    assert!(
+        e.contains("mesh[0].materials.rim") && e.contains("ring"),
+        "{e}"
+    );
+    // A material name that is not defined.
+    let e = refused(&ring.replace("ring = \"steel\"", "ring = \"brass\""));
+    assert!(e.contains("mesh[0].materials.ring"), "{e}");
+    // A load on an unknown segment; a region name that the mesh does not have.
+    let e = refused(&ring.replace("segment = \"inner\"", "segment = \"bore\""));
+    assert!(e.contains("bc[2].segment") && e.contains("bore"), "{e}");
+    let e = refused(&format!(
+        "{ring}\n[damage]\nregion = \"knife\"\nlimit = \"100 MPa\"\n"
+    ));
+    assert!(e.contains("damage.region") && e.contains("ring"), "{e}");
+    // A contact pair on a curve that the import cut into parts.
+    let compound = ring
+        .replace("lame_o2_n4.msh", "compound_o2_n4.msh")
+        .replace("ring = \"steel\"", "core = \"steel\", sleeve = \"steel\"")
+        .replace("segment = \"inner\"", "segment = \"bore\"");
+    let e = refused(&format!(
+        "{compound}\n[[contact]]\nslave = \"y0\"\nmaster = \"rim\"\nfriction = 0.1\n"
+    ));
+    assert!(
+        e.contains("contact[0].slave") && e.contains("y0.1, y0.2"),
+        "{e}"
+    );
+}

@@ -223,8 +223,9 @@ pub struct StepSpec {
 /// Output field settings.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FieldSpec {
-    /// Target edge length of the interior triangles, m.
-    pub size: f64,
+    /// Target edge length of the interior triangles, m (None: 1/40 of the model's largest
+    /// extent).
+    pub size: Option<f64>,
     /// Regions sampled (None: all).
     pub regions: Option<Vec<String>>,
 }
@@ -593,7 +594,7 @@ fn validate(
     let region_names: Vec<String> = regions.iter().map(|r| r.name.clone()).collect();
     let field = match raw.field {
         None => FieldSpec {
-            size: default_field_size(&regions),
+            size: None,
             regions: None,
         },
         Some(f) => {
@@ -603,9 +604,9 @@ fn validate(
                     if !(h.is_finite() && h > 0.0) {
                         return Err(bad("field.size", show(v), "must be > 0"));
                     }
-                    h
+                    Some(h)
                 }
-                None => default_field_size(&regions),
+                None => None,
             };
             FieldSpec {
                 size,
@@ -770,33 +771,6 @@ fn join_keys<T>(m: &BTreeMap<String, T>) -> String {
         "none".into()
     } else {
         m.keys().cloned().collect::<Vec<_>>().join(", ")
-    }
-}
-
-/// Default field triangle size: 1/40 of the largest region extent.
-fn default_field_size(regions: &[RegionSpec]) -> f64 {
-    let mut lo = [f64::INFINITY; 2];
-    let mut hi = [f64::NEG_INFINITY; 2];
-    for r in regions {
-        for l in &r.loops {
-            for item in l {
-                if let LoopItem::Segment(s) = item {
-                    for t in [0.0, 0.5, 1.0] {
-                        let p = s.shape.point(t);
-                        for d in 0..2 {
-                            lo[d] = lo[d].min(p[d]);
-                            hi[d] = hi[d].max(p[d]);
-                        }
-                    }
-                }
-            }
-        }
-    }
-    let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
-    if extent.is_finite() && extent > 0.0 {
-        extent / 40.0
-    } else {
-        1e-3
     }
 }
 

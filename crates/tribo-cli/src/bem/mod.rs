@@ -30,8 +30,8 @@ pub fn run_text(
 ) -> CliResult<Option<output::BemSummary>> {
     let case = case::parse(text, source, base_dir)?;
     if dry_run {
-        let model = run::model(&case, None)?;
-        let mesh = tribo::operators::bem2d::BemMesh::new(&model)?;
+        let built = run::model(&case, None)?;
+        let mesh = tribo::operators::bem2d::BemMesh::new(&built.model)?;
         println!(
             "{}: valid; plane {}, {} regions, {} segments, {} boundary unknowns, {} contact pairs, {} steps",
             case.title,
@@ -52,6 +52,15 @@ pub fn run_text(
         }
         let names: Vec<&str> = mesh.segments.iter().map(|s| s.name.as_str()).collect();
         println!("  segments: {}", names.join(", "));
+        for m in &built.meshes {
+            println!(
+                "  gmsh {} (format {}, order {}): {} nodes, {} surface elements",
+                m.file, m.version, m.order, m.nodes, m.surface_elements
+            );
+            for (name, parts) in m.curves.iter().filter(|(n, p)| p.len() > 1 || p[0] != **n) {
+                println!("    boundary {name}: {}", parts.join(", "));
+            }
+        }
         return Ok(None);
     }
     let outcome = run::solve(&case, quiet)?;

@@ -264,6 +264,8 @@ pub struct BemSummary {
     pub materials: Vec<MaterialSummary>,
     /// Regions.
     pub regions: Vec<RegionInfo>,
+    /// The gmsh files read (empty for outline models).
+    pub meshes: Vec<super::run::MeshImportInfo>,
     /// Boundary unknowns.
     pub dof: usize,
     /// Condensed contact unknowns.
@@ -1029,6 +1031,7 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
                 nodes: r.nodes.len(),
             })
             .collect(),
+        meshes: v.meshes.clone(),
         dof: v.dof,
         contact_unknowns: v.contact_unknowns,
         steps,

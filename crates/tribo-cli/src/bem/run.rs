@@ -10,7 +10,7 @@ use tribo::analysis::damage::{
 };
 use tribo::kernels::kelvin2d::PlaneCondition;
 use tribo::kernels::subsurface::StressTensor;
-use tribo::operators::bem2d::{BemMesh, BemModel, LoopItem, Region, SegmentShape};
+use tribo::operators::bem2d::{gmsh, BemMesh, BemModel, LoopItem, Region, SegmentShape};
 use tribo::solvers::bem2d::contact::{
     ContactProblem, FreeBodyResult, LoadStep, PairResult, RigidControl, RigidResult,
 };
@@ -113,6 +113,8 @@ pub struct Variant {
     pub material: Option<String>,
     /// The boundary mesh.
     pub mesh: BemMesh,
+    /// What the gmsh files gave the model.
+    pub meshes: Vec<MeshImportInfo>,
     /// Boundary unknowns (2 per node).
     pub dof: usize,
     /// Contact unknowns of the condensed problem (0 without contact).
@@ -136,8 +138,41 @@ pub struct BemOutcome {
     pub compare: Vec<(String, Variant)>,
 }
 
-/// Builds the library model, with the material of region `swap.0` replaced by `swap.1`.
-pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CliResult<BemModel> {
+/// What one gmsh file gave the model (for the summary).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct MeshImportInfo {
+    /// The file.
+    pub file: String,
+    /// Its format version.
+    pub version: String,
+    /// Geometric order of its 2D elements.
+    pub order: usize,
+    /// Nodes in the file.
+    pub nodes: usize,
+    /// 2D elements read.
+    pub surface_elements: usize,
+    /// Region names by physical surface.
+    pub surfaces: BTreeMap<String, Vec<String>>,
+    /// Segment names by boundary name (physical curves, and the generated `REGION.boundary`
+    /// and `REGION_A|REGION_B` names): boundary conditions may name either.
+    pub curves: BTreeMap<String, Vec<String>>,
+}
+
+/// The library model of a case and the names its gmsh files add.
+#[derive(Debug, Clone)]
+pub struct BuiltModel {
+    /// The model.
+    pub model: BemModel,
+    /// Segment names by the boundary names of the gmsh files (a name cut into parts lists
+    /// them all).
+    pub curves: BTreeMap<String, Vec<String>>,
+    /// One entry per gmsh file.
+    pub meshes: Vec<MeshImportInfo>,
+}
+
+/// Builds the library model, with the material of region `swap.0` replaced by `swap.1`;
+/// imports the case's gmsh files and checks the region and segment names the case uses.
+pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CliResult<BuiltModel> {
     let material = |region: &str, name: &str| -> ElasticMaterial {
         let chosen = match swap {
             Some((r, m)) if r == region => m,
@@ -155,23 +190,122 @@ pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CliResult<BemModel> 
             body_forces: r.body_forces.clone(),
         })
         .collect();
+    let mut curves: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    let mut meshes = Vec::new();
     for (i, m) in case.meshes.iter().enumerate() {
+        let field = format!("mesh[{i}].file");
+        let text = std::fs::read_to_string(&m.path).map_err(|source| CliError::Unreadable {
+            field: field.clone(),
+            path: m.path.clone(),
+            source,
+        })?;
         let lookup = |surface: &str| -> Option<ElasticMaterial> {
             m.materials.get(surface).map(|name| material(surface, name))
         };
-        // GMSH-PENDING
-        let imported: tribo::Result<BemModel> = Err(tribo::Error::invalid(
-            "mesh.file",
-            m.path.display(),
-            "gmsh import is not available yet",
-        ));
-        let _ = &lookup;
-        let imported = imported.map_err(|e| {
-            CliError::field(format!("mesh[{i}].file"), m.path.display(), e.to_string())
-        })?;
+        let imported = gmsh::import_msh(&text, &lookup)
+            .map_err(|e| CliError::field(field.clone(), m.path.display(), format!("{e}")))?;
+        for surface in m.materials.keys() {
+            if !imported.surfaces.contains_key(surface) {
+                return Err(CliError::field(
+                    format!("mesh[{i}].materials.{surface}"),
+                    format!("{surface:?}"),
+                    format!(
+                        "names no physical surface of {} (its surfaces: {})",
+                        m.path.display(),
+                        imported
+                            .surfaces
+                            .keys()
+                            .cloned()
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                ));
+            }
+        }
+        for (name, parts) in &imported.curves {
+            curves
+                .entry(name.clone())
+                .or_default()
+                .extend(parts.iter().cloned());
+        }
+        meshes.push(MeshImportInfo {
+            file: m.path.display().to_string(),
+            version: imported.version.clone(),
+            order: imported.order,
+            nodes: imported.nodes,
+            surface_elements: imported.surface_elements,
+            surfaces: imported.surfaces.clone(),
+            curves: imported.curves.clone(),
+        });
         regions.extend(imported.regions);
     }
-    Ok(BemModel::new(case.plane, regions))
+    let model = BemModel::new(case.plane, regions);
+    let built = BuiltModel {
+        model,
+        curves,
+        meshes,
+    };
+    check_names(case, &built)?;
+    Ok(built)
+}
+
+/// The region names of the field, damage and comparison, and the segment names of the
+/// contact pairs and rigid segments, against the built model (gmsh files add names that the
+/// case parser cannot see).
+fn check_names(case: &BemCase, built: &BuiltModel) -> CliResult<()> {
+    let regions: Vec<&str> = built
+        .model
+        .regions
+        .iter()
+        .map(|r| r.name.as_str())
+        .collect();
+    let region = |field: String, name: &str| -> CliResult<()> {
+        if regions.contains(&name) {
+            return Ok(());
+        }
+        Err(CliError::field(
+            field,
+            format!("{name:?}"),
+            format!("names no region (regions: {})", regions.join(", ")),
+        ))
+    };
+    for (i, r) in case.field.regions.iter().flatten().enumerate() {
+        region(format!("field.regions[{i}]"), r)?;
+    }
+    if let Some(d) = &case.damage {
+        region("damage.region".into(), &d.region)?;
+    }
+    if let Some(c) = &case.compare {
+        region("compare.region".into(), &c.region)?;
+    }
+    // A pair or a rigid face needs one segment: a gmsh name cut into parts is refused with
+    // the parts to choose from.
+    let shapes = segment_shapes(&built.model);
+    let single = |field: String, name: &str| -> CliResult<()> {
+        if shapes.contains_key(name) {
+            return Ok(());
+        }
+        match built.curves.get(name) {
+            Some(parts) => Err(CliError::field(
+                field,
+                format!("{name:?}"),
+                format!(
+                    "the gmsh curve was cut into {} (at corners or where its neighbouring \
+                     region changes); name one of them",
+                    parts.join(", ")
+                ),
+            )),
+            None => Ok(()),
+        }
+    };
+    for (i, p) in case.pairs.iter().enumerate() {
+        single(format!("contact[{i}].slave"), &p.slave)?;
+        single(format!("contact[{i}].master"), &p.master)?;
+    }
+    for (i, r) in case.rigid.iter().enumerate() {
+        single(format!("rigid[{i}]"), r)?;
+    }
+    Ok(())
 }
 
 fn segment_shapes(model: &BemModel) -> BTreeMap<String, SegmentShape> {
@@ -250,35 +384,59 @@ fn library_bc(
 /// else scaled by the step's factors (for the plain BEM solve).
 fn conditions(
     case: &BemCase,
-    model: &BemModel,
+    built: &BuiltModel,
     factors: Option<&BTreeMap<String, f64>>,
 ) -> CliResult<BoundaryConditions> {
-    let shapes = segment_shapes(model);
+    let shapes = segment_shapes(&built.model);
     let mut bcs = BoundaryConditions::new();
     for b in &case.bcs {
-        let known = shapes.contains_key(&b.segment);
-        if !known {
+        // A segment, or a gmsh boundary name standing for its parts.
+        let targets: Vec<&str> = if shapes.contains_key(&b.segment) {
+            vec![b.segment.as_str()]
+        } else if let Some(parts) = built.curves.get(&b.segment) {
+            parts.iter().map(String::as_str).collect()
+        } else {
             return Err(CliError::field(
                 format!("{}.segment", b.origin),
                 format!("{:?}", b.segment),
                 "names no segment of the model",
             ));
-        }
-        let shape = shapes.get(&b.segment);
-        match (factors, &b.group) {
-            (None, Some(g)) => {
-                bcs = bcs.set_in_group(&b.segment, library_bc(&b.kind, 1.0, shape, &b.origin)?, g);
-            }
-            (None, None) => bcs = bcs.set(&b.segment, library_bc(&b.kind, 1.0, shape, &b.origin)?),
-            (Some(f), group) => {
-                let factor = group
-                    .as_ref()
-                    .map_or(1.0, |g| f.get(g).copied().unwrap_or(0.0));
-                bcs = bcs.set(&b.segment, library_bc(&b.kind, factor, shape, &b.origin)?);
+        };
+        for segment in targets {
+            let shape = shapes.get(segment);
+            match (factors, &b.group) {
+                (None, Some(g)) => {
+                    bcs = bcs.set_in_group(segment, library_bc(&b.kind, 1.0, shape, &b.origin)?, g);
+                }
+                (None, None) => bcs = bcs.set(segment, library_bc(&b.kind, 1.0, shape, &b.origin)?),
+                (Some(f), group) => {
+                    let factor = group
+                        .as_ref()
+                        .map_or(1.0, |g| f.get(g).copied().unwrap_or(0.0));
+                    bcs = bcs.set(segment, library_bc(&b.kind, factor, shape, &b.origin)?);
+                }
             }
         }
     }
     Ok(bcs)
+}
+
+/// The default edge of the field triangles: 1/40 of the model's largest extent.
+fn default_field_size(mesh: &BemMesh) -> f64 {
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for n in mesh.regions.iter().flat_map(|r| r.nodes.iter()) {
+        for d in 0..2 {
+            lo[d] = lo[d].min(n.position[d]);
+            hi[d] = hi[d].max(n.position[d]);
+        }
+    }
+    let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    if extent.is_finite() && extent > 0.0 {
+        extent / 40.0
+    } else {
+        1e-3
+    }
 }
 
 /// The region names of the fields to sample.
@@ -348,15 +506,16 @@ pub fn run_variant(
         .map(|(r, m)| format!(" ({r}: {m})"))
         .unwrap_or_default();
     let t0 = Instant::now();
-    let model = model(case, swap)?;
+    let built = model(case, swap)?;
+    let model = &built.model;
     let pb = spinner(quiet, format!("meshing, assembling and factoring{label}"));
     let use_contact = !case.pairs.is_empty() || !case.rigid.is_empty();
     let mut steps = Vec::new();
     let (dof, contact_unknowns, setup, steps_time, mesh);
     if use_contact {
-        let bcs = conditions(case, &model, None)?;
+        let bcs = conditions(case, &built, None)?;
         let rigid: Vec<&str> = case.rigid.iter().map(String::as_str).collect();
-        let mut problem = ContactProblem::new(&model, &bcs, &case.pairs, &rigid)?;
+        let mut problem = ContactProblem::new(model, &bcs, &case.pairs, &rigid)?;
         setup = t0.elapsed().as_secs_f64();
         dof = problem.bem().dof();
         contact_unknowns = problem.contact_unknowns();
@@ -391,7 +550,7 @@ pub fn run_variant(
             });
         }
     } else {
-        let problem = BemProblem::new(&model)?;
+        let problem = BemProblem::new(model)?;
         setup = t0.elapsed().as_secs_f64();
         dof = problem.dof();
         contact_unknowns = 0;
@@ -399,7 +558,7 @@ pub fn run_variant(
         let t1 = Instant::now();
         for s in &case.steps {
             pb.set_message(format!("step {}{label}", s.name));
-            let bcs = conditions(case, &model, Some(&s.factors))?;
+            let bcs = conditions(case, &built, Some(&s.factors))?;
             let solution = problem.solve(&bcs)?;
             steps.push(StepOutcome {
                 name: s.name.clone(),
@@ -416,9 +575,10 @@ pub fn run_variant(
     // Fields.
     pb.set_message(format!("interior fields{label}"));
     let t2 = Instant::now();
+    let field_size = case.field.size.unwrap_or_else(|| default_field_size(&mesh));
     let mut fields = Vec::new();
     for r in field_regions(case, &mesh, only_regions)? {
-        let tri = triangulate_region(&mesh, r, case.field.size)?;
+        let tri = triangulate_region(&mesh, r, field_size)?;
         let mut samples = Vec::with_capacity(steps.len());
         for s in &steps {
             samples.push(sample_region(&s.solution, r, &tri.nodes)?);
@@ -480,6 +640,7 @@ pub fn run_variant(
     Ok(Variant {
         material: swap.map(|(_, m)| m.to_string()),
         mesh,
+        meshes: built.meshes,
         dof,
         contact_unknowns,
         steps,
