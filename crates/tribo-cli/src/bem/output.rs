@@ -1002,7 +1002,8 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
         .iter()
         .filter(|(_, x)| x.material.is_some())
         .map(|(_, x)| x.timings.setup + x.timings.steps + x.timings.fields + x.timings.damage)
-        .sum();
+        // A fold from +0 (an empty f64 sum is -0, printed "-0.00").
+        .fold(0.0, |a, b| a + b);
     outputs.push("summary.json".into());
     let summary = BemSummary {
         kind: "bem2d",

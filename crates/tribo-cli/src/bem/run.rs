@@ -681,8 +681,10 @@ pub fn solve(case: &BemCase, quiet: bool) -> CliResult<BemOutcome> {
         for m in &c.materials {
             let same = case.materials[m] == main.mesh.regions[own].material;
             let v = if same {
+                // The case's own material: the main run is reused, at no extra time.
                 let mut v = main.clone();
                 v.material = Some(m.clone());
+                v.timings = Timings::default();
                 v
             } else {
                 run_variant(case, Some((&c.region, m)), Some(&only), quiet)?

@@ -1202,11 +1202,7 @@ fn smooth_midpoints(v: &[[f64; 2]], closed: bool) -> Vec<[f64; 2]> {
     (0..m)
         .map(|k| {
             let k = k as isize;
-            let mut stencil: Vec<([f64; 2], f64)> =
-                (k - 1..=k + 2).filter_map(at).collect::<Vec<_>>();
-            if stencil.len() > 3 || closed {
-                stencil.truncate(4);
-            }
+            let stencil: Vec<([f64; 2], f64)> = (k - 1..=k + 2).filter_map(at).collect();
             let (sa, sb) = (s[k as usize], s[k as usize + 1]);
             let t = 0.5 * (sa + sb);
             let mut p = [0.0, 0.0];
