@@ -1,10 +1,11 @@
-//! The verification suite: every analytic comparison of the half-space contact path, as
-//! table rows (case, quantity, reference, computed, error, tolerance, pass).
+//! The verification suite: every analytic comparison of the half-space contact path and of
+//! the 2D boundary element solver ([`bem2d_rows`]), as table rows (case, quantity, reference,
+//! computed, error, tolerance, pass).
 //!
 //! `tribo validate` prints these rows; the tests assert that every row passes, so the table
 //! and the test suite cannot drift apart. Each row states where its reference comes from
 //! and why its tolerance is what it is (see the `source` and the comments at each row).
-//! The suite runs in well under a second on two cores.
+//! The suite runs in a few seconds on two cores (the 2D BEM rows in about 0.4 s).
 
 use serde::{Deserialize, Serialize};
 
@@ -27,6 +28,9 @@ use crate::solvers::normal::{
 use crate::solvers::tangential::{
     solve_tangential, TangentialLoading, TangentialParams, TangentialProblem,
 };
+
+mod bem2d;
+pub use bem2d::bem2d_rows;
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -1259,5 +1263,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(tangential_rows()?);
     rows.extend(coupled_rows()?);
     rows.extend(damage_rows()?);
+    rows.extend(bem2d_rows()?);
     Ok(rows)
 }

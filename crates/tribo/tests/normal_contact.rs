@@ -1,5 +1,5 @@
-//! Normal contact: the verification table, convergence under refinement, and the errors a
-//! solver must raise. Every number asserted here has its reference and tolerance stated in
+//! Normal contact: the verification table (every row group, the 2D BEM's included),
+//! convergence under refinement, and the errors a solver must raise. Every number asserted here has its reference and tolerance stated in
 //! `tribo::validation` (one source for `tribo validate` and the tests).
 
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
@@ -264,4 +264,13 @@ fn coupled_rows_pass() {
 #[test]
 fn sliding_sphere_rows_pass() {
     assert_rows(&validation::sliding_sphere_rows().unwrap());
+}
+
+/// The 2D boundary element rows (Lame, Kirsch, cantilever, compound cylinder, rotating
+/// annulus, 2D Hertz, flat punch, Cattaneo-Mindlin, Nowell-Hills).
+#[test]
+fn bem2d_rows_pass() {
+    let rows = validation::bem2d_rows().unwrap();
+    assert_eq!(rows.len(), 15);
+    assert_rows(&rows);
 }

@@ -1055,6 +1055,8 @@ fn nearest_xi(e: &Element, p: [f64; 2]) -> f64 {
 
 pub mod contact;
 
+pub(crate) mod reference;
+
 #[cfg(test)]
 mod tests;
 

@@ -2,17 +2,16 @@
 //! weight, rotating annuli of one and two bonded materials, a block resting on a base in
 //! contact, and bad input.
 
-use std::f64::consts::FRAC_PI_2;
-
 use faer::linalg::solvers::Solve;
 
 use super::contact::{
     ContactOptions, ContactPair, ContactProblem, Control, LoadStep, RigidControl,
 };
+use super::reference::rotating_rings;
 use super::*;
 use crate::kernels::kelvin2d::PlaneCondition;
 use crate::material::ElasticMaterial;
-use crate::operators::bem2d::{BodyForce, LoopItem, Region, Segment};
+use crate::operators::bem2d::{BodyForce, Region, Segment};
 
 const G: f64 = 9.81;
 
@@ -213,60 +212,6 @@ fn rings_exact(a: f64, rings: &[(f64, Kelvin2d, f64)]) -> impl Fn(f64) -> [f64; 
             .unwrap_or(n - 1);
         state(&rings[i].1, rings[i].2, r, cd[i].0, cd[i].1)
     }
-}
-
-/// A quarter of concentric rings about `c` (symmetry rollers on the two straight edges),
-/// rotating about c. `rings[i] = (outer radius, material, density)`.
-fn rotating_rings(
-    plane: PlaneCondition,
-    c: [f64; 2],
-    a: f64,
-    rings: &[(f64, ElasticMaterial, f64)],
-    omega: f64,
-    n: usize,
-) -> (BemModel, BoundaryConditions) {
-    let mut regions = Vec::new();
-    let mut bcs = BoundaryConditions::new();
-    let mut r_in = a;
-    for (i, &(r_out, mat, rho)) in rings.iter().enumerate() {
-        let outer_name = if i + 1 == rings.len() {
-            "rim".to_string()
-        } else {
-            format!("bond{i}")
-        };
-        let inner = if i == 0 {
-            LoopItem::Segment(Segment::arc("bore", c, r_in, FRAC_PI_2, 0.0, 2 * n))
-        } else {
-            LoopItem::Shared(format!("bond{}", i - 1))
-        };
-        let (y0, x0) = (format!("y0_{i}"), format!("x0_{i}"));
-        regions.push(Region {
-            name: format!("ring{i}"),
-            material: mat,
-            loops: vec![vec![
-                LoopItem::Segment(Segment::line(
-                    &y0,
-                    [c[0] + r_in, c[1]],
-                    [c[0] + r_out, c[1]],
-                    n,
-                )),
-                LoopItem::Segment(Segment::arc(&outer_name, c, r_out, 0.0, FRAC_PI_2, 2 * n)),
-                LoopItem::Segment(Segment::line(
-                    &x0,
-                    [c[0], c[1] + r_out],
-                    [c[0], c[1] + r_in],
-                    n,
-                )),
-                inner,
-            ]],
-            body_forces: vec![BodyForce::centrifugal(rho, omega, c)],
-        });
-        bcs = bcs
-            .set(&y0, SegmentBc::roller_y())
-            .set(&x0, SegmentBc::roller_x());
-        r_in = r_out;
-    }
-    (BemModel::new(plane, regions), bcs)
 }
 
 /// Max errors of nodal u_r (relative to max u_r) and of interior sigma_r, sigma_theta

@@ -2735,5 +2735,7 @@ fn free_body(
     }))
 }
 
+pub(crate) mod reference;
+
 #[cfg(test)]
 mod tests;

@@ -1,5 +1,9 @@
 use std::f64::consts::FRAC_PI_2;
 
+use super::reference::{
+    self, beam_exact, compound_annulus, compound_exact, compound_materials, kirsch_stress,
+    lame_exact, BEAM_L, COMPOUND, KIRSCH_A, KIRSCH_S, LA, LB,
+};
 use super::*;
 use crate::kernels::kelvin2d::PlaneCondition;
 use crate::material::ElasticMaterial;
@@ -127,71 +131,14 @@ fn constant_stress_patch_test_is_exact() {
 
 // ---------------------------------------------------------------------------------------
 // Lame thick cylinder (BEM2D.md A1): a = 10 mm, b = 20 mm, E = 210 GPa, nu = 0.3,
-// p = 100 MPa, plane strain, quarter model with symmetry rollers.
-
-const LA: f64 = 0.010;
-const LB: f64 = 0.020;
-const LP: f64 = 100e6;
-
-fn lame_exact(r: f64) -> (f64, f64, f64) {
-    let (a2, b2) = (LA * LA, LB * LB);
-    let c = LP * a2 / (b2 - a2);
-    let nu = 0.3;
-    let e = 210e9;
-    let ur =
-        LP * a2 * r / (e * (b2 - a2)) * ((1.0 - nu - 2.0 * nu * nu) + b2 * (1.0 + nu) / (r * r));
-    (ur, c * (1.0 - b2 / (r * r)), c * (1.0 + b2 / (r * r)))
-}
+// p = 100 MPa, plane strain, quarter model with symmetry rollers (reference::lame).
 
 fn lame(n: usize) -> (BemSolution, usize) {
-    let model = BemModel::new(
-        PlaneCondition::Strain,
-        vec![Region::new(
-            "ring",
-            steel(),
-            vec![
-                Segment::line("y0", [LA, 0.0], [LB, 0.0], n),
-                Segment::arc("outer", [0.0, 0.0], LB, 0.0, FRAC_PI_2, 2 * n),
-                Segment::line("x0", [0.0, LB], [0.0, LA], n),
-                Segment::arc("inner", [0.0, 0.0], LA, FRAC_PI_2, 0.0, 2 * n),
-            ],
-        )],
-    );
-    let problem = BemProblem::new(&model).unwrap();
-    let bcs = BoundaryConditions::new()
-        .set("y0", SegmentBc::roller_y())
-        .set("x0", SegmentBc::roller_x())
-        .set("inner", SegmentBc::Pressure(Profile::Uniform(LP)));
-    (problem.solve(&bcs).unwrap(), problem.dof())
+    reference::lame(n).unwrap()
 }
 
-/// Errors of the Lame solution: max relative nodal u_r error on the inner and outer arcs,
-/// max relative hoop-stress error at the inner-arc nodes, and the interior hoop stress at
-/// r = 15 mm.
 fn lame_errors(sol: &BemSolution) -> (f64, f64, f64) {
-    let mut eu = 0.0_f64;
-    let mut es = 0.0_f64;
-    for seg in ["inner", "outer"] {
-        for res in sol.segment_results(seg).unwrap() {
-            let p = res.position;
-            let r = p[0].hypot(p[1]);
-            let (ur, _, st) = lame_exact(r);
-            let u = (res.displacement[0] * p[0] + res.displacement[1] * p[1]) / r;
-            eu = eu.max((u - ur).abs() / lame_exact(LA).0);
-            if seg == "inner" {
-                let c = p[0] / r;
-                let s = p[1] / r;
-                let hoop =
-                    res.stress.xx * s * s + res.stress.yy * c * c - 2.0 * res.stress.xy * s * c;
-                es = es.max((hoop - st).abs() / lame_exact(LA).2);
-            }
-        }
-    }
-    let q = [0.015 * 0.6, 0.015 * 0.8];
-    let s = sol.stress_at(q).unwrap();
-    let hoop = s.xx * 0.64 + s.yy * 0.36 - 2.0 * s.xy * 0.48;
-    let ei = (hoop - lame_exact(0.015).2).abs() / lame_exact(LA).2;
-    (eu, es, ei)
+    reference::lame_errors(sol).unwrap()
 }
 
 /// Lame cylinder: displacement and hoop stress converge with refinement. Quadratic
@@ -279,58 +226,14 @@ fn lame_stress_at_the_corners() {
 
 // ---------------------------------------------------------------------------------------
 // Kirsch: infinite plate with a hole under remote sigma_xx = s, exact tractions on the
-// outer edges of a quarter model (BEM2D.md A2), plane stress, a = 1, L = 4.
+// outer edges of a quarter model (BEM2D.md A2), plane stress, a = 1, L = 4
+// (reference::kirsch).
 
-fn kirsch_stress(p: [f64; 2], s: f64, a: f64) -> [f64; 3] {
-    let r = p[0].hypot(p[1]);
-    let t = p[1].atan2(p[0]);
-    let (q2, q4) = (a * a / (r * r), a.powi(4) / r.powi(4));
-    let (c2, s2) = ((2.0 * t).cos(), (2.0 * t).sin());
-    let srr = s / 2.0 * (1.0 - q2) + s / 2.0 * (1.0 + 3.0 * q4 - 4.0 * q2) * c2;
-    let stt = s / 2.0 * (1.0 + q2) - s / 2.0 * (1.0 + 3.0 * q4) * c2;
-    let srt = -s / 2.0 * (1.0 - 3.0 * q4 + 2.0 * q2) * s2;
-    let (c, sn) = (t.cos(), t.sin());
-    [
-        srr * c * c + stt * sn * sn - 2.0 * srt * sn * c,
-        srr * sn * sn + stt * c * c + 2.0 * srt * sn * c,
-        (srr - stt) * sn * c + srt * (c * c - sn * sn),
-    ]
-}
-
+/// Max error of the hoop stress at the hole nodes against sigma_tt = s (1 - 2 cos 2 theta)
+/// (K_t = 3 at 90 deg) and of the interior sigma_xx at (0, 1.05 a), relative to 3 s.
 fn kirsch(n: usize) -> f64 {
-    let (a, l, s) = (1.0, 4.0, 1e6);
-    let model = BemModel::new(
-        PlaneCondition::Stress,
-        vec![Region::new(
-            "plate",
-            ElasticMaterial::new(1e5, 0.3).unwrap(),
-            vec![
-                Segment::line("y0", [a, 0.0], [l, 0.0], 2 * n).graded(Grading::Start(3.0)),
-                Segment::line("right", [l, 0.0], [l, l], 2 * n),
-                Segment::line("top", [l, l], [0.0, l], 2 * n),
-                Segment::line("x0", [0.0, l], [0.0, a], 2 * n).graded(Grading::End(3.0)),
-                Segment::arc("hole", [0.0, 0.0], a, FRAC_PI_2, 0.0, 3 * n),
-            ],
-        )],
-    );
-    let problem = BemProblem::new(&model).unwrap();
-    let t = |nx: f64, ny: f64, d: usize| {
-        Profile::function(move |p| {
-            let st = kirsch_stress(p, s, a);
-            if d == 0 {
-                st[0] * nx + st[2] * ny
-            } else {
-                st[2] * nx + st[1] * ny
-            }
-        })
-    };
-    let bcs = BoundaryConditions::new()
-        .set("y0", SegmentBc::roller_y())
-        .set("x0", SegmentBc::roller_x())
-        .set("right", SegmentBc::traction(t(1.0, 0.0, 0), t(1.0, 0.0, 1)))
-        .set("top", SegmentBc::traction(t(0.0, 1.0, 0), t(0.0, 1.0, 1)));
-    let sol = problem.solve(&bcs).unwrap();
-    // Hoop stress on the hole against sigma_tt = s (1 - 2 cos 2 theta); K_t = 3 at 90 deg.
+    let (a, s) = (KIRSCH_A, KIRSCH_S);
+    let sol = reference::kirsch(n).unwrap();
     let mut err = 0.0_f64;
     for res in sol.segment_results("hole").unwrap() {
         let p = res.position;
@@ -360,58 +263,15 @@ fn kirsch_plate_converges() {
 
 // ---------------------------------------------------------------------------------------
 // Cantilever with end shear (BEM2D.md A3): L = 48, D = 12, E = 3e7, nu = 0.3, P = 1000,
-// plane stress, exact displacements on the support x = 0 and the parabolic shear at x = L.
-
-fn beam_exact(p: [f64; 2]) -> [f64; 2] {
-    let (l, d, e, nu, pl) = (48.0, 12.0, 3e7, 0.3, 1000.0);
-    let i = d * d * d / 12.0;
-    let (x, y) = (p[0], p[1]);
-    [
-        -pl * y / (6.0 * e * i) * ((6.0 * l - 3.0 * x) * x + (2.0 + nu) * (y * y - d * d / 4.0)),
-        pl / (6.0 * e * i)
-            * (3.0 * nu * y * y * (l - x)
-                + (4.0 + 5.0 * nu) * d * d * x / 4.0
-                + (3.0 * l - x) * x * x),
-    ]
-}
+// plane stress, exact displacements on the support x = 0 and the parabolic shear at x = L
+// (reference::cantilever).
 
 fn cantilever(n: usize) -> f64 {
-    let (l, d) = (48.0, 12.0);
-    let i = d * d * d / 12.0;
-    let model = BemModel::new(
-        PlaneCondition::Stress,
-        vec![Region::new(
-            "beam",
-            ElasticMaterial::new(3e7, 0.3).unwrap(),
-            vec![
-                Segment::line("bottom", [0.0, -6.0], [l, -6.0], 4 * n),
-                Segment::line("tip", [l, -6.0], [l, 6.0], n),
-                Segment::line("top", [l, 6.0], [0.0, 6.0], 4 * n),
-                Segment::line("support", [0.0, 6.0], [0.0, -6.0], n),
-            ],
-        )],
-    );
-    let problem = BemProblem::new(&model).unwrap();
-    let bcs = BoundaryConditions::new()
-        .set(
-            "support",
-            SegmentBc::displacement(
-                Profile::function(|p| beam_exact(p)[0]),
-                Profile::function(|p| beam_exact(p)[1]),
-            ),
-        )
-        .set(
-            "tip",
-            SegmentBc::traction(
-                Profile::Uniform(0.0),
-                Profile::function(move |p| 1000.0 / (2.0 * i) * (d * d / 4.0 - p[1] * p[1])),
-            ),
-        );
-    let sol = problem.solve(&bcs).unwrap();
+    let sol = reference::cantilever(n).unwrap();
     // Tip deflection at (L, 0), against 8.9000e-3 (BEM2D.md A3).
-    let tip = sol.displacement_at([l, 0.0]).unwrap()[1];
-    assert!((beam_exact([l, 0.0])[1] - 8.9e-3).abs() < 1e-7);
-    (tip - beam_exact([l, 0.0])[1]).abs() / 8.9e-3
+    let tip = sol.displacement_at([BEAM_L, 0.0]).unwrap()[1];
+    assert!((beam_exact([BEAM_L, 0.0])[1] - 8.9e-3).abs() < 1e-7);
+    (tip - beam_exact([BEAM_L, 0.0])[1]).abs() / 8.9e-3
 }
 
 /// Cantilever: tip deflection converges (a smooth cubic field: order about 3 or better
@@ -429,87 +289,17 @@ fn cantilever_tip_deflection_converges() {
 
 // ---------------------------------------------------------------------------------------
 // Bonded two-material annulus (compound cylinder), plane strain: inner ring a..b of
-// material 1, outer ring b..c of material 2, internal pressure p.
-
-fn compound_exact(
-    m1: &ElasticMaterial,
-    m2: &ElasticMaterial,
-    a: f64,
-    b: f64,
-    c: f64,
-    p: f64,
-) -> impl Fn(f64) -> (f64, f64) {
-    // u = A r + B / r; sigma_r = 2 (lambda + mu) A - 2 mu B / r^2 in each ring.
-    let k = |m: &ElasticMaterial| {
-        (
-            2.0 * (m.lame_lambda() + m.shear_modulus()),
-            2.0 * m.shear_modulus(),
-        )
-    };
-    let ((k1, g1), (k2, g2)) = (k(m1), k(m2));
-    // Unknowns A1, B1, A2, B2.
-    let rows = [
-        [k1, -g1 / (a * a), 0.0, 0.0, -p],
-        [0.0, 0.0, k2, -g2 / (c * c), 0.0],
-        [k1, -g1 / (b * b), -k2, g2 / (b * b), 0.0],
-        [b, 1.0 / b, -b, -1.0 / b, 0.0],
-    ];
-    let a_mat = Mat::from_fn(4, 4, |i, j| rows[i][j]);
-    let rhs = Mat::from_fn(4, 1, |i, _| rows[i][4]);
-    let x = a_mat.partial_piv_lu().solve(&rhs);
-    let (a1, b1, a2, b2) = (x[(0, 0)], x[(1, 0)], x[(2, 0)], x[(3, 0)]);
-    move |r: f64| {
-        if r <= b {
-            (
-                a1 * r + b1 / r,
-                k1 * 0.5 * (a1 + b1 / (r * r)) * 0.0 + (k1 - g1) * a1 + g1 * (a1 + b1 / (r * r)),
-            )
-        } else {
-            (a2 * r + b2 / r, (k2 - g2) * a2 + g2 * (a2 + b2 / (r * r)))
-        }
-    }
-}
+// material 1, outer ring b..c of material 2, internal pressure p (reference::compound_annulus).
 
 /// Compound cylinder against its closed form (continuity of u_r and sigma_r at r = b):
 /// nodal u_r everywhere and the interior hoop stress in both rings, converging.
 #[test]
 fn bonded_two_material_annulus_matches_closed_form() {
-    let (a, b, c, p) = (0.01, 0.015, 0.02, 100e6);
-    let m1 = steel();
-    let m2 = ElasticMaterial::new(70e9, 0.33).unwrap();
+    let (a, b, c, p) = COMPOUND;
+    let (m1, m2) = compound_materials().unwrap();
     let exact = compound_exact(&m1, &m2, a, b, c, p);
     let run = |n: usize| {
-        let inner = Region {
-            name: "inner".into(),
-            material: m1,
-            loops: vec![vec![
-                LoopItem::Segment(Segment::line("y0_in", [a, 0.0], [b, 0.0], n)),
-                LoopItem::Segment(Segment::arc("bond", [0.0, 0.0], b, 0.0, FRAC_PI_2, 2 * n)),
-                LoopItem::Segment(Segment::line("x0_in", [0.0, b], [0.0, a], n)),
-                LoopItem::Segment(Segment::arc("bore", [0.0, 0.0], a, FRAC_PI_2, 0.0, 2 * n)),
-            ]],
-            body_forces: Vec::new(),
-        };
-        let outer = Region {
-            name: "outer".into(),
-            material: m2,
-            loops: vec![vec![
-                LoopItem::Segment(Segment::line("y0_out", [b, 0.0], [c, 0.0], n)),
-                LoopItem::Segment(Segment::arc("rim", [0.0, 0.0], c, 0.0, FRAC_PI_2, 2 * n)),
-                LoopItem::Segment(Segment::line("x0_out", [0.0, c], [0.0, b], n)),
-                LoopItem::Shared("bond".into()),
-            ]],
-            body_forces: Vec::new(),
-        };
-        let problem =
-            BemProblem::new(&BemModel::new(PlaneCondition::Strain, vec![inner, outer])).unwrap();
-        let bcs = BoundaryConditions::new()
-            .set("y0_in", SegmentBc::roller_y())
-            .set("y0_out", SegmentBc::roller_y())
-            .set("x0_in", SegmentBc::roller_x())
-            .set("x0_out", SegmentBc::roller_x())
-            .set("bore", SegmentBc::Pressure(Profile::Uniform(p)));
-        let sol = problem.solve(&bcs).unwrap();
+        let sol = compound_annulus(n).unwrap();
         let u_ref = exact(a).0;
         let mut eu = 0.0_f64;
         for (r, region) in sol.mesh().regions.iter().enumerate() {
