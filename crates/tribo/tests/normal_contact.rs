@@ -271,6 +271,6 @@ fn sliding_sphere_rows_pass() {
 #[test]
 fn bem2d_rows_pass() {
     let rows = validation::bem2d_rows().unwrap();
-    assert_eq!(rows.len(), 15);
+    assert_eq!(rows.len(), 18);
     assert_rows(&rows);
 }

@@ -28,7 +28,7 @@ use crate::solvers::bem2d::contact::reference::{
 use crate::solvers::bem2d::contact::{ContactOptions, GapRule};
 use crate::solvers::bem2d::reference::{
     beam_exact, cantilever, compound_annulus, compound_exact, compound_materials, kirsch, lame,
-    lame_errors, lame_exact, rotating_rings, steel, BEAM_L, COMPOUND, KIRSCH_A, KIRSCH_S, LA,
+    lame_errors, lame_exact, rotating_rings, steel, BEAM_L, COMPOUND, KIRSCH_A, KIRSCH_S, LA, LP,
 };
 use crate::solvers::bem2d::{BemProblem, Stress2d};
 
@@ -350,9 +350,81 @@ fn nowell_hills_rows() -> Result<Vec<ValidationRow>> {
     ])
 }
 
+/// The Lame ring imported from gmsh meshes (made by gmsh 4.15.2,
+/// `tests/fixtures/gmsh/make_fixtures.py`, compiled into the library): the second-order mesh
+/// against the outline model of the same nodes, and the convergence of first-order meshes
+/// (middle nodes interpolated, [`crate::operators::bem2d::gmsh`]).
+fn gmsh_rows() -> Result<Vec<ValidationRow>> {
+    use crate::operators::bem2d::{gmsh::import_msh, BemModel};
+    use crate::solvers::bem2d::{BoundaryConditions, Profile, SegmentBc};
+    let material = steel()?;
+    let solve = |text: &str| -> Result<crate::solvers::bem2d::BemSolution> {
+        let g = import_msh(text, &|_| Some(material))?;
+        let bcs = BoundaryConditions::new()
+            .set("y0", SegmentBc::roller_y())
+            .set("x0", SegmentBc::roller_x())
+            .set("inner", SegmentBc::Pressure(Profile::Uniform(LP)));
+        BemProblem::new(&BemModel::new(PlaneCondition::Strain, g.regions))?.solve(&bcs)
+    };
+    let mut rows = Vec::new();
+    // Second order: gmsh's nodes are tribo's to about 2e-9 relative (its numerical arc
+    // length), so the nodal displacements agree to about that (measured 1.6e-9).
+    let imported = solve(include_str!("../../tests/fixtures/gmsh/lame_o2_n4.msh"))?;
+    let (native, _) = lame(4)?;
+    let mut diff = 0.0_f64;
+    for seg in ["y0", "outer", "x0", "inner"] {
+        for (x, y) in imported
+            .segment_results(seg)?
+            .iter()
+            .zip(native.segment_results(seg)?.iter())
+        {
+            for k in 0..2 {
+                diff = diff.max((x.displacement[k] - y.displacement[k]).abs() / lame_exact(LA).0);
+            }
+        }
+    }
+    rows.push(ValidationRow::new(
+        "2D BEM, Lame ring from a second-order gmsh mesh (4.1), 8 elements per quarter arc",
+        "max nodal displacement difference to the outline model, / u_r(a)",
+        0.0,
+        diff,
+        ErrorMeasure::Bound,
+        1e-8,
+        "the outline model with the same nodes (its rows above)",
+    ));
+    // First order, 16 -> 32 elements per quarter arc: measured u_r errors 1.3e-4, 1.7e-5
+    // (order 2.95; straight chords would give order 1).
+    let (e8, _, _) = lame_errors(&solve(include_str!(
+        "../../tests/fixtures/gmsh/lame_o1_n8.msh"
+    ))?)?;
+    let (e16, _, _) = lame_errors(&solve(include_str!(
+        "../../tests/fixtures/gmsh/lame_o1_n16.msh"
+    ))?)?;
+    rows.push(ValidationRow::new(
+        "2D BEM, Lame ring from first-order gmsh meshes, 16 -> 32 elements per quarter arc",
+        "observed order of the nodal u_r error",
+        3.0,
+        observed_order(e8, e16, 2.0, 1.0),
+        ErrorMeasure::Order,
+        0.4,
+        "BEM2D.md A1; quadratic elements through interpolated middle nodes (order 3)",
+    ));
+    rows.push(ValidationRow::new(
+        "2D BEM, Lame ring from a first-order gmsh mesh, 32 elements per quarter arc",
+        "max nodal u_r error / u_r(a)",
+        0.0,
+        e16,
+        ErrorMeasure::Bound,
+        3.5e-5,
+        "BEM2D.md A1 (measured 1.7e-5)",
+    ));
+    Ok(rows)
+}
+
 /// Rows of the 2D boundary element solver.
 pub fn bem2d_rows() -> Result<Vec<ValidationRow>> {
     let mut rows = lame_rows()?;
+    rows.extend(gmsh_rows()?);
     rows.extend(kirsch_rows()?);
     rows.extend(cantilever_rows()?);
     rows.extend(compound_rows()?);
