@@ -138,9 +138,44 @@ pub fn field_map(
             }))
             .map_err(e)?;
     }
+    // Outlines of the regions (the triangulation's edges that one triangle holds), so that
+    // bodies at near-zero values (white on the diverging scale) stay visible.
+    let outline = RGBColor(60, 60, 60);
+    for p in parts {
+        chart
+            .draw_series(boundary_edges(p.triangles).into_iter().map(|(a, b)| {
+                PathElement::new(
+                    vec![
+                        (1e3 * p.nodes[a][0], 1e3 * p.nodes[a][1]),
+                        (1e3 * p.nodes[b][0], 1e3 * p.nodes[b][1]),
+                    ],
+                    outline.stroke_width(1),
+                )
+            }))
+            .map_err(e)?;
+    }
     colour_bar(&bar, c0, c1, &colour, unit)?;
     root.present().map_err(e)?;
     Ok(())
+}
+
+/// The edges of a triangulation that only one triangle holds (its boundary).
+fn boundary_edges(triangles: &[[usize; 3]]) -> Vec<(usize, usize)> {
+    let mut count: std::collections::HashMap<(usize, usize), usize> =
+        std::collections::HashMap::new();
+    for t in triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            *count.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let mut edges: Vec<(usize, usize)> = count
+        .into_iter()
+        .filter(|&(_, n)| n == 1)
+        .map(|(k, _)| k)
+        .collect();
+    edges.sort_unstable();
+    edges
 }
 
 fn colour_bar<DB: DrawingBackend>(
@@ -165,7 +200,7 @@ where
         .configure_mesh()
         .disable_x_mesh()
         .disable_x_axis()
-        .y_label_formatter(&|v| format!("{v:.3}"))
+        .y_label_formatter(&tick)
         .label_style((FAMILY, 13))
         .light_line_style(WHITE.mix(0.0))
         .draw()
