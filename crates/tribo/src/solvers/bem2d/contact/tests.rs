@@ -269,8 +269,8 @@ fn cattaneo_mindlin_partial_slip() {
 /// nu = 0.33, R = 10 mm, P = 135750 N/m, f = 0.3, Q = 38750 N/m and a bulk stress
 /// sigma = 100 MPa in the specimen: a = 0.20670 mm, p0 = 418.104 MPa, stick zone
 /// c = a sqrt(1 - Q/(f P)) = 0.22022 a shifted by e = a sigma / (4 f p0) = 0.1993 a. The
-/// specimen is a block 48 a x 48 a with rollers on its left end and bottom and the bulk
-/// traction on its right end; the pad is a half cylinder loaded through its guided face:
+/// specimen is a block 20 mm x 10 mm (97 a x 48 a) with rollers on its left end and bottom
+/// and the bulk traction on its right end; the pad is a half cylinder loaded through its guided face:
 /// step 1 P, step 2 P with Q and sigma together. 72 / 60 elements over |x| <= 1.5 a (a slave
 /// node every 0.021 a). Measured: c/a = 0.2225 (+1.0 %), e/a = +0.1988 (-0.3 %; the stick
 /// zone moves toward +x, the sense of Q and of the bulk tension here). Tolerances: 2 % of a
