@@ -623,3 +623,62 @@ fn bad_gmsh_input_is_refused_naming_the_item() {
         "{e}"
     );
 }
+
+/// A gmsh plate of quadrangles (20 x 10 mm, a body force per physical surface) resting under
+/// its own weight on an outline base, held only by contact and friction: the contact force
+/// between the gmsh segment and the outline segment equals the weight rho g A per unit
+/// thickness (the free plate's equilibrium, round-off).
+#[test]
+fn a_gmsh_plate_rests_on_an_outline_base_with_its_weight() {
+    let text = format!(
+        r#"
+kind = "bem2d"
+title = "gmsh plate on an outline base"
+[materials.steel]
+E = "210 GPa"
+nu = 0.3
+[[regions]]
+name = "base"
+material = "steel"
+start = ["-5 mm", "-10 mm"]
+outline = [
+  {{ name = "base_bottom", to = ["25 mm", "-10 mm"], elements = 6 }},
+  {{ name = "base_right", to = ["25 mm", 0], elements = 4 }},
+  {{ name = "base_top", to = ["-5 mm", 0], elements = 6 }},
+  {{ name = "base_left", to = ["-5 mm", "-10 mm"], elements = 4 }},
+]
+[[mesh]]
+file = "{}"
+materials = {{ plate = "steel" }}
+body_forces = {{ plate = {{ density = 7850, gravity = [0, -9.81] }} }}
+[[bc]]
+segment = "base_bottom"
+ux = 0
+uy = 0
+[[contact]]
+slave = "bottom"
+master = "base_top"
+friction = 0.3
+[field]
+size = "1 mm"
+"#,
+        gmsh_fixture("plate_quad9.msh")
+    );
+    let (o, out, _d) = run_case(&text, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let weight = 7850.0 * 9.81 * 2e-4;
+    let f = &s["steps"][0]["pairs"][0]["slave_force_n_per_m"];
+    let fy = f[1].as_f64().unwrap();
+    // Round-off of the free-body equation (1e-9 relative); a body force lost on the way from
+    // the case to the imported region would leave no contact at all.
+    assert!(
+        (fy / weight - 1.0).abs() < 1e-9,
+        "contact force {fy} N/m against the weight {weight} N/m"
+    );
+    assert!(f[0].as_f64().unwrap().abs() < 1e-9 * weight, "{f}");
+    // A body force on a surface the mesh's materials do not name is refused.
+    let bad = text.replace("body_forces = { plate", "body_forces = { slab");
+    let e = refused(&bad);
+    assert!(e.contains("mesh[0].body_forces.slab"), "{e}");
+}

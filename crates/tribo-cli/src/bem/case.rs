@@ -73,6 +73,7 @@ pub(super) struct RawLoop {
 pub(super) struct RawMesh {
     pub file: PathBuf,
     pub materials: BTreeMap<String, String>,
+    pub body_forces: Option<BTreeMap<String, toml::Table>>,
 }
 
 #[derive(Debug, Deserialize, Clone, Default)]
@@ -164,6 +165,8 @@ pub struct MeshSpec {
     pub path: PathBuf,
     /// Material name by physical surface name.
     pub materials: BTreeMap<String, String>,
+    /// Body forces by physical surface name (every region of the surface).
+    pub body_forces: BTreeMap<String, Vec<BodyForce>>,
 }
 
 /// A scalar distribution along a segment, before the geometry is known.
@@ -450,9 +453,22 @@ fn validate(
         } else {
             base_dir.join(&m.file)
         };
+        let mut forces = BTreeMap::new();
+        for (surface, t) in m.body_forces.iter().flatten() {
+            let field = format!("mesh[{i}].body_forces.{surface}");
+            if !m.materials.contains_key(surface) {
+                return Err(bad(
+                    field,
+                    "(given)",
+                    "names no surface of the mesh's materials (give the surface a material first)",
+                ));
+            }
+            forces.insert(surface.clone(), body_forces(&field, t)?);
+        }
         meshes.push(MeshSpec {
             path,
             materials: m.materials,
+            body_forces: forces,
         });
     }
     if regions.is_empty() && meshes.is_empty() {

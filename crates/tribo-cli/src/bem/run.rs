@@ -222,6 +222,14 @@ pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CliResult<BuiltModel
                 ));
             }
         }
+        let mut imported = imported;
+        for (surface, forces) in &m.body_forces {
+            for name in &imported.surfaces[surface] {
+                if let Some(r) = imported.regions.iter_mut().find(|r| &r.name == name) {
+                    r.body_forces.extend(forces.iter().copied());
+                }
+            }
+        }
         for (name, parts) in &imported.curves {
             curves
                 .entry(name.clone())
