@@ -605,7 +605,7 @@ pub fn traction_profiles(
     )
 }
 
-/// A colour map of a scalar on a plane section: `values[iv * nh + ih]` at (h[ih], v[iv])
+/// A colour map of a scalar on a plane section: `values[iv * nh + ih]` at (`h[ih]`, `v[iv]`)
 /// (m), axes in mm; with `depth_down` the vertical axis is the depth z, drawn downward.
 /// `quantity` = (name, divisor, unit): values are shown divided by the divisor, e.g.
 /// ("sigma_xx", 1e9, "GPa"), or ("psi", 1.0, "1") for a dimensionless field.

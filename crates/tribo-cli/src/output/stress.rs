@@ -119,7 +119,7 @@ pub fn nearest(v: &[f64], t: f64) -> usize {
         .unwrap_or(0)
 }
 
-/// The plane y = y[iy] of `values`: (x fastest, z rows).
+/// The plane `y = y[iy]` of `values`: (x fastest, z rows).
 pub fn plane_y(st: &Stress, values: &[f64], iy: usize) -> Vec<f64> {
     let g = &st.field.grid;
     let mut out = Vec::with_capacity(g.x.len() * g.z.len());
@@ -131,7 +131,7 @@ pub fn plane_y(st: &Stress, values: &[f64], iy: usize) -> Vec<f64> {
     out
 }
 
-/// The plane z = z[iz] of `values`: (x fastest, y rows).
+/// The plane `z = z[iz]` of `values`: (x fastest, y rows).
 pub fn plane_z(st: &Stress, values: &[f64], iz: usize) -> Vec<f64> {
     let g = &st.field.grid;
     let n = g.x.len() * g.y.len();

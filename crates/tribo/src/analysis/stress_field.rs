@@ -259,7 +259,7 @@ const KERNEL_PARITY: [[(Parity, Parity); 6]; 3] = {
 /// non-periodic FFT convolution (DC-FFT, [`SpectralConvolution`]). The tractions are
 /// transformed once; at each depth the kernels of the present traction directions (pressure,
 /// q_x, q_y) are evaluated once per offset on one quadrant (each component has a parity in x
-/// and in y, [`KERNEL_PARITY`]) and transformed, the products are summed over the directions
+/// and in y, `KERNEL_PARITY`) and transformed, the products are summed over the directions
 /// in the spectral domain, and each of the six components is transformed back once. The
 /// kernels are those of [`stress_field_direct`] with a graded far field
 /// ([`rectangle_stress_graded`]: beyond 96 half-diagonals a 2 x 2 Gauss rule, relative error

@@ -144,8 +144,8 @@ impl Kelvin2d {
     /// discontinuity in direction k at `p + r` on a surface of outward normal `n`
     /// (Brebbia & Dominguez sec. 5.6):
     /// `S_kij = mu / (2 pi (1 - nu) r^2) { 2 dr/dn [(1-2nu) delta_ij r,k + nu (delta_ik r,j +
-    /// delta_jk r,i) - 4 r,i r,j r,k] + 2 nu (n_i r,j r,k + n_j r,i r,k) + (1-2nu)(2 n_k r,i r,j
-    /// + n_j delta_ik + n_i delta_jk) - (1-4nu) n_k delta_ij }`. Indexed `[k][i][j]`.
+    /// delta_jk r,i) - 4 r,i r,j r,k] + 2 nu (n_i r,j r,k + n_j r,i r,k) + (1-2nu)(2 n_k r,i r,j +
+    /// n_j delta_ik + n_i delta_jk) - (1-4nu) n_k delta_ij }`. Indexed `[k][i][j]`.
     pub fn stress_from_displacement(&self, r: [f64; 2], n: [f64; 2]) -> [[[f64; 2]; 2]; 2] {
         let rr = r[0].hypot(r[1]);
         let d = [r[0] / rr, r[1] / rr];

@@ -4,7 +4,7 @@
 //! made of bonded homogeneous zones; contact pairs (4), (5), (8) between bodies are in
 //! [`contact`]).
 //!
-//! System. Each region r gives `H_r u_r = G_r t_r` (see [`crate::operators::bem2d::assemble`]).
+//! System. Each region r gives `H_r u_r = G_r t_r` (see [`crate::operators::bem2d::assemble()`]).
 //! At every node and direction either u or t is prescribed; on a bonded interface both
 //! sides share the displacement and the tractions are opposite (u_A = u_B, t_A + t_B = 0,
 //! (7)), and the owner side's u and t are both unknown. Moving the known columns to the right

@@ -59,7 +59,7 @@ fn eval(f: &mut impl FnMut(&[f64]) -> f64, x: &[f64], count: &mut usize) -> f64 
     }
 }
 
-/// Minimise `f` from `x0`; the initial simplex is x0 and x0 + steps[i] e_i.
+/// Minimise `f` from `x0`; the initial simplex is `x0` and `x0 + steps[i] e_i`.
 pub fn minimize(
     mut f: impl FnMut(&[f64]) -> f64,
     x0: &[f64],

@@ -5,7 +5,7 @@
 //! M = [xi(xi-1)/2, 1-xi^2, xi(xi+1)/2] on nodes xi = -1, 0, 1. Fields (u, t): the Lagrange
 //! polynomials N_k through the element's three functional nodes, which are the geometric nodes
 //! except at the two ends of every segment, where the end node moves to
-//! xi = +-[`DISCONTINUOUS_OFFSET`] (a discontinuous node; Brebbia & Dominguez sec. 5.8). So
+//! xi = +-[`DISCONTINUOUS_OFFSET`](super::geometry::DISCONTINUOUS_OFFSET) (a discontinuous node; Brebbia & Dominguez sec. 5.8). So
 //! u and t are continuous inside a segment, may jump between segments (corners, changes of
 //! boundary condition), and no collocation point sits on a corner.
 

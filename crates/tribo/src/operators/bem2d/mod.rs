@@ -4,7 +4,7 @@
 //! * [`gmsh`]: regions, named segments and bonded interfaces from a gmsh `.msh` mesh;
 //! * [`mesh`]: quadratic isoparametric elements with discontinuous nodes at segment ends,
 //!   built and validated from the model;
-//! * [`assemble`]: the H and G matrices of each region (rayon-parallel dense assembly);
+//! * [`assemble`](mod@assemble): the H and G matrices of each region (rayon-parallel dense assembly);
 //! * `integrate` (crate-internal): singular, near-singular and regular element integrals.
 //!
 //! The operators know meshes, not problems: boundary conditions, bonded interfaces and the
