@@ -134,6 +134,10 @@ pub struct DamageCriterion {
     pub psi: Vec<f64>,
     /// Accumulation over the load cycle and over N cycles, with `[damage.cycle]`.
     pub cycle: Option<(CycleDamage, CyclesDamage)>,
+    /// A rolling cycle whose static dangerous region reaches the field's edges across the
+    /// rolling direction (y): the stress that enters the window is taken as zero there, so
+    /// the accumulation depends on the window. The text says so.
+    pub window_note: Option<String>,
 }
 
 /// Volume damageability of a case with `[damage]`.
@@ -428,6 +432,29 @@ pub fn back_effect(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<
     }))
 }
 
+/// The note of a rolling cycle whose static dangerous region (psi >= 1) reaches the cells
+/// at the first or last y line of the field (psi >= 1 at a node of those cells): the field
+/// enters or leaves the window there, the stress outside the window is taken as zero
+/// (`RollingContact`), and the psi = 1 surface in those cells moves as soon as the field
+/// does.
+fn rolling_window_note(
+    grid: &tribo::analysis::stress_field::FieldGrid,
+    psi: &[f64],
+) -> Option<String> {
+    let (nx, ny, nz) = (grid.x.len(), grid.y.len(), grid.z.len());
+    let rows = [0, 1.min(ny - 1), ny.saturating_sub(2), ny - 1];
+    let edge = rows
+        .into_iter()
+        .any(|iy| (0..nz).any(|iz| (0..nx).any(|ix| psi[grid.index(ix, iy, iz)] >= 1.0)));
+    edge.then(|| {
+        "the dangerous region reaches the field's edge cells across the rolling direction \
+         (y): the rolling accumulation takes the contact stress outside the window as zero, \
+         so it depends on the window; widen [field] (extent or half_width) until psi < 1 \
+         there"
+            .to_string()
+    })
+}
+
 /// The tangential problem of a case with friction, for the normal solution's pressure.
 pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Tangential>> {
     let Some(fr) = &case.friction else {
@@ -710,6 +737,13 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
         };
         let psi = relative_damage(&limit, &st.field.stress, &st.material)?;
         let region = dangerous_region(&mesh, &psi, Execution::Parallel)?;
+        let window_note = match spec.cycle.as_ref().map(|c| &c.kind) {
+            Some(CycleKind::Rolling { .. }) => rolling_window_note(&st.field.grid, &psi),
+            _ => None,
+        };
+        if let (Some(note), false) = (&window_note, quiet) {
+            pb.suspend(|| eprintln!("note: {}: {note}", quantity.name()));
+        }
         let cycle = match &spec.cycle {
             None => None,
             Some(c) => {
@@ -781,6 +815,7 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
             source: label,
             psi,
             cycle,
+            window_note,
         });
     }
     let study = match &spec.study {

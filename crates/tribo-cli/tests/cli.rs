@@ -1200,6 +1200,60 @@ fn rotating_bending_accumulates_over_a_revolution() {
     assert!((ratio - 1e6).abs() < 1e-6, "{ratio}");
 }
 
+/// Rolling over the shaft (23), (24): the contact field moves along y through the body's
+/// points, two grid lines a step (exact interpolation). State 0 is the static field (its V
+/// equals the plain damage's); the dangerous set of state k is the static one shifted by
+/// v t_k and cut by the window, so V never grows over the pass; and once the field has moved
+/// by more than the window's width no contact stress is left (V = Psi = 0 exactly: no bulk
+/// stress here, and the stress entering the window is taken as zero).
+#[test]
+fn rolling_carries_the_contact_field_through_the_body() {
+    let paper = PAPER.replacen(
+        "load = 2000.0\n",
+        &format!("load = 2000.0\n{DAMAGE_BASE}"),
+        1,
+    );
+    // A window 1.6 mm wide in y, 8 steps of 0.2 mm; 1 m/s over 3.2 ms in 8 steps moves the
+    // field 0.4 mm a step, the whole window after 4 steps.
+    let case = format!(
+        "{paper}[field]\nn = [9, 9, 5]\nhalf_width = 8e-4\ndepth_m = 8e-4\n\
+         [damage]\nlimit_over_p0 = 0.186\n\
+         [damage.cycle]\nkind = \"rolling\"\nspeed = 1.0\nperiod = 3.2e-3\nsteps = 8\n"
+    );
+    let (o, out, _d) = run_case(&case, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let c = read_json(&out.join("summary.json"))["damage"]["criteria"][0].clone();
+    let f = |x: &serde_json::Value| x.as_f64().unwrap();
+    let static_volume = f(&c["volume"]);
+    assert!(static_volume > 0.0, "the case must have a dangerous volume");
+    let states = c["cycle"]["states"].as_array().unwrap();
+    assert_eq!(states.len(), 9);
+    assert!((f(&states[0]["volume"]) - static_volume).abs() <= 1e-12 * static_volume);
+    for k in 1..9 {
+        let (before, now) = (f(&states[k - 1]["volume"]), f(&states[k]["volume"]));
+        assert!(
+            now <= before * (1.0 + 1e-12),
+            "state {k}: V {before:e} -> {now:e}"
+        );
+    }
+    assert!(f(&states[2]["volume"]) < f(&states[0]["volume"]));
+    for k in 5..9 {
+        assert_eq!(f(&states[k]["volume"]), 0.0, "state {k}");
+        assert_eq!(f(&states[k]["damageability"]), 0.0, "state {k}");
+    }
+    // At 0.186 p0 half the window is dangerous, up to its y edges: the accumulation depends
+    // on the window, and the summary says so; at 0.45 p0 the dangerous region lies inside
+    // (under the contact, about 0.5 a deep) and there is no note.
+    let note = c["cycle_window_note"].as_str().unwrap_or_default();
+    assert!(note.contains("edge cells"), "{c}");
+    let inside = case.replace("limit_over_p0 = 0.186", "limit_over_p0 = 0.45");
+    let (o, out, _d) = run_case(&inside, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let c = read_json(&out.join("summary.json"))["damage"]["criteria"][0].clone();
+    assert!(f(&c["volume"]) > 0.0);
+    assert!(c.get("cycle_window_note").is_none(), "{c}");
+}
+
 #[test]
 fn bad_cycle_input_exits_2_and_names_the_field() {
     let paper = PAPER.replacen(

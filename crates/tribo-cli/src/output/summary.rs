@@ -873,6 +873,10 @@ pub struct DamageCriterionSummary {
     /// The same over N cycles.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cycles: Option<CyclesDamage>,
+    /// Rolling: set when the static dangerous region reaches the window's y edges (the
+    /// accumulation then depends on the window).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cycle_window_note: Option<String>,
 }
 
 /// One sigma_b / p0 of the Sec. 6 study: changes against the loading n, %.
@@ -948,6 +952,7 @@ impl DamageSummary {
                     damageability: r.damageability,
                     average: r.average,
                     cycle: c.cycle.as_ref().map(|c| c.0.clone()),
+                    cycle_window_note: c.window_note.clone(),
                     cycles: c.cycle.as_ref().map(|c| c.1),
                 }
             })
