@@ -1237,9 +1237,9 @@ fn rolling_carries_the_contact_field_through_the_body() {
         );
     }
     assert!(f(&states[2]["volume"]) < f(&states[0]["volume"]));
-    for k in 5..9 {
-        assert_eq!(f(&states[k]["volume"]), 0.0, "state {k}");
-        assert_eq!(f(&states[k]["damageability"]), 0.0, "state {k}");
+    for (k, state) in states.iter().enumerate().skip(5) {
+        assert_eq!(f(&state["volume"]), 0.0, "state {k}");
+        assert_eq!(f(&state["damageability"]), 0.0, "state {k}");
     }
     // At 0.186 p0 half the window is dangerous, up to its y edges: the accumulation depends
     // on the window, and the summary says so; at 0.45 p0 the dangerous region lies inside
