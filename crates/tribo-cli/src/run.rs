@@ -778,24 +778,7 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
                         // The contact field alone moves; the bulk stress stays.
                         let mut contact = st.field.clone();
                         if let Some((load, radius)) = &bulk {
-                            let negative = match *load {
-                                tribo::kernels::bulk::BulkLoad::TensionCompression { stress } => {
-                                    tribo::kernels::bulk::BulkLoad::TensionCompression {
-                                        stress: -stress,
-                                    }
-                                }
-                                tribo::kernels::bulk::BulkLoad::Bending { surface_stress } => {
-                                    tribo::kernels::bulk::BulkLoad::Bending {
-                                        surface_stress: -surface_stress,
-                                    }
-                                }
-                                tribo::kernels::bulk::BulkLoad::Torsion { surface_shear } => {
-                                    tribo::kernels::bulk::BulkLoad::Torsion {
-                                        surface_shear: -surface_shear,
-                                    }
-                                }
-                            };
-                            contact.add_bulk(&negative, *radius);
+                            contact.add_bulk(&load.scaled(-1.0), *radius);
                         }
                         let history = RollingContact::new(contact, speed, c.period, c.steps, bulk)?;
                         accumulate(&mesh, &history, &limit, &st.material, Execution::Parallel)?

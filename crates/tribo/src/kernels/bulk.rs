@@ -37,6 +37,22 @@ pub enum BulkLoad {
 }
 
 impl BulkLoad {
+    /// The same kind of load with its stress multiplied by `factor` (the fields are linear
+    /// in it: `scaled(-1.0)` removes the load from a field it was added to).
+    pub fn scaled(&self, factor: f64) -> Self {
+        match *self {
+            BulkLoad::TensionCompression { stress } => BulkLoad::TensionCompression {
+                stress: factor * stress,
+            },
+            BulkLoad::Bending { surface_stress } => BulkLoad::Bending {
+                surface_stress: factor * surface_stress,
+            },
+            BulkLoad::Torsion { surface_shear } => BulkLoad::Torsion {
+                surface_shear: factor * surface_shear,
+            },
+        }
+    }
+
     /// The axial stress at the shaft surface under the contact, Pa (0 for torsion).
     pub fn surface_stress(&self) -> f64 {
         match *self {
@@ -227,6 +243,38 @@ mod tests {
         assert!(e.to_string().starts_with("bulk.bending_force"), "{e}");
         let e = bending_moment(1.0, 0.0, BeamSupport::Cantilever, "bulk.").unwrap_err();
         assert!(e.to_string().starts_with("bulk.span"), "{e}");
+    }
+
+    /// `scaled` multiplies every stress of the load (the three kinds at two depths, and
+    /// -1 cancels the load exactly: x + (-x) = 0 in floating point).
+    #[test]
+    fn scaled_loads_scale_their_stresses() {
+        for load in [
+            BulkLoad::TensionCompression { stress: 2e8 },
+            BulkLoad::Bending {
+                surface_stress: -3e8,
+            },
+            BulkLoad::Torsion { surface_shear: 1e8 },
+        ] {
+            for depth in [0.0, 0.003] {
+                let (a, b) = (
+                    load.stress_at_depth(depth, 0.01),
+                    load.scaled(-2.5).stress_at_depth(depth, 0.01),
+                );
+                let c = load.scaled(-1.0).stress_at_depth(depth, 0.01);
+                for (x, y, z) in [
+                    (a.xx, b.xx, c.xx),
+                    (a.yy, b.yy, c.yy),
+                    (a.zz, b.zz, c.zz),
+                    (a.xy, b.xy, c.xy),
+                    (a.yz, b.yz, c.yz),
+                    (a.xz, b.xz, c.xz),
+                ] {
+                    assert!((y + 2.5 * x).abs() <= 1e-15 * x.abs(), "{load:?}: {x} {y}");
+                    assert_eq!(x + z, 0.0, "{load:?}");
+                }
+            }
+        }
     }
 
     #[test]
