@@ -682,3 +682,53 @@ size = "1 mm"
     let e = refused(&bad);
     assert!(e.contains("mesh[0].body_forces.slab"), "{e}");
 }
+
+/// The gmsh example `examples/gmsh/hertz-cylinder.toml`: a half cylinder meshed in gmsh
+/// (second order, graded to 5 um at the contact) pressed on a block, frictionless, against
+/// 2D Hertz (Johnson 1985 eq. 5.39-5.40): p0 = 2 P / (pi b), b = sqrt(4 P R / (pi E*)).
+#[test]
+fn the_gmsh_hertz_example_matches_hertz() {
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/gmsh/hertz-cylinder.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = tribo(
+        &[
+            "run",
+            case.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--quiet",
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let (e, nu, p, r): (f64, f64, f64, f64) = (210e9, 0.3, 1e5, 0.010);
+    let e_star = e / (2.0 * (1.0 - nu * nu));
+    let b = (4.0 * p * r / (std::f64::consts::PI * e_star)).sqrt();
+    let p0 = 2.0 * p / (std::f64::consts::PI * b);
+    let pair = &s["steps"][0]["pairs"][0];
+    let f = |v: &serde_json::Value| v.as_f64().unwrap();
+    // Measured -0.024 %; the native cylinder-on-block test reaches 0.02 % too.
+    let pmax = f(&pair["max_pressure"]["value"]);
+    assert!(
+        (pmax / p0 - 1.0).abs() < 5e-3,
+        "p_max {pmax:e} against p0 {p0:e}"
+    );
+    // The outermost slave nodes in contact lie within one element (about 5.5 um at the
+    // contact) inside the Hertz edge: measured 103.3 um against b = 105.0 um.
+    for x in pair["contact_x_range_m"].as_array().unwrap() {
+        let d = b - f(x).abs();
+        assert!(
+            (0.0..6e-6).contains(&d),
+            "contact edge {} against b = {b:e}",
+            f(x)
+        );
+    }
+    // The contact force balances the load on the guided face to the discretization's
+    // accuracy (measured 1.4e-4; the face and the contact are integrated separately).
+    let fy = f(&pair["slave_force_n_per_m"][1]);
+    assert!((fy / p - 1.0).abs() < 1e-3, "contact force {fy}");
+    assert_eq!(f(&pair["max_abs_shear"]["value"]), 0.0, "frictionless");
+    assert_eq!(s["meshes"][0]["order"], 2);
+}
