@@ -730,5 +730,9 @@ fn the_gmsh_hertz_example_matches_hertz() {
     let fy = f(&pair["slave_force_n_per_m"][1]);
     assert!((fy / p - 1.0).abs() < 1e-3, "contact force {fy}");
     assert_eq!(f(&pair["max_abs_shear"]["value"]), 0.0, "frictionless");
+    // Nothing sticks on a frictionless pair: every node in contact is free to slip.
+    assert_eq!(pair["friction"], 0.0);
+    assert_eq!(pair["stick_nodes"], 0);
+    assert_eq!(pair["slip_nodes"], pair["nodes_in_contact"]);
     assert_eq!(s["meshes"][0]["order"], 2);
 }

@@ -63,11 +63,14 @@ pub struct PairSummary {
     pub slave: String,
     /// Master segment.
     pub master: String,
+    /// Coulomb friction coefficient of the pair (0: frictionless).
+    pub friction: f64,
     /// Slave nodes in contact (stick + slip).
     pub nodes_in_contact: usize,
-    /// Slave nodes sticking.
+    /// Slave nodes sticking (none on a frictionless pair).
     pub stick_nodes: usize,
-    /// Slave nodes slipping.
+    /// Slave nodes slipping (every node in contact on a frictionless pair: nothing holds it
+    /// tangentially).
     pub slip_nodes: usize,
     /// Length in contact (tributary lengths of the nodes in contact), m.
     pub contact_length_m: f64,
@@ -314,11 +317,12 @@ fn tributary(pair: &PairResult) -> Vec<f64> {
         .collect()
 }
 
-fn pair_summary(pair: &PairResult) -> PairSummary {
+fn pair_summary(pair: &PairResult, friction: f64) -> PairSummary {
     let trib = tributary(pair);
     let mut s = PairSummary {
         slave: pair.slave.clone(),
         master: pair.master.clone(),
+        friction,
         nodes_in_contact: 0,
         stick_nodes: 0,
         slip_nodes: 0,
@@ -343,7 +347,9 @@ fn pair_summary(pair: &PairResult) -> PairSummary {
                 None => [x, x],
                 Some([a, b]) => [a.min(x), b.max(x)],
             });
-            if n.state == ContactState::Stick {
+            // The library labels contact on a frictionless pair `Stick` (its tangential
+            // traction is fixed at zero); nothing sticks there.
+            if n.state == ContactState::Stick && friction > 0.0 {
                 s.stick_nodes += 1;
             } else {
                 s.slip_nodes += 1;
@@ -647,7 +653,18 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
             name: st.name.clone(),
             iterations: st.iterations,
             residual: st.residual,
-            pairs: st.pairs.iter().map(pair_summary).collect(),
+            pairs: st
+                .pairs
+                .iter()
+                .map(|p| {
+                    let friction = case
+                        .pairs
+                        .iter()
+                        .find(|c| c.slave == p.slave && c.master == p.master)
+                        .map_or(0.0, |c| c.friction);
+                    pair_summary(p, friction)
+                })
+                .collect(),
             free_bodies: st
                 .free_bodies
                 .iter()
@@ -1086,14 +1103,17 @@ impl BemSummary {
                 let range = p.contact_x_range_m.map_or("none".to_string(), |r| {
                     format!("x = {:.2}..{:.2} mm", 1e3 * r[0], 1e3 * r[1])
                 });
+                let nodes = if p.friction > 0.0 {
+                    format!("stick {} / slip {} nodes", p.stick_nodes, p.slip_nodes)
+                } else {
+                    format!("{} nodes, frictionless", p.nodes_in_contact)
+                };
                 let _ = writeln!(
                     s,
-                    "    {} on {}: contact {:.2} mm ({range}), stick {} / slip {} nodes, p_max {:.1} MPa at x = {:.2} mm, |q|max {:.1} MPa, force ({:.1}, {:.1}) kN/m",
+                    "    {} on {}: contact {:.2} mm ({range}), {nodes}, p_max {:.1} MPa at x = {:.2} mm, |q|max {:.1} MPa, force ({:.1}, {:.1}) kN/m",
                     p.slave,
                     p.master,
                     1e3 * p.contact_length_m,
-                    p.stick_nodes,
-                    p.slip_nodes,
                     p.max_pressure.value / 1e6,
                     1e3 * p.max_pressure.at_m[0],
                     p.max_abs_shear.value / 1e6,
