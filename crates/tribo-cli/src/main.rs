@@ -104,7 +104,11 @@ A 2D boundary element case (kind = \"bem2d\") writes instead: summary.json, inte
 and interfaces.png (contact pressure and shear along every pair, each step),
 fields_<step>.vtu (VTK unstructured grid: displacement, stresses, sigma_int, strains, psi),
 sigma_xx_<step>.png, sigma_int_<step>.png, and with [damage] psi_<quantity>.png,
-damage_sweep.csv/png, with [compare] compare.csv/png.
+damage_sweep.csv/png, with [compare] compare.csv/png. Its regions come from outlines of
+lines and arcs ([[regions]], see `tribo example clamp-knife-base`) or from gmsh meshes
+([[mesh]] file = \"part.msh\", materials = { SURFACE = \"MATERIAL\" }: ASCII .msh 2.2 or
+4.1, physical surfaces are regions, physical curves name the segments; `--dry-run` lists
+the names). Example with a mesh: crates/tribo-cli/examples/gmsh/hertz-cylinder.toml.
 
 A short summary goes to stdout (--json: the summary JSON instead); progress to stderr.
 Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3).")]
