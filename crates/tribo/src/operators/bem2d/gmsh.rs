@@ -654,10 +654,12 @@ fn build(mesh: &RawMesh, material: &dyn Fn(&str) -> Option<ElasticMaterial>) -> 
         .nodes
         .values()
         .fold(0.0_f64, |m, p| m.max(p[0].abs()).max(p[1].abs()));
+    // The off-plane node of the smallest tag (deterministic whatever the map's order).
     if let Some((tag, p)) = mesh
         .nodes
         .iter()
-        .find(|(_, p)| p[2].abs() > 1e-9 * extent.max(f64::MIN_POSITIVE))
+        .filter(|(_, p)| p[2].abs() > 1e-9 * extent.max(f64::MIN_POSITIVE))
+        .min_by_key(|(t, _)| **t)
     {
         return Err(err(
             format!("msh node {tag}"),
@@ -1007,7 +1009,13 @@ fn build(mesh: &RawMesh, material: &dyn Fn(&str) -> Option<ElasticMaterial>) -> 
                     } else {
                         // Shared: start where the owner's run ends (the reverse of its
                         // first edge ends the run here).
-                        let (s, _) = segment_of[&(lp[0].b, lp[0].a)];
+                        let &(s, _) = segment_of.get(&(lp[0].b, lp[0].a)).ok_or_else(|| {
+                            err(
+                                format!("region '{}'", p.name),
+                                format!("edge {}-{}", lp[0].a, lp[0].b),
+                                "the interface has no owner's segment (internal error)",
+                            )
+                        })?;
                         let first = &runs[s].edges[0];
                         lp.iter()
                             .position(|e| e.a == first.b && e.b == first.a)

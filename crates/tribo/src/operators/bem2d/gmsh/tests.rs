@@ -268,6 +268,50 @@ fn quadrangle_plate_in_uniform_tension_is_exact() {
     }
 }
 
+/// A plate with a fused circular inclusion: the bond is a closed interface without corners,
+/// one segment owned by the plate (its hole) and shared whole by the inclusion (its outer
+/// loop, started where the plate's segment ends). With one material on both sides the
+/// bonded pair is a homogeneous plate: uniform tension gives the applied stress inside both
+/// regions. Not to round-off as on straight boundaries: on the curved interface the traction
+/// sigma.n is not a polynomial in the element coordinate, so the quadratic interpolation of
+/// it errs by O(h^3) (measured 4.1e-6 of sigma with 13 elements around the 4 mm circle);
+/// a missing or mismatched bond would err by tens of percent.
+#[test]
+fn a_closed_interface_bonds_an_inclusion() {
+    let g = import("plate_with_inclusion.msh");
+    let names: Vec<&str> = g.regions.iter().map(|r| r.name.as_str()).collect();
+    assert_eq!(names, ["plate", "inclusion"]);
+    assert_eq!(g.curves["plate|inclusion"], ["plate|inclusion"]);
+    assert_eq!(g.regions[0].loops.len(), 2, "the plate has a hole");
+    assert_eq!(
+        g.regions[1].loops,
+        vec![vec![LoopItem::Shared("plate|inclusion".into())]]
+    );
+    let sigma = 40e6;
+    let bcs = BoundaryConditions::new()
+        .set("left", SegmentBc::roller_x())
+        .set("bottom", SegmentBc::roller_y())
+        .set(
+            "right",
+            SegmentBc::traction(Profile::Uniform(sigma), Profile::Uniform(0.0)),
+        );
+    let sol = solve(&model(&g), &bcs);
+    let mut worst = 0.0_f64;
+    for p in [
+        [0.010, 0.010],
+        [0.0115, 0.0085],
+        [0.003, 0.004],
+        [0.017, 0.016],
+    ] {
+        let s = sol.stress_at(p).unwrap();
+        worst = worst
+            .max((s.xx - sigma).abs())
+            .max(s.yy.abs())
+            .max(s.xy.abs());
+    }
+    assert!(worst < 1e-5 * sigma, "stress error {worst:e} Pa");
+}
+
 /// One physical curve around the plate is cut at the four corners into `edge.1` ...
 /// `edge.4`, each one straight side with its own discontinuous end nodes.
 #[test]
