@@ -22,7 +22,7 @@ use tribo::analysis::stress_field::{
 use tribo::geometry::initial_gap;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
 use tribo::solvers::back_effect::{back_effect_curve_observed, BackEffectPoint};
-use tribo::solvers::coupled::solve_coupled;
+use tribo::solvers::coupled::{solve_coupled_with, TangentialModel};
 use tribo::solvers::tangential::TangentialSolution;
 use tribo::solvers::tangential::{solve_tangential, TangentialParams, TangentialProblem};
 use tribo::solvers::tangential_2d::solve_tangential_2d;
@@ -505,18 +505,14 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
         ),
     );
     let start = Instant::now();
-    if dissimilar && fr.free_direction {
-        pb.finish_and_clear();
-        return Err(crate::error::CliError::field(
-            "contact.traction_direction",
-            "free",
-            "the free-direction partial-slip solver is not coupled to the normal problem \
-             yet; for dissimilar materials (Dundurs beta != 0) use \"parallel\"",
-        ));
-    }
     let (result, coupled) = if dissimilar {
         let p = &out.prepared;
-        match solve_coupled(
+        let model = if fr.free_direction {
+            TangentialModel::Free
+        } else {
+            TangentialModel::LoadParallel
+        };
+        match solve_coupled_with(
             &p.grid,
             &p.initial_gap,
             m1,
@@ -528,6 +524,7 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
             &params,
             COUPLING_TOLERANCE,
             COUPLING_MAX_PASSES,
+            model,
         ) {
             Ok(c) => (
                 Ok(c.tangential),

@@ -839,12 +839,26 @@ fn dissimilar_materials_are_coupled_by_alternation() {
     assert!(!stderr(&o).contains("note"));
     let o = tribo(&["run", "-", "--dry-run"], Some(&text));
     assert_eq!(o.status.code(), Some(0));
-    // The free-direction solver is not coupled: refused, naming the field, nothing written.
+    // The free-direction solver is coupled the same way (the dense check of the validate
+    // rows verifies it): the loads are kept, and the Poisson coupling turns the traction.
     let free = text.replace(
         "tangential_load = 10.0\n",
         "tangential_load = 10.0\ntraction_direction = \"free\"\n",
     );
-    assert_bad_input(&free, &[], "contact.traction_direction");
+    let (o, out, _d) = run_case(&free, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let t = &s["tangential"];
+    assert_eq!(t["traction_direction"], "free");
+    assert!(t["coupling"]
+        .as_str()
+        .unwrap()
+        .starts_with("alternation (Dundurs beta = "));
+    let q = &t["tangential_force"];
+    assert!((q[0].as_f64().unwrap() / 10.0 - 1.0).abs() < 1e-6, "{q}");
+    assert!(q[1].as_f64().unwrap().abs() < 1e-6 * 10.0, "{q}");
+    let load = s["contact"]["normal_load"].as_f64().unwrap();
+    assert!((load / 100.0 - 1.0).abs() < 1e-6, "F_N = {load}");
 }
 
 #[test]

@@ -257,7 +257,7 @@ fn damage_rows_pass() {
 #[test]
 fn coupled_rows_pass() {
     let rows = validation::coupled_rows().unwrap();
-    assert_eq!(rows.len(), 2);
+    assert_eq!(rows.len(), 4);
     assert_rows(&rows);
 }
 

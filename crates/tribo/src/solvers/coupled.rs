@@ -3,7 +3,11 @@
 //! pressure moves the surfaces tangentially (Johnson 1985 sec. 5.4). Solved by alternating
 //! the normal solver (with the gap changed by the current traction) and the tangential
 //! solver (with the tangential displacement of the current pressure) until both stop
-//! changing. For beta = 0 the coupling vanishes and one pass is exact.
+//! changing. For beta = 0 the coupling vanishes and one pass is exact. The tangential solver
+//! is the load-parallel one ([`crate::solvers::tangential`]) or the free-direction one
+//! ([`crate::solvers::tangential_2d`]), [`TangentialModel`]; both are checked against a dense
+//! projected Gauss-Seidel solution of the same discrete problem
+//! ([`crate::validation::coupled_dense_check`], [`crate::validation::coupled_free_dense_check`]).
 
 use serde::{Deserialize, Serialize};
 
@@ -20,6 +24,7 @@ use crate::solvers::tangential::{
     solve_tangential_with_offset, tangential_compliance_operator, TangentialLoading,
     TangentialParams, TangentialProblem, TangentialSolution,
 };
+use crate::solvers::tangential_2d::solve_tangential_2d_with_offset;
 
 /// Dundurs' second constant beta = [(1 - 2 nu1)/G1 - (1 - 2 nu2)/G2] /
 /// (2 [(1 - nu1)/G1 + (1 - nu2)/G2]) (Johnson 1985 eq. (5.4b)); 0 for equal materials.
@@ -74,9 +79,21 @@ pub struct CoupledSolution {
     pub beta: f64,
 }
 
+/// Which tangential problem the alternation solves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum TangentialModel {
+    /// The traction parallel to the load (Cattaneo-Mindlin's assumption,
+    /// [`crate::solvers::tangential`]).
+    LoadParallel,
+    /// The traction direction free (the full 2D problem,
+    /// [`crate::solvers::tangential_2d`]).
+    Free,
+}
+
 /// Solve the coupled normal-tangential problem by alternation (force control normal,
-/// partial slip or sliding tangential), to the relative change `tolerance` in at most
-/// `max_passes` passes.
+/// partial slip or sliding tangential, the traction parallel to the load), to the relative
+/// change `tolerance` in at most `max_passes` passes ([`solve_coupled_with`] with
+/// [`TangentialModel::LoadParallel`]).
 #[allow(clippy::too_many_arguments)]
 pub fn solve_coupled(
     grid: &SurfaceGrid,
@@ -91,6 +108,45 @@ pub fn solve_coupled(
     tolerance: f64,
     max_passes: usize,
 ) -> Result<CoupledSolution> {
+    solve_coupled_with(
+        grid,
+        initial_gap,
+        body1,
+        body2,
+        normal_loading,
+        friction,
+        tangential_loading,
+        normal_params,
+        tangential_params,
+        tolerance,
+        max_passes,
+        TangentialModel::LoadParallel,
+    )
+}
+
+/// Solve the coupled normal-tangential problem by alternation, with the tangential problem
+/// of `model`. Each pass solves the normal problem with the gap changed by the current
+/// traction, `h + K_x q_x + K_y q_y` ([`coupling_operator`] along x and y; Johnson 1985
+/// sec. 5.4, HALFSPACE.md 1.1), then the tangential problem with the tangential
+/// displacement of the pressure, `-(K_x * p, K_y * p)` (`K_qp = K_pq^T`, odd kernels),
+/// until the largest change of p (relative to p_max) and of q (relative to f p_max) is
+/// below `tolerance`. For the load-parallel model the offset along the load direction e is
+/// `e . offset`, and `K_x q_x + K_y q_y = K_e tau` for q = tau e.
+#[allow(clippy::too_many_arguments)]
+pub fn solve_coupled_with(
+    grid: &SurfaceGrid,
+    initial_gap: &[f64],
+    body1: &ElasticMaterial,
+    body2: &ElasticMaterial,
+    normal_loading: NormalLoading,
+    friction: f64,
+    tangential_loading: TangentialLoading,
+    normal_params: &NormalContactParams,
+    tangential_params: &TangentialParams,
+    tolerance: f64,
+    max_passes: usize,
+    model: TangentialModel,
+) -> Result<CoupledSolution> {
     if !(tolerance.is_finite() && tolerance > 0.0) || max_passes == 0 {
         return Err(Error::invalid(
             "coupling",
@@ -101,23 +157,37 @@ pub fn solve_coupled(
     let angle = match tangential_loading {
         TangentialLoading::Force { angle, .. } | TangentialLoading::Sliding { angle } => angle,
     };
+    let (sin, cos) = crate::solvers::tangential::direction(angle);
     let e_star = crate::material::composite_modulus(body1, body2);
     let normal_op = normal_compliance_operator(grid, e_star);
-    let tangential_op = tangential_compliance_operator(grid, body1, body2, angle);
-    let coupling = coupling_operator(grid, body1, body2, angle);
+    // The load-parallel solver's compliance along e (the free solver builds its own 2 x 2
+    // block operator).
+    let tangential_op = match model {
+        TangentialModel::LoadParallel => {
+            Some(tangential_compliance_operator(grid, body1, body2, angle))
+        }
+        TangentialModel::Free => None,
+    };
+    let coupling = [
+        coupling_operator(grid, body1, body2, 0.0),
+        coupling_operator(grid, body1, body2, std::f64::consts::FRAC_PI_2),
+    ];
     let uncoupled = coupling_coefficient(body1, body2) == 0.0;
     let mut workspace = normal_op.workspace();
     let n = grid.len();
     let mut gap = initial_gap.to_vec();
-    let mut tau = vec![0.0; n];
-    let mut offset = vec![0.0; n];
-    let mut previous: Option<(Vec<f64>, Vec<f64>)> = None;
+    let mut q = [vec![0.0; n], vec![0.0; n]];
+    let mut offset = [vec![0.0; n], vec![0.0; n]];
+    let mut along = vec![0.0; n];
+    let mut previous: Option<(Vec<f64>, [Vec<f64>; 2])> = None;
     let mut last_change = f64::INFINITY;
     for pass in 1..=max_passes {
-        // Normal problem with the gap changed by the current traction along e.
-        coupling.apply_into(&tau, &mut offset, &mut workspace);
+        // Normal problem with the gap changed by the current traction.
+        for c in 0..2 {
+            coupling[c].apply_into(&q[c], &mut offset[c], &mut workspace);
+        }
         for i in 0..n {
-            gap[i] = initial_gap[i] + offset[i];
+            gap[i] = initial_gap[i] + offset[0][i] + offset[1][i];
         }
         let normal = solve_normal_cg_with(
             &normal_op,
@@ -129,9 +199,11 @@ pub fn solve_coupled(
         )?;
         // Tangential problem with the tangential displacement of the pressure, K_qp p with
         // K_qp = K_pq^T; K_pq is odd in the offsets, so K_pq^T p = -(K_pq * p).
-        coupling.apply_into(&normal.pressure, &mut offset, &mut workspace);
-        for o in offset.iter_mut() {
-            *o = -*o;
+        for c in 0..2 {
+            coupling[c].apply_into(&normal.pressure, &mut offset[c], &mut workspace);
+            for o in offset[c].iter_mut() {
+                *o = -*o;
+            }
         }
         let problem = TangentialProblem {
             grid,
@@ -141,34 +213,43 @@ pub fn solve_coupled(
             body2: *body2,
             loading: tangential_loading,
         };
-        let tangential = solve_tangential_with_offset(
-            &tangential_op,
-            &mut workspace,
-            &problem,
-            tangential_params,
-            if uncoupled { None } else { Some(&offset) },
-        )?;
-        let (sin, cos) = crate::solvers::tangential::direction(angle);
-        for (t, (qx, qy)) in tau
-            .iter_mut()
-            .zip(tangential.traction_x.iter().zip(&tangential.traction_y))
-        {
-            *t = qx * cos + qy * sin;
-        }
+        let tangential = match &tangential_op {
+            Some(op) => {
+                for i in 0..n {
+                    along[i] = cos * offset[0][i] + sin * offset[1][i];
+                }
+                solve_tangential_with_offset(
+                    op,
+                    &mut workspace,
+                    &problem,
+                    tangential_params,
+                    if uncoupled { None } else { Some(&along) },
+                )?
+            }
+            None => solve_tangential_2d_with_offset(
+                &problem,
+                tangential_params,
+                if uncoupled {
+                    None
+                } else {
+                    Some([&offset[0], &offset[1]])
+                },
+            )?,
+        };
+        q[0].copy_from_slice(&tangential.traction_x);
+        q[1].copy_from_slice(&tangential.traction_y);
         let change = match &previous {
             None => f64::INFINITY,
-            Some((p_old, t_old)) => {
+            Some((p_old, q_old)) => {
                 let p_max = normal.max_pressure();
-                let dp = normal
-                    .pressure
-                    .iter()
-                    .zip(p_old)
-                    .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-                let dt = tau
-                    .iter()
-                    .zip(t_old)
-                    .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-                (dp / p_max).max(dt / (friction * p_max))
+                let largest = |a: &[f64], b: &[f64]| {
+                    a.iter()
+                        .zip(b)
+                        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+                };
+                let dp = largest(&normal.pressure, p_old);
+                let dq = largest(&q[0], &q_old[0]).max(largest(&q[1], &q_old[1]));
+                (dp / p_max).max(dq / (friction * p_max))
             }
         };
         if uncoupled || change <= tolerance {
@@ -181,7 +262,7 @@ pub fn solve_coupled(
             });
         }
         last_change = change;
-        previous = Some((normal.pressure.clone(), tau.clone()));
+        previous = Some((normal.pressure.clone(), q.clone()));
     }
     Err(Error::NotConverged {
         solver: "normal-tangential alternation",

@@ -126,6 +126,19 @@ pub fn solve_tangential_2d(
     problem: &TangentialProblem<'_>,
     params: &TangentialParams,
 ) -> Result<TangentialSolution> {
+    solve_tangential_2d_with_offset(problem, params, None)
+}
+
+/// [`solve_tangential_2d`] with a prescribed relative tangential displacement
+/// `offset = [o_x, o_y]` (m, grid layout) added to `C q`: the stick condition becomes
+/// `C q + offset = W` and the slip `W - C q - offset`. Used for the normal-tangential
+/// coupling of dissimilar materials ([`crate::solvers::coupled`]), where the pressure moves
+/// the surfaces tangentially. Full sliding ignores it (q = f p along the load is exact).
+pub fn solve_tangential_2d_with_offset(
+    problem: &TangentialProblem<'_>,
+    params: &TangentialParams,
+    offset: Option<[&[f64]; 2]>,
+) -> Result<TangentialSolution> {
     let (magnitude, angle) = match problem.loading {
         TangentialLoading::Sliding { .. } => return solve_tangential(problem, params),
         TangentialLoading::Force { magnitude, angle } => (magnitude, angle),
@@ -134,6 +147,17 @@ pub fn solve_tangential_2d(
     crate::solvers::tangential::validate_problem(problem, params)?;
     let grid = problem.grid;
     let n = grid.len();
+    if let Some(o) = offset {
+        for (c, part) in o.iter().enumerate() {
+            if part.len() != n || part.iter().any(|v| !v.is_finite()) {
+                return Err(Error::invalid(
+                    format!("offset[{c}]"),
+                    format!("{} values", part.len()),
+                    "must hold one finite value per element",
+                ));
+            }
+        }
+    }
     let area = grid.element_area();
     let bound: Vec<f64> = problem
         .pressure
@@ -171,6 +195,13 @@ pub fn solve_tangential_2d(
         {
             let [ux, uy] = &mut u;
             operator.apply_into((&q[0], &q[1]), (ux, uy), &mut scratch, &mut workspace);
+        }
+        if let Some(o) = offset {
+            for c in 0..2 {
+                for (ui, oi) in u[c].iter_mut().zip(o[c]) {
+                    *ui += oi;
+                }
+            }
         }
         let mut n_free = 0usize;
         shift = [0.0; 2];
