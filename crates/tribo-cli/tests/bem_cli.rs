@@ -330,6 +330,36 @@ fn the_clamp_knife_base_example_balances_and_shows_the_papers_effects() {
             .map(|b| b["body"].as_str().unwrap())
             .collect();
         assert_eq!(names, ["knife", "clamp"]);
+        // The tractions on all segments balance (no body forces): each body's boundary is
+        // in equilibrium, the free clamp's by its free-body equation (round-off), the base
+        // to the discretization (measured 1.1e-5 of the bolt force), and the supports carry
+        // the bolt and cutting loads: base_bottom's reaction is p_n w - p_b.
+        let forces = steps[k]["segment_forces"].as_array().unwrap();
+        let sum = |region: Option<&str>, d: usize| -> f64 {
+            forces
+                .iter()
+                .filter(|f| region.map_or(true, |r| f["region"] == r))
+                .map(|f| f["force_n_per_m"][d].as_f64().unwrap())
+                .sum()
+        };
+        for d in 0..2 {
+            assert!(
+                sum(None, d).abs() < 1e-4 * bolt,
+                "step {k}: net force {}",
+                sum(None, d)
+            );
+            assert!(sum(Some("clamp"), d).abs() < 1e-9 * bolt, "step {k}: clamp");
+        }
+        let base = forces
+            .iter()
+            .find(|f| f["segment"] == "base_bottom")
+            .unwrap();
+        assert_eq!(base["support"], true);
+        let fy = base["force_n_per_m"][1].as_f64().unwrap();
+        assert!(
+            (fy - (bolt - cut)).abs() < 1e-4 * bolt,
+            "step {k}: base reaction {fy}"
+        );
     }
     // Fig. 7b: the cutting load reduces the actual contact at both interfaces ...
     for pair in 0..2 {
@@ -537,6 +567,26 @@ fn a_gmsh_ring_gives_lames_stresses() {
     let at = &s["steps"][0]["regions"][0]["sigma_int_max"]["at_m"];
     let r = at[0].as_f64().unwrap().hypot(at[1].as_f64().unwrap());
     assert!((r - 0.010).abs() < 1e-6, "the largest intensity at r = {r}");
+    // The rollers' reactions: the hoop force across a section of the ring, the integral
+    // of sigma_t over [a, b] = p a (half the ring's equilibrium), carried by y0 as -y and by
+    // x0 as -x (measured 9e-6 at this mesh).
+    let forces = s["steps"][0]["segment_forces"].as_array().unwrap();
+    let force = |name: &str, d: usize| {
+        forces.iter().find(|f| f["segment"] == name).unwrap()["force_n_per_m"][d]
+            .as_f64()
+            .unwrap()
+    };
+    let pa = p * 0.010;
+    assert!(
+        (force("y0", 1) / pa + 1.0).abs() < 1e-4,
+        "{}",
+        force("y0", 1)
+    );
+    assert!(
+        (force("x0", 0) / pa + 1.0).abs() < 1e-4,
+        "{}",
+        force("x0", 0)
+    );
 }
 
 /// Two bonded rings from one gmsh file: a boundary condition on a physical curve that the

@@ -8,7 +8,7 @@ use serde::Serialize;
 use tribo::analysis::damage::DangerousRegion;
 use tribo::solvers::bem2d::contact::{ContactState, PairResult};
 
-use super::case::BemCase;
+use super::case::{BcKind, BemCase, ComponentSpec};
 use super::plot::{self, Line, MapPart, Scale};
 use super::run::{extremes, plane_name, BemOutcome, RegionField, Variant};
 use crate::error::{CliError, CliResult};
@@ -153,6 +153,25 @@ pub struct StepSummary {
     pub rigid: Vec<RigidSummary>,
     /// Field extremes per sampled region.
     pub regions: Vec<RegionExtremes>,
+    /// Resultant of the traction on every segment but the bonded interfaces (on a
+    /// displacement-held segment: the support's reaction on the body).
+    pub segment_forces: Vec<SegmentForce>,
+}
+
+/// The resultant of the traction on one segment in one step.
+#[derive(Debug, Clone, Serialize)]
+pub struct SegmentForce {
+    /// Segment.
+    pub segment: String,
+    /// Region it bounds.
+    pub region: String,
+    /// Force on the region, N per m of thickness.
+    pub force_n_per_m: [f64; 2],
+    /// Its moment about the origin, N m per m (counter-clockwise positive).
+    pub moment_about_origin_n: f64,
+    /// Whether a displacement is prescribed on it (then the force is the support's
+    /// reaction).
+    pub support: bool,
 }
 
 /// A dangerous region.
@@ -405,6 +424,27 @@ pub fn file_name(name: &str) -> String {
         .collect()
 }
 
+/// [`SegmentForce`] of every segment that is not a bonded interface.
+fn segment_forces(
+    sol: &tribo::solvers::bem2d::BemSolution,
+    supports: &std::collections::BTreeSet<String>,
+) -> CliResult<Vec<SegmentForce>> {
+    let mesh = sol.mesh();
+    let mut out = Vec::new();
+    for seg in mesh.segments.iter().filter(|s| s.partner.is_none()) {
+        let (force, moment) = sol.segment_resultant(&seg.name, [0.0, 0.0])?;
+        finite_check("segment forces", force.into_iter().chain([moment]))?;
+        out.push(SegmentForce {
+            segment: seg.name.clone(),
+            region: mesh.regions[seg.owner].name.clone(),
+            force_n_per_m: force,
+            moment_about_origin_n: moment,
+            support: supports.contains(&seg.name),
+        });
+    }
+    Ok(out)
+}
+
 fn interfaces_csv(v: &Variant) -> String {
     let mut s =
         String::from("step,slave,master,x_m,y_m,s_m,pressure_Pa,shear_Pa,gap_m,slip_m,state\n");
@@ -646,6 +686,27 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
     })?;
     let v = &out.main;
     let mut outputs = Vec::new();
+    // Segments with a prescribed displacement (a gmsh boundary name stands for its parts).
+    let mut supports = std::collections::BTreeSet::new();
+    for b in &case.bcs {
+        let held = match &b.kind {
+            BcKind::Components(x, y) => [x, y]
+                .iter()
+                .any(|c| matches!(c, ComponentSpec::Displacement(_))),
+            BcKind::Pressure(_) => false,
+        };
+        if held {
+            let parts = v.meshes.iter().find_map(|m| m.curves.get(&b.segment));
+            match parts {
+                Some(parts) if v.mesh.segment_index(&b.segment).is_none() => {
+                    supports.extend(parts.iter().cloned())
+                }
+                _ => {
+                    supports.insert(b.segment.clone());
+                }
+            }
+        }
+    }
     // Steps.
     let mut steps = Vec::new();
     for (k, st) in v.steps.iter().enumerate() {
@@ -685,6 +746,7 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
                 })
                 .collect(),
             regions: v.fields.iter().map(|f| region_extremes(f, k)).collect(),
+            segment_forces: segment_forces(&st.solution, &supports)?,
         });
     }
     for st in &v.steps {
@@ -1120,6 +1182,22 @@ impl BemSummary {
                     p.slave_force_n_per_m[0] / 1e3,
                     p.slave_force_n_per_m[1] / 1e3
                 );
+            }
+            let reactions: Vec<String> = st
+                .segment_forces
+                .iter()
+                .filter(|f| f.support)
+                .map(|f| {
+                    format!(
+                        "{} ({:.3}, {:.3})",
+                        f.segment,
+                        f.force_n_per_m[0] / 1e3,
+                        f.force_n_per_m[1] / 1e3
+                    )
+                })
+                .collect();
+            if !reactions.is_empty() {
+                let _ = writeln!(s, "    reactions, kN/m: {}", reactions.join(", "));
             }
             for r in &st.regions {
                 let _ = writeln!(
