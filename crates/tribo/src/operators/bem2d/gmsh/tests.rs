@@ -232,6 +232,29 @@ fn bonded_rings_from_gmsh_match_the_compound_cylinder() {
     assert!(imported < 1e-3, "{imported:e}");
 }
 
+/// A model with the sides "left" (roller in x), "bottom" (roller in y) and "right" (traction
+/// sigma along x) in uniform tension: the solution and the largest error of the interior
+/// stress against (sigma, 0, 0) at `points`.
+fn uniform_tension(g: &GmshImport, sigma: f64, points: &[[f64; 2]]) -> (BemSolution, f64) {
+    let bcs = BoundaryConditions::new()
+        .set("left", SegmentBc::roller_x())
+        .set("bottom", SegmentBc::roller_y())
+        .set(
+            "right",
+            SegmentBc::traction(Profile::Uniform(sigma), Profile::Uniform(0.0)),
+        );
+    let sol = solve(&model(g), &bcs);
+    let mut worst = 0.0_f64;
+    for &p in points {
+        let s = sol.stress_at(p).unwrap();
+        worst = worst
+            .max((s.xx - sigma).abs())
+            .max(s.yy.abs())
+            .max(s.xy.abs());
+    }
+    (sol, worst)
+}
+
 /// A plate of 9-node quadrangles in uniform tension: the linear displacement field is
 /// reproduced exactly (patch test), so the interior stress is the applied one to the
 /// quadrature's accuracy.
@@ -240,22 +263,11 @@ fn quadrangle_plate_in_uniform_tension_is_exact() {
     let g = import("plate_quad9.msh");
     assert_eq!(g.order, 2);
     let sigma = 50e6;
-    let bcs = BoundaryConditions::new()
-        .set("left", SegmentBc::roller_x())
-        .set("bottom", SegmentBc::roller_y())
-        .set(
-            "right",
-            SegmentBc::traction(Profile::Uniform(sigma), Profile::Uniform(0.0)),
-        );
-    let sol = solve(&model(&g), &bcs);
-    let mut worst = 0.0_f64;
-    for p in [[0.010, 0.005], [0.001, 0.009], [0.019, 0.0005]] {
-        let s = sol.stress_at(p).unwrap();
-        worst = worst
-            .max((s.xx - sigma).abs())
-            .max(s.yy.abs())
-            .max(s.xy.abs());
-    }
+    let (sol, worst) = uniform_tension(
+        &g,
+        sigma,
+        &[[0.010, 0.005], [0.001, 0.009], [0.019, 0.0005]],
+    );
     // The constant-stress patch test of the outline model reaches 1e-9 relative (quadrature);
     // 1e-8 leaves margin.
     assert!(worst < 1e-8 * sigma, "stress error {worst:e} Pa");
@@ -288,27 +300,16 @@ fn a_closed_interface_bonds_an_inclusion() {
         vec![vec![LoopItem::Shared("plate|inclusion".into())]]
     );
     let sigma = 40e6;
-    let bcs = BoundaryConditions::new()
-        .set("left", SegmentBc::roller_x())
-        .set("bottom", SegmentBc::roller_y())
-        .set(
-            "right",
-            SegmentBc::traction(Profile::Uniform(sigma), Profile::Uniform(0.0)),
-        );
-    let sol = solve(&model(&g), &bcs);
-    let mut worst = 0.0_f64;
-    for p in [
-        [0.010, 0.010],
-        [0.0115, 0.0085],
-        [0.003, 0.004],
-        [0.017, 0.016],
-    ] {
-        let s = sol.stress_at(p).unwrap();
-        worst = worst
-            .max((s.xx - sigma).abs())
-            .max(s.yy.abs())
-            .max(s.xy.abs());
-    }
+    let (_, worst) = uniform_tension(
+        &g,
+        sigma,
+        &[
+            [0.010, 0.010],
+            [0.0115, 0.0085],
+            [0.003, 0.004],
+            [0.017, 0.016],
+        ],
+    );
     assert!(worst < 1e-5 * sigma, "stress error {worst:e} Pa");
 }
 
