@@ -660,6 +660,12 @@ fn bad_gmsh_input_is_refused_naming_the_item() {
         "{ring}\n[damage]\nregion = \"knife\"\nlimit = \"100 MPa\"\n"
     ));
     assert!(e.contains("damage.region") && e.contains("ring"), "{e}");
+    // A corner angle out of range.
+    let e = refused(&ring.replace(
+        "materials = { ring = \"steel\" }",
+        "materials = { ring = \"steel\" }\ncorner_angle_deg = 200",
+    ));
+    assert!(e.contains("mesh[0].corner_angle_deg"), "{e}");
     // A contact pair on a curve that the import cut into parts.
     let compound = ring
         .replace("lame_o2_n4.msh", "compound_o2_n4.msh")

@@ -74,6 +74,7 @@ pub(super) struct RawMesh {
     pub file: PathBuf,
     pub materials: BTreeMap<String, String>,
     pub body_forces: Option<BTreeMap<String, toml::Table>>,
+    pub corner_angle_deg: Option<Value>,
 }
 
 #[derive(Debug, Deserialize, Clone, Default)]
@@ -167,6 +168,8 @@ pub struct MeshSpec {
     pub materials: BTreeMap<String, String>,
     /// Body forces by physical surface name (every region of the surface).
     pub body_forces: BTreeMap<String, Vec<BodyForce>>,
+    /// The turn (degrees) above which a boundary has a corner (segments are cut there).
+    pub corner_angle_deg: f64,
 }
 
 /// A scalar distribution along a segment, before the geometry is known.
@@ -465,10 +468,26 @@ fn validate(
             }
             forces.insert(surface.clone(), body_forces(&field, t)?);
         }
+        let corner_angle_deg = match &m.corner_angle_deg {
+            None => tribo::operators::bem2d::gmsh::CORNER_ANGLE_DEG,
+            Some(v) => {
+                let a = number(&format!("mesh[{i}].corner_angle_deg"), v)?;
+                if !(a.is_finite() && a > 0.0 && a < 180.0) {
+                    return Err(bad(
+                        format!("mesh[{i}].corner_angle_deg"),
+                        show(v),
+                        "must be in (0, 180) degrees: the turn above which a boundary has a \
+                         corner (its segment is cut there)",
+                    ));
+                }
+                a
+            }
+        };
         meshes.push(MeshSpec {
             path,
             materials: m.materials,
             body_forces: forces,
+            corner_angle_deg,
         });
     }
     if regions.is_empty() && meshes.is_empty() {

@@ -202,7 +202,10 @@ pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CliResult<BuiltModel
         let lookup = |surface: &str| -> Option<ElasticMaterial> {
             m.materials.get(surface).map(|name| material(surface, name))
         };
-        let imported = gmsh::import_msh(&text, &lookup)
+        let options = gmsh::GmshOptions {
+            corner_angle_deg: m.corner_angle_deg,
+        };
+        let imported = gmsh::import_msh_with(&text, &lookup, &options)
             .map_err(|e| CliError::field(field.clone(), m.path.display(), format!("{e}")))?;
         for surface in m.materials.keys() {
             if !imported.surfaces.contains_key(surface) {

@@ -17,7 +17,8 @@
 //!   `REGION.boundary` (outer edges) or `REGION_A|REGION_B` (between two regions);
 //! * **segments** are the maximal runs of boundary edges with one name and one
 //!   neighbourhood (the same region or pair of regions), cut at **corners** where the
-//!   boundary turns by more than [`CORNER_ANGLE_DEG`] degrees, so that every corner gets the
+//!   boundary turns by more than [`GmshOptions::corner_angle_deg`] (default
+//!   [`CORNER_ANGLE_DEG`]) degrees, so that every corner gets the
 //!   discontinuous end nodes it needs (tractions jump there). A name that ends up on several
 //!   runs is split into `NAME.1`, `NAME.2`, ... ([`GmshImport::curves`] lists the parts);
 //! * **bonded interfaces** (the zonal homogeneity of the paper's (7)): where two regions'
@@ -42,6 +43,22 @@ use crate::material::ElasticMaterial;
 /// A boundary that turns by more than this angle (degrees) between two mesh edges is a
 /// corner: segments are cut there.
 pub const CORNER_ANGLE_DEG: f64 = 30.0;
+
+/// Options of the import.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GmshOptions {
+    /// The turn between two boundary edges (degrees, in (0, 180)) above which the boundary
+    /// has a corner and its segment is cut.
+    pub corner_angle_deg: f64,
+}
+
+impl Default for GmshOptions {
+    fn default() -> Self {
+        Self {
+            corner_angle_deg: CORNER_ANGLE_DEG,
+        }
+    }
+}
 
 /// The regions of a gmsh mesh and how its names map onto them.
 #[derive(Debug, Clone, PartialEq)]
@@ -644,11 +661,32 @@ pub fn import_msh(
     text: &str,
     material: &dyn Fn(&str) -> Option<ElasticMaterial>,
 ) -> Result<GmshImport> {
-    let mesh = read(text)?;
-    build(&mesh, material)
+    import_msh_with(text, material, &GmshOptions::default())
 }
 
-fn build(mesh: &RawMesh, material: &dyn Fn(&str) -> Option<ElasticMaterial>) -> Result<GmshImport> {
+/// [`import_msh`] with options. Errors as there, and a corner angle outside (0, 180).
+pub fn import_msh_with(
+    text: &str,
+    material: &dyn Fn(&str) -> Option<ElasticMaterial>,
+    options: &GmshOptions,
+) -> Result<GmshImport> {
+    let a = options.corner_angle_deg;
+    if !(a.is_finite() && a > 0.0 && a < 180.0) {
+        return Err(err(
+            "corner_angle_deg",
+            a,
+            "must be in (0, 180) degrees: the turn above which a boundary has a corner",
+        ));
+    }
+    let mesh = read(text)?;
+    build(&mesh, material, a)
+}
+
+fn build(
+    mesh: &RawMesh,
+    material: &dyn Fn(&str) -> Option<ElasticMaterial>,
+    corner_angle_deg: f64,
+) -> Result<GmshImport> {
     // The plane: every node in z = 0 (relative to the mesh's extent).
     let extent = mesh
         .nodes
@@ -953,7 +991,7 @@ fn build(mesh: &RawMesh, material: &dyn Fn(&str) -> Option<ElasticMaterial>) -> 
     }
 
     // Segments: the runs of each loop between breaks, owned by the first piece.
-    let cos_corner = CORNER_ANGLE_DEG.to_radians().cos();
+    let cos_corner = corner_angle_deg.to_radians().cos();
     let tangent_end = |e: &Edge| {
         // dx/dxi at xi = 1 of the quadratic through a, mid, b: (a - 4 mid + 3 b) / 2.
         let (a, b) = (pos(e.a), pos(e.b));

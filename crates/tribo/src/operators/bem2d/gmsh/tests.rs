@@ -570,3 +570,31 @@ fn nearest_parameter_of_meshed_curves() {
     let dl = arc.length() - std::f64::consts::FRAC_PI_2;
     assert!(dl.abs() < 5e-6, "length error {dl:e}");
 }
+
+/// A larger corner angle keeps the plate's one physical curve whole (its corners turn by 90
+/// degrees); an angle outside (0, 180) is refused by name.
+#[test]
+fn the_corner_angle_is_an_option() {
+    let text = fixture("plate_quad9_one_group.msh");
+    let g = import_msh_with(
+        &text,
+        &all_steel,
+        &GmshOptions {
+            corner_angle_deg: 100.0,
+        },
+    )
+    .unwrap();
+    assert_eq!(g.curves["edge"], ["edge"]);
+    for bad in [0.0, 180.0, f64::NAN] {
+        let e = import_msh_with(
+            &text,
+            &all_steel,
+            &GmshOptions {
+                corner_angle_deg: bad,
+            },
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.starts_with("corner_angle_deg"), "{e}");
+    }
+}
