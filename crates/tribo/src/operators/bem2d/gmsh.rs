@@ -206,6 +206,12 @@ impl<'a> Tokens<'a> {
         }
     }
 
+    /// Tokens left: the most items a count read from the file can describe (a capacity
+    /// bound, so that a corrupt count cannot ask for an absurd allocation).
+    fn remaining(&self) -> usize {
+        self.items.len() - self.pos
+    }
+
     fn line_of_next(&self) -> usize {
         self.items.get(self.pos).map_or(self.end_line, |t| t.0)
     }
@@ -441,7 +447,7 @@ fn read_elements_v2(s: &Section, mesh: &mut RawMesh) -> Result<()> {
         let _tag = t.tag("an element tag")?;
         let kind = t.count("an element type")? as u32;
         let ntags = t.count("the number of tags")?;
-        let mut tags = Vec::with_capacity(ntags);
+        let mut tags = Vec::with_capacity(ntags.min(t.remaining()));
         for _ in 0..ntags {
             tags.push(t.int("a tag")?);
         }
@@ -503,7 +509,7 @@ fn read_entities_v4(s: &Section) -> Result<HashMap<(u32, i64), Vec<i64>>> {
                 t.real("a coordinate")?;
             }
             let np = t.count("the number of physical tags")?;
-            let mut phys = Vec::with_capacity(np);
+            let mut phys = Vec::with_capacity(np.min(t.remaining()));
             for _ in 0..np {
                 phys.push(t.int("a physical tag")?);
             }
@@ -532,7 +538,7 @@ fn read_nodes_v4(s: &Section, mesh: &mut RawMesh) -> Result<()> {
         t.int("the entity tag")?;
         let parametric = t.count("the parametric flag")?;
         let n = t.count("the number of nodes in the block")?;
-        let mut tags = Vec::with_capacity(n);
+        let mut tags = Vec::with_capacity(n.min(t.remaining()));
         for _ in 0..n {
             tags.push((t.line_of_next(), t.tag("a node tag")?));
         }

@@ -431,6 +431,11 @@ fn bad_meshes_are_refused_naming_the_item() {
         (tri.replace("1 1 3 4", "1 1 3 9"), "node 9"),
         (tri.replace("0 1 0", "0 1 zero"), "msh line"),
         ("hello".to_string(), "not a gmsh .msh file"),
+        // A corrupt count: an error, not an allocation of 10^18 tags.
+        (
+            tri.replace("2 2 2 1 1 1 3 4", "2 2 1000000000000000000 1 1 1 3 4"),
+            "the section ends early",
+        ),
         (
             msh22(&SQUARE, &[(2, 1, &[1, 2, 3]), (2, 0, &[1, 3, 4])], &[]),
             "no physical surface",
@@ -596,5 +601,29 @@ fn the_corner_angle_is_an_option() {
         .unwrap_err()
         .to_string();
         assert!(e.starts_with("corner_angle_deg"), "{e}");
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(300))]
+    /// Corrupted files (characters of a valid 4.1 or 2.2 fixture replaced at random
+    /// positions) give a model or an error, never a panic.
+    #[test]
+    fn corrupted_meshes_never_panic(
+        v22 in proptest::bool::ANY,
+        edits in proptest::collection::vec((0usize..1_000_000, 0usize..17), 1..4)
+    ) {
+        let name = if v22 { "plate_quad9_one_group.msh" } else { "lame_o2_n4.msh" };
+        let mut bytes = fixture(name).into_bytes();
+        let alphabet = b"0123456789 -.$\n\"e";
+        for (at, c) in edits {
+            let i = at % bytes.len();
+            bytes[i] = alphabet[c % alphabet.len()];
+        }
+        let text = String::from_utf8_lossy(&bytes);
+        if let Ok(g) = import_msh(&text, &all_steel) {
+            // What imports must also mesh or fail cleanly.
+            let _ = BemMesh::new(&model(&g));
+        }
     }
 }
