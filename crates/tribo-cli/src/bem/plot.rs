@@ -5,7 +5,7 @@
 use plotters::prelude::*;
 use std::path::Path;
 
-use crate::output::plot::{e, legend_box, register_font, tick, viridis, FAMILY};
+use crate::output::plot::{e, legend_box, register_font, styled_axes, tick, viridis, FAMILY};
 
 /// Blue-white-red for signed values, `t` in [-1, 1].
 pub fn diverging(t: f64) -> RGBColor {
@@ -94,17 +94,7 @@ pub fn field_map(
         .y_label_area_size(60)
         .build_cartesian_2d((lo[0] - pad)..(hi[0] + pad), (lo[1] - pad)..(hi[1] + pad))
         .map_err(e)?;
-    chart
-        .configure_mesh()
-        .x_desc("x, mm")
-        .y_desc("y, mm")
-        .x_label_formatter(&tick)
-        .y_label_formatter(&tick)
-        .label_style((FAMILY, 14))
-        .axis_desc_style((FAMILY, 16))
-        .light_line_style(WHITE.mix(0.0))
-        .draw()
-        .map_err(e)?;
+    styled_axes(&mut chart, "x, mm", "y, mm", 14)?;
     let (c0, c1) = match scale {
         Scale::Sequential => (vmin.min(0.0), vmax.max(f64::MIN_POSITIVE)),
         Scale::Diverging => {
@@ -316,17 +306,7 @@ pub fn panels(
                     .max(f64::MIN_POSITIVE);
             let (y0, y1) = (y0.min(0.0) - pad, y1.max(0.0) + pad);
             let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(e)?;
-            chart
-                .configure_mesh()
-                .x_desc(x_desc)
-                .y_desc(y_desc.as_str())
-                .x_label_formatter(&tick)
-                .y_label_formatter(&tick)
-                .label_style((FAMILY, 13))
-                .axis_desc_style((FAMILY, 15))
-                .light_line_style(WHITE.mix(0.0))
-                .draw()
-                .map_err(e)?;
+            styled_axes(&mut chart, x_desc, &y_desc, 13)?;
             chart
                 .draw_series(LineSeries::new(
                     [(x0, 0.0), (x1, 0.0)],

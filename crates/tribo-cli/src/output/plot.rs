@@ -1,6 +1,7 @@
 //! PNG plots with plotters, rendered with the DejaVu Sans font shipped in `assets/` (no
 //! system fonts needed).
 
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 use std::path::Path;
@@ -36,6 +37,27 @@ pub(crate) fn tick(v: &f64) -> String {
     } else {
         format!("{r}")
     }
+}
+
+/// Draws the axes of a line chart: descriptions, plain tick labels ([`tick`]), labels at
+/// font size `size` and descriptions at `size + 2`, no minor grid lines.
+pub(crate) fn styled_axes<DB: DrawingBackend>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    x_desc: &str,
+    y_desc: &str,
+    size: u32,
+) -> Result<(), String> {
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
+        .label_style((FAMILY, size))
+        .axis_desc_style((FAMILY, size + 2))
+        .light_line_style(WHITE.mix(0.0))
+        .draw()
+        .map_err(e)
 }
 
 /// Viridis colour map (matplotlib's, 9 anchors, linear in between), `t` in [0, 1].
@@ -259,17 +281,7 @@ fn profiles(
             .y_label_area_size(60)
             .build_cartesian_2d(-half_mm..half_mm, y_range.0..y_range.1)
             .map_err(e)?;
-        chart
-            .configure_mesh()
-            .x_desc(format!("{axis}, mm"))
-            .y_desc(y_desc)
-            .x_label_formatter(&tick)
-            .y_label_formatter(&tick)
-            .label_style((FAMILY, 14))
-            .axis_desc_style((FAMILY, 16))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()
-            .map_err(e)?;
+        styled_axes(&mut chart, &format!("{axis}, mm"), y_desc, 14)?;
         if let Some((f, label)) = reference {
             let samples = 600;
             let curve = (0..=samples).map(|s| {
@@ -337,17 +349,12 @@ pub fn back_effect(
         .y_label_area_size(75)
         .build_cartesian_2d(-1.08..1.08, lo..hi)
         .map_err(e)?;
-    chart
-        .configure_mesh()
-        .x_desc("bulk stress at the contact, sigma_a / sigma_a,max (tension > 0)")
-        .y_desc("contact force at fixed approach, F_N / F_N(0)")
-        .x_label_formatter(&tick)
-        .y_label_formatter(&tick)
-        .label_style((FAMILY, 15))
-        .axis_desc_style((FAMILY, 17))
-        .light_line_style(WHITE.mix(0.0))
-        .draw()
-        .map_err(e)?;
+    styled_axes(
+        &mut chart,
+        "bulk stress at the contact, sigma_a / sigma_a,max (tension > 0)",
+        "contact force at fixed approach, F_N / F_N(0)",
+        15,
+    )?;
     chart
         .draw_series(LineSeries::new(
             [(-1.08, 1.0), (1.08, 1.0)],
@@ -448,17 +455,7 @@ pub fn lines(
         .y_label_area_size(75)
         .build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))
         .map_err(e)?;
-    chart
-        .configure_mesh()
-        .x_desc(x_desc)
-        .y_desc(y_desc)
-        .x_label_formatter(&tick)
-        .y_label_formatter(&tick)
-        .label_style((FAMILY, 15))
-        .axis_desc_style((FAMILY, 17))
-        .light_line_style(WHITE.mix(0.0))
-        .draw()
-        .map_err(e)?;
+    styled_axes(&mut chart, x_desc, y_desc, 15)?;
     chart
         .draw_series(LineSeries::new(
             [(x0, 0.0), (x1, 0.0)],
