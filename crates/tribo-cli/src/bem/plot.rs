@@ -306,7 +306,7 @@ pub fn panels(
                     .max(f64::MIN_POSITIVE);
             let (y0, y1) = (y0.min(0.0) - pad, y1.max(0.0) + pad);
             let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(e)?;
-            styled_axes(&mut chart, x_desc, &y_desc, 13)?;
+            styled_axes(&mut chart, x_desc, y_desc, 13)?;
             chart
                 .draw_series(LineSeries::new(
                     [(x0, 0.0), (x1, 0.0)],
