@@ -160,50 +160,39 @@ impl<'a> Tokens<'a> {
         Ok(t)
     }
 
-    fn int(&mut self, what: &str) -> Result<i64> {
+    /// The next token parsed as a `T` that passes `valid`; else an error naming the line,
+    /// the token and `kind` (e.g. "an integer").
+    fn parsed<T: std::str::FromStr>(
+        &mut self,
+        what: &str,
+        kind: &str,
+        valid: impl Fn(&T) -> bool,
+    ) -> Result<T> {
         let (line, t) = self.next(what)?;
-        t.parse::<i64>().map_err(|_| {
-            err(
+        match t.parse::<T>() {
+            Ok(v) if valid(&v) => Ok(v),
+            _ => Err(err(
                 format!("msh line {line}"),
                 format!("{t:?}"),
-                format!("expected an integer ({what}) in ${}", self.section),
-            )
-        })
+                format!("expected {kind} ({what}) in ${}", self.section),
+            )),
+        }
+    }
+
+    fn int(&mut self, what: &str) -> Result<i64> {
+        self.parsed(what, "an integer", |_| true)
     }
 
     fn count(&mut self, what: &str) -> Result<usize> {
-        let (line, t) = self.next(what)?;
-        t.parse::<usize>().map_err(|_| {
-            err(
-                format!("msh line {line}"),
-                format!("{t:?}"),
-                format!("expected a count ({what}) in ${}", self.section),
-            )
-        })
+        self.parsed(what, "a count", |_| true)
     }
 
     fn tag(&mut self, what: &str) -> Result<u64> {
-        let (line, t) = self.next(what)?;
-        match t.parse::<u64>() {
-            Ok(v) if v > 0 => Ok(v),
-            _ => Err(err(
-                format!("msh line {line}"),
-                format!("{t:?}"),
-                format!("expected a positive tag ({what}) in ${}", self.section),
-            )),
-        }
+        self.parsed(what, "a positive tag", |&v: &u64| v > 0)
     }
 
     fn real(&mut self, what: &str) -> Result<f64> {
-        let (line, t) = self.next(what)?;
-        match t.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v),
-            _ => Err(err(
-                format!("msh line {line}"),
-                format!("{t:?}"),
-                format!("expected a finite number ({what}) in ${}", self.section),
-            )),
-        }
+        self.parsed(what, "a finite number", |v: &f64| v.is_finite())
     }
 
     /// Tokens left: the most items a count read from the file can describe (a capacity
