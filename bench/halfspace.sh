@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Half-space contact benchmark: tribo against tamaas on the paper's case (HALFSPACE.md section 4),
+# Half-space contact benchmark: tribo against tamaas on the paper's case (docs/theory/HALFSPACE.md section 4),
 # one process per code and N, side by side.
 #
 # usage: bench/halfspace.sh [N ...]        (default: 64 128 256 512 1024)
@@ -85,7 +85,7 @@ tamaas_version="$("$py" -c 'import tamaas; print(tamaas.__version__)' 2>/dev/nul
 {
     echo "# Half-space benchmark: tribo vs tamaas, $(date '+%Y-%m-%d %H:%M %Z')"
     echo
-    echo "Paper's case (HALFSPACE.md section 4): E* = 1.10440e11 Pa, h = 50 x^2 + 60 y^2, F_N = 2000 N,"
+    echo "Paper's case (docs/theory/HALFSPACE.md section 4): E* = 1.10440e11 Pa, h = 50 x^2 + 60 y^2, F_N = 2000 N,"
     echo "force control, window |x|,|y| <= 1.5a, N x N elements. tribo commit $commit, tamaas $tamaas_version;"
     echo "tolerance $tolerance for both (own definitions; see bench/README.md). Machine: $(nproc) cores, $cpu."
     echo "tribo: rayon on all cores; tamaas: PyPI wheel, sequential backend (one core), OMP_NUM_THREADS=${OMP_NUM_THREADS:-2}."

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The paper's half-space case (HALFSPACE.md section 4) solved with tamaas, for the benchmark.
+"""The paper's half-space case (docs/theory/HALFSPACE.md section 4) solved with tamaas, for the benchmark.
 
 Usage: tamaas_case.py --n N [--tolerance T] [--max-iter M]
        tamaas_case.py --n N --evaluate FILE   (check another code's pressure, see below)
@@ -56,7 +56,7 @@ import time
 import numpy as np
 import tamaas as tm
 
-# The paper's case (HALFSPACE.md sections 3.1 and 4).
+# The paper's case (docs/theory/HALFSPACE.md sections 3.1 and 4).
 E_STAR = 1.0 / (2.0 * (1.0 - 0.3**2) / 2.01e11)  # Pa: E = 2.01e11, nu = 0.3 on both bodies (1.10440e11)
 A_COEF, B_COEF = 50.0, 60.0  # h = A x^2 + B y^2, 1/m
 LOAD = 2000.0  # N
@@ -78,7 +78,7 @@ def elliptic_ke(m: float) -> tuple[float, float]:
 
 
 def hertz_exact(coef_a: float, coef_b: float, e_star: float, load: float) -> tuple[float, float, float, float]:
-    """Exact elliptical Hertz contact for h = A x^2 + B y^2, A < B (HALFSPACE.md 3.1):
+    """Exact elliptical Hertz contact for h = A x^2 + B y^2, A < B (docs/theory/HALFSPACE.md 3.1):
     long semi-axis a (along x), short b, p0, approach."""
     ratio = coef_b / coef_a
 

@@ -1,6 +1,6 @@
 //! `tribo-bench --n N [--tolerance T] [--max-iterations M] [--pressure-out FILE] [--one-call]`
 //!
-//! Solves the paper's half-space case (HALFSPACE.md section 4) once with tribo's
+//! Solves the paper's half-space case (docs/theory/HALFSPACE.md section 4) once with tribo's
 //! Polonsky-Keer solver and prints one line of JSON. `seconds` is the iteration
 //! (`solve_normal_cg_with`), `operator_seconds` the FFT operator's construction, which
 //! `solve_normal_cg` does first; `--one-call` times `solve_normal_cg` as one piece instead. `apply_seconds`: one FFT
@@ -30,7 +30,7 @@ const POISSON_RATIO: f64 = 0.3;
 const GAP_A: f64 = 50.0;
 const GAP_B: f64 = 60.0;
 const LOAD: f64 = 2000.0;
-/// Hertz reference values of the case (HALFSPACE.md section 4): a, b (m), p0 (Pa), E* (Pa).
+/// Hertz reference values of the case (docs/theory/HALFSPACE.md section 4): a, b (m), p0 (Pa), E* (Pa).
 const HERTZ_A: f64 = 5.2964e-4;
 const HERTZ_B: f64 = 4.6903e-4;
 const HERTZ_P0: f64 = 3.8440e9;
@@ -144,7 +144,7 @@ fn run(args: &Args) -> Result<Value, String> {
         angle: 0.0,
     };
     let hertz = HertzContact::from_load(&curvature, e_star, LOAD).map_err(|e| e.to_string())?;
-    // The library's Hertz solution must reproduce the reference numbers of HALFSPACE.md.
+    // The library's Hertz solution must reproduce the reference numbers of docs/theory/HALFSPACE.md.
     for (what, got, want) in [
         ("E*", e_star, E_STAR),
         ("a", hertz.semi_major, HERTZ_A),

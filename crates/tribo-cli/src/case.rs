@@ -2036,7 +2036,7 @@ pub fn read_height_csv(field: &str, path: &Path) -> CliResult<(usize, usize, Vec
     Ok((nx, ny, values))
 }
 
-/// Refuse radii whose gap h = A x'^2 + B y'^2 is not positive definite (HALFSPACE.md 3.1,
+/// Refuse radii whose gap h = A x'^2 + B y'^2 is not positive definite (docs/theory/HALFSPACE.md 3.1,
 /// Johnson 1985 section 4.2): no bounded contact (both flat, or too conforming).
 fn check_convex(r1: [f64; 2], r2: [f64; 2], angle: f64) -> CliResult<()> {
     let k = |r: f64| if r.is_infinite() { 0.0 } else { 1.0 / r };

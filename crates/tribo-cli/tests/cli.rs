@@ -320,7 +320,7 @@ fn the_default_run_writes_everything() {
     assert_eq!(s["grid"]["nx"], 21);
     assert_eq!(s["solver"]["method"], "cg");
     assert_eq!(s["case"]["grid"]["extent"], 1.5);
-    // The paper's numbers (HALFSPACE.md section 4).
+    // The paper's numbers (docs/theory/HALFSPACE.md section 4).
     let f = |v: &serde_json::Value| v.as_f64().unwrap();
     assert!((f(&c["hertz"]["a"]) / 5.2964e-4 - 1.0).abs() < 1e-4);
     assert!((f(&c["hertz"]["b"]) / 4.6903e-4 - 1.0).abs() < 1e-4);
@@ -630,7 +630,7 @@ fn the_back_effect_example_matches_hertz_and_the_paper() {
     assert!((bend(-1.0) - 27.0).abs() <= 1.0, "{}", bend(-1.0));
     assert!((bend(1.0) + 25.0).abs() <= 1.0, "{}", bend(1.0));
     // u_z (18) for tension-compression at 6.4e8 Pa: nu sigma R2 / E = 9.552e-6 m
-    // (HALFSPACE.md section 5).
+    // (docs/theory/HALFSPACE.md section 5).
     assert!((at("tension-compression", 1.0)[2] + 9.5522e-6).abs() < 1e-9);
 
     let s = read_json(&out.join("summary.json"));
@@ -872,7 +872,7 @@ fn the_stress_field_of_the_paper_case() {
     let vm = &s["stress"]["max_von_mises"];
     let v = vm["value"].as_f64().unwrap() / p0;
     let z = vm["location"][2].as_f64().unwrap() / a;
-    // HALFSPACE.md 3.2: 0.6197 p0 at z = 0.451a. The 21 x 21 numerical pressure (not Hertz's)
+    // docs/theory/HALFSPACE.md 3.2: 0.6197 p0 at z = 0.451a. The 21 x 21 numerical pressure (not Hertz's)
     // and the 20-layer grid (step 1.5a/19 = 0.079a) may miss the exact maximum: 1 % on the
     // value, one grid step on the depth.
     assert!((v / 0.6197 - 1.0).abs() < 0.01, "max von Mises {v} p0");

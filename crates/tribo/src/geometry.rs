@@ -472,7 +472,7 @@ mod tests {
 
     #[test]
     fn quadratic_profile_matches_the_papers_gap() {
-        // HALFSPACE.md section 4: body 1 R = (5 mm, 50 mm), body 2 R = (-10 mm, 10 mm):
+        // docs/theory/HALFSPACE.md section 4: body 1 R = (5 mm, 50 mm), body 2 R = (-10 mm, 10 mm):
         // h = 50 x^2 + 60 y^2 (1/m).
         let b1 = SurfaceProfile::Quadratic(
             QuadraticProfile::from_radii("b1", [0.005, 0.05], 0.0).unwrap(),

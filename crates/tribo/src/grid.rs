@@ -138,7 +138,7 @@ mod tests {
 
     #[test]
     fn papers_grid_has_centres_on_the_contact_edge() {
-        // 21 elements over [-1.5a, 1.5a]: dx = a/7 and centres fall on x = +-a (HALFSPACE.md 2.4.6).
+        // 21 elements over [-1.5a, 1.5a]: dx = a/7 and centres fall on x = +-a (docs/theory/HALFSPACE.md 2.4.6).
         let a = 5.2964e-4;
         let g = SurfaceGrid::centred(21, 21, 1.5 * a, 1.5 * a).unwrap();
         assert!((g.x(10)).abs() < 1e-18);

@@ -2,8 +2,11 @@
 //!
 //! Mechanics of tribo-fatigue systems: bodies in frictional contact (rolling, sliding)
 //! while one of them is also bent, stretched or twisted. The methodology is that of the
-//! paper kept in `shared/seed` (equation numbers written "(N)" in these docs are that
-//! paper's); `shared/DESIGN.md` maps it onto this crate.
+//! paper "Contact interaction, volume damageability and multicriterial limiting states of
+//! multielement tribo-fatigue systems", in R. Wituła et al. (eds.), *Selected Problems on
+//! Experimental Mathematics*, Wydawnictwo Politechniki Śląskiej, Gliwice 2017, pp. 17-38
+//! (equation numbers written "(N)" in these docs are that paper's);
+//! `docs/theory/DESIGN.md` maps it onto this crate.
 //!
 //! Layers, lowest first; a layer never reaches up:
 //!
@@ -17,7 +20,7 @@
 //! [`validation`] runs the verification suite whose rows `tribo validate` prints and the
 //! tests assert.
 //!
-//! Conventions (DESIGN.md section 2): SI units (Pa, m, N); half-space surface z = 0 with z
+//! Conventions (docs/theory/DESIGN.md section 2): SI units (Pa, m, N); half-space surface z = 0 with z
 //! positive into the body; compressive pressure p > 0; stresses tension-positive.
 
 #![deny(missing_docs)]

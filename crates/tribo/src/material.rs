@@ -69,7 +69,7 @@ impl ElasticMaterial {
 }
 
 /// Composite (contact) modulus E*, Pa: 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2
-/// (Johnson 1985, *Contact Mechanics*, eq. (4.22); DESIGN.md section 2).
+/// (Johnson 1985, *Contact Mechanics*, eq. (4.22); docs/theory/DESIGN.md section 2).
 pub fn composite_modulus(body1: &ElasticMaterial, body2: &ElasticMaterial) -> f64 {
     1.0 / (1.0 / body1.plane_strain_modulus() + 1.0 / body2.plane_strain_modulus())
 }
@@ -80,7 +80,7 @@ mod tests {
 
     #[test]
     fn composite_modulus_of_the_papers_steel() {
-        // HALFSPACE.md section 0: E = 2.01e11, nu = 0.3 on both bodies gives E* = 1.10440e11 Pa.
+        // docs/theory/HALFSPACE.md section 0: E = 2.01e11, nu = 0.3 on both bodies gives E* = 1.10440e11 Pa.
         let steel = ElasticMaterial::new(2.01e11, 0.3).unwrap();
         let e_star = composite_modulus(&steel, &steel);
         assert!((e_star / 1.10440e11 - 1.0).abs() < 5e-6, "{e_star}");

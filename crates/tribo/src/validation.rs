@@ -99,7 +99,7 @@ impl ValidationRow {
 }
 
 /// The paper's Sec. 3 roller/shaft data: E1 = E2 = 2.01e11 Pa, nu = 0.3; radii body 1
-/// (0.005, 0.05) m, body 2 (-0.01, 0.01) m (concave in the plane of R11: HALFSPACE.md 4).
+/// (0.005, 0.05) m, body 2 (-0.01, 0.01) m (concave in the plane of R11: docs/theory/HALFSPACE.md 4).
 pub fn paper_case_curvature() -> Result<(GapCurvature, f64)> {
     let steel = ElasticMaterial::new(2.01e11, 0.3)?;
     let curvature = GapCurvature::from_radii([0.005, 0.05], [-0.01, 0.01], 0.0)?;
@@ -137,7 +137,7 @@ fn solve_hertzian(
 /// Rows of the influence-coefficient and Hertz kernels.
 pub fn kernel_rows() -> Result<Vec<ValidationRow>> {
     let mut rows = Vec::new();
-    let src = "HALFSPACE.md 1.1 (quadrature of Boussinesq, 7 digits)";
+    let src = "docs/theory/HALFSPACE.md 1.1 (quadrature of Boussinesq, 7 digits)";
     // 7 printed digits: half a unit in the last place relative to the smallest entry used.
     let tol = 1e-6;
     let f_centre = love::rectangle_inverse_distance_integral(0.0, 0.0, 0.5, 0.5);
@@ -188,7 +188,7 @@ pub fn kernel_rows() -> Result<Vec<ValidationRow>> {
     let (curvature, e_star) = paper_case_curvature()?;
     let hertz = HertzContact::from_load(&curvature, e_star, 2000.0)?;
     let case = "Hertz, paper Sec. 3 (A = 50, B = 60 1/m, F = 2000 N)";
-    let src = "HALFSPACE.md 4 (exact elliptic solution, 5 digits)";
+    let src = "docs/theory/HALFSPACE.md 4 (exact elliptic solution, 5 digits)";
     for (quantity, reference, computed) in [
         ("long semi-axis a, m", 5.2964e-4, hertz.semi_major),
         ("short semi-axis b, m", 4.6903e-4, hertz.semi_minor),
@@ -282,10 +282,10 @@ pub fn paper_case_rows() -> Result<Vec<ValidationRow>> {
         errors.eps_max,
         ErrorMeasure::Bound,
         // The element centred on the contact edge carries ~0.1 p0 where Hertz gives 0
-        // (HALFSPACE.md 4: 9.9e-2); the paper's 5.9e-2 is not reachable with centre
+        // (docs/theory/HALFSPACE.md 4: 9.9e-2); the paper's 5.9e-2 is not reachable with centre
         // collocation, see analysis::hertz_error.
         0.1,
-        "HALFSPACE.md 4: 9.9e-2 (independent active-set code)",
+        "docs/theory/HALFSPACE.md 4: 9.9e-2 (independent active-set code)",
     ));
     rows.push(ValidationRow::new(
         case,
@@ -295,9 +295,9 @@ pub fn paper_case_rows() -> Result<Vec<ValidationRow>> {
         ErrorMeasure::Bound,
         // The paper's eps_max = 5.9e-2 (definition unstated); inside the ellipse 4.3e-2.
         5.9e-2,
-        "paper: eps_max = 5.9e-2; HALFSPACE.md 4: 4.3e-2",
+        "paper: eps_max = 5.9e-2; docs/theory/HALFSPACE.md 4: 4.3e-2",
     ));
-    // Discretization error of the approach at 21x21: -0.08 % (HALFSPACE.md 4); 2e-3 bounds it
+    // Discretization error of the approach at 21x21: -0.08 % (docs/theory/HALFSPACE.md 4); 2e-3 bounds it
     // and fails for a wrong operator scale (a 1 % error in E* moves it by 1 %).
     rows.push(ValidationRow::new(
         case,
@@ -314,7 +314,7 @@ pub fn paper_case_rows() -> Result<Vec<ValidationRow>> {
         hertz.max_pressure,
         cg.max_pressure(),
         ErrorMeasure::Relative,
-        // +0.12 % at 21x21 (HALFSPACE.md 4).
+        // +0.12 % at 21x21 (docs/theory/HALFSPACE.md 4).
         3e-3,
         "exact Hertz",
     ));
@@ -628,7 +628,7 @@ pub fn back_effect_rows() -> Result<Vec<ValidationRow>> {
         // The paper's figure: +60 % / -50 % (tension-compression), +27 % / -25 % (bending),
         // read off a plot. Bending is reproduced to its rounding (1 point); tension-
         // compression differs by ~3 points at both ends, which the 3/2-power law cannot
-        // remove with R2 = 10 mm (it would need R2 ~ 10.5 mm): HALFSPACE.md section 5.
+        // remove with R2 = 10 mm (it would need R2 ~ 10.5 mm): docs/theory/HALFSPACE.md section 5.
         let (paper, tol) = match (kind, p.stress > 0.0) {
             ("bending", true) => (0.75, 0.01),
             ("bending", false) => (1.27, 0.01),
@@ -691,7 +691,7 @@ pub fn stress_rows() -> Result<Vec<ValidationRow>> {
         s.max_shear()
     })?;
     let case = "Hertz circle, exact load on 81x81, axis";
-    let src = "Huber (1904), Johnson 1985 sec. 3.4; HALFSPACE.md 3.2";
+    let src = "Huber (1904), Johnson 1985 sec. 3.4; docs/theory/HALFSPACE.md 3.2";
     rows.push(ValidationRow::new(
         case,
         "max tau_1 / p0",
@@ -734,7 +734,7 @@ pub fn stress_rows() -> Result<Vec<ValidationRow>> {
         |s| s.von_mises(),
     )?;
     let case = "paper Sec. 3 ellipse, CG pressure 81x81, axis";
-    let src = "HALFSPACE.md 3.2 (quadrature of Boussinesq over the Hertz pressure)";
+    let src = "docs/theory/HALFSPACE.md 3.2 (quadrature of Boussinesq over the Hertz pressure)";
     rows.push(ValidationRow::new(
         case,
         "max von Mises / p0",
@@ -757,7 +757,7 @@ pub fn stress_rows() -> Result<Vec<ValidationRow>> {
 }
 
 /// Rows of Cattaneo-Mindlin partial slip (Cattaneo 1938; Mindlin 1949; Johnson 1985
-/// sec. 7.1; HALFSPACE.md 3.4): a steel sphere (R = 10 mm) on a steel flat under 1000 N,
+/// sec. 7.1; docs/theory/HALFSPACE.md 3.4): a steel sphere (R = 10 mm) on a steel flat under 1000 N,
 /// f = 0.3, Q / (f P) = 0.2, 0.5, 0.8, on 96 x 96 elements over 2.6a; and the paper's
 /// ellipse at Q / (f P) = 0.5 (the stick zone is an ellipse similar to the contact).
 pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
@@ -885,7 +885,7 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
         (s.stick_area / (s.stick_area + s.slip_area)).sqrt(),
         ErrorMeasure::Absolute,
         0.5 * grid.dx() / hertz.semi_minor,
-        "Mindlin 1949: similar elliptical stick zone (HALFSPACE.md 3.4)",
+        "Mindlin 1949: similar elliptical stick zone (docs/theory/HALFSPACE.md 3.4)",
     ));
     Ok(rows)
 }

@@ -26,7 +26,7 @@ fn operator_rows_pass() {
 fn paper_case_rows_pass() {
     let rows = validation::paper_case_rows().unwrap();
     assert_rows(&rows);
-    // The independent implementation of HALFSPACE.md 4 gets eps_avg = 3.7e-3 at 21x21 with
+    // The independent implementation of docs/theory/HALFSPACE.md 4 gets eps_avg = 3.7e-3 at 21x21 with
     // 147 elements in contact; ours must agree to the digits quoted.
     let eps_avg = rows
         .iter()

@@ -1,6 +1,6 @@
 //! The multicriterial limiting-state diagram of mechano-rolling fatigue: the paper's Fig. 4
 //! ("Multi-criteria diagram of the limiting states of steel 25 XIT (roller) / steel 45 (shaft)
-//! tribo-fatigue system"), part J of DESIGN.md.
+//! tribo-fatigue system"), part J of docs/theory/DESIGN.md.
 //!
 //! **Our reading of Fig. 4** (the figure itself is not in the text we have; its Sec. 3 says):
 //! the axes are normalized loads, x = p0 / p_f (contact pressure over the rolling fatigue

@@ -394,7 +394,7 @@ pub fn strain(stress: &StressTensor, material: &ElasticMaterial) -> StressTensor
     )
 }
 
-/// Strain energy density and its split, J/m^3 (the paper's (32), DESIGN.md section 2).
+/// Strain energy density and its split, J/m^3 (the paper's (32), docs/theory/DESIGN.md section 2).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct EnergyDensity {
     /// u = (1/2) sigma : eps, J/m^3.

@@ -2,7 +2,7 @@
 //! elementary strength of materials, and the radial displacement of the shaft surface that
 //! produces the back effect on the contact, the paper's (18).
 //!
-//! Frame (DESIGN.md section 2): for a roller on a shaft, x runs along the shaft axis (the
+//! Frame (docs/theory/DESIGN.md section 2): for a roller on a shaft, x runs along the shaft axis (the
 //! direction of the bending stress sigma_xx), y circumferentially, z radially inward from
 //! the shaft surface at the contact.
 
@@ -147,7 +147,7 @@ impl BulkLoad {
 }
 
 /// Hertz estimate of the back effect, from F ~ delta^(3/2) at a fixed contact shape
-/// (Johnson 1985 eq. (4.23) scaling; HALFSPACE.md section 5):
+/// (Johnson 1985 eq. (4.23) scaling; docs/theory/HALFSPACE.md section 5):
 ///
 /// ```text
 /// F(sigma) / F(0) = (1 + u_z / delta_0)^(3/2),   u_z = -kappa nu sigma R / E (18).
@@ -279,7 +279,7 @@ mod tests {
 
     #[test]
     fn back_effect_of_the_papers_case_matches_halfspace_table() {
-        // HALFSPACE.md section 5: nu sigma R2 / E = 9.552e-6 m for |sigma| = 6.4e8 Pa, and
+        // docs/theory/HALFSPACE.md section 5: nu sigma R2 / E = 9.552e-6 m for |sigma| = 6.4e8 Pa, and
         // with delta_0 = 2.723e-5 m: tension-compression +57.0 % / -47.7 %, bending
         // +27.4 % / -25.1 % (Hertz). Three printed digits: 0.05 percentage points.
         let steel = ElasticMaterial::new(2.01e11, 0.3).unwrap();

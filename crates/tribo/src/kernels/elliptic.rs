@@ -1,7 +1,7 @@
 //! Complete elliptic integrals of the first and second kind.
 //!
 //! Parameter convention: `m = k^2` (the *parameter*, as scipy/Boost), not the modulus k
-//! (HALFSPACE.md pitfall 5). Johnson (1985, *Contact Mechanics*, sec. 4.2) writes K(e), E(e)
+//! (docs/theory/HALFSPACE.md pitfall 5). Johnson (1985, *Contact Mechanics*, sec. 4.2) writes K(e), E(e)
 //! with the modulus e; his e^2 is our m.
 //!
 //! Method: the arithmetic-geometric mean (Abramowitz & Stegun 1964, *Handbook of Mathematical

@@ -1,12 +1,12 @@
 //! Reference stress fields beneath a circular Hertz contact, normal and sliding: Huber's
 //! closed form on the axis and Hamilton's explicit equations for the full 3D field
-//! (DESIGN.md sec. 5; HALFSPACE.md 3.2, 3.3). They validate the stress field of the paper's
+//! (docs/theory/DESIGN.md sec. 5; docs/theory/HALFSPACE.md 3.2, 3.3). They validate the stress field of the paper's
 //! spatial stress state (11) computed from numerical tractions.
 //!
 //! Loading: the Hertz pressure p = p0 sqrt(1 - r^2/a^2) on the circle r <= a (radius a, m;
 //! peak pressure p0, Pa) and, when sliding, the traction q = f p acting on the body in +x
 //! (Amontons-Coulomb, friction coefficient f). Conventions as everywhere in the crate
-//! (HALFSPACE.md section 0): Cartesian, tension-positive, z >= 0 into the body, so on the
+//! (docs/theory/HALFSPACE.md section 0): Cartesian, tension-positive, z >= 0 into the body, so on the
 //! surface inside the contact sigma_zz = -p and sigma_xz = -q. With the traction in +x the
 //! leading edge is x = +a (compression) and the tensile peak is at the trailing edge x = -a,
 //! sigma_xx(-a, 0, 0) = p0 [(1-2nu)/3 + pi (4+nu) f / 8] (Hamilton 1983).
@@ -37,7 +37,7 @@
 //! Ann. Phys. 319, 153-163; Johnson, K.L. (1985) *Contact Mechanics*, CUP, sec. 3.4 (eq. (3.45)
 //! for the axis); Hamilton, G.M. (1983) "Explicit equations for the stresses beneath a sliding
 //! spherical contact", Proc. Instn Mech. Engrs 197C, 53-59 (read through the MIT transcription
-//! in ContactEngineering/ContactMechanics `ReferenceSolutions/Hertz.py`, HALFSPACE.md 3.3);
+//! in ContactEngineering/ContactMechanics `ReferenceSolutions/Hertz.py`, docs/theory/HALFSPACE.md 3.3);
 //! Hamilton, G.M., Goodman, L.E. (1966) J. Appl. Mech. 33, 371-376.
 
 use crate::kernels::subsurface::StressTensor;
@@ -57,7 +57,7 @@ const FAR_LIMIT: f64 = 1e8;
 
 /// Huber's stresses (Pa) on the axis x = y = 0 at depth z >= 0 (m) under the Hertz pressure
 /// of radius `radius` a (m) and peak `max_pressure` p0 (Pa), Poisson's ratio `poisson_ratio`
-/// (Huber 1904; Johnson 1985 sec. 3.4, eq. (3.45); HALFSPACE.md 3.2), zeta = z/a:
+/// (Huber 1904; Johnson 1985 sec. 3.4, eq. (3.45); docs/theory/HALFSPACE.md 3.2), zeta = z/a:
 /// - sigma_zz = -p0 / (1 + zeta^2);
 /// - sigma_xx = sigma_yy = sigma_r = -p0 [(1+nu)(1 - zeta atan(1/zeta)) - 1/(2(1+zeta^2))];
 /// - shears zero.
@@ -381,7 +381,7 @@ mod tests {
         (m, f(m))
     }
 
-    /// Huber on the axis, nu = 0.3 (HALFSPACE.md 3.2; Johnson 1985 sec. 3.4): max tau_1 =
+    /// Huber on the axis, nu = 0.3 (docs/theory/HALFSPACE.md 3.2; Johnson 1985 sec. 3.4): max tau_1 =
     /// 0.3100 p0 at z = 0.4809 a, max von Mises 0.6200 p0, sigma_r(0) = -0.8 p0 (4 digits).
     #[test]
     fn huber_axis_values() {
@@ -537,7 +537,7 @@ mod tests {
 
     /// Trailing edge: sigma_xx(-a, 0, 0) = p0 [(1-2nu)/3 + pi (4+nu) f / 8] (Hamilton 1983),
     /// to 1e-12. For f = 0.1, 0.3, 0.5 and nu = 0.3 the formula gives 0.30219, 0.63992,
-    /// 0.97764 p0; HALFSPACE.md 3.3 prints 0.3021, 0.6398, 0.9776 (the first two are 1e-4 low:
+    /// 0.97764 p0; docs/theory/HALFSPACE.md 3.3 prints 0.3021, 0.6398, 0.9776 (the first two are 1e-4 low:
     /// compared at 1.5e-4). Tensile at the trailing edge x = -a for traction in +x; the
     /// leading edge x = +a is compressed by the same friction term.
     #[test]

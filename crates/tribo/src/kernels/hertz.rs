@@ -1,10 +1,10 @@
 //! Hertz theory of elastic contact: elliptical (exact, with complete elliptic integrals),
 //! circular and line contact (Hertz 1882; Johnson 1985, *Contact Mechanics*, ch. 4;
-//! HALFSPACE.md section 3.1). Used to validate the numerical solution of the paper's (16)
+//! docs/theory/HALFSPACE.md section 3.1). Used to validate the numerical solution of the paper's (16)
 //! and for the error measures (17).
 //!
 //! Elliptical contact (Johnson 1985 ch. 4: sec. 4.1 for the gap geometry, sec. 4.2 for Hertz's
-//! solution; HALFSPACE.md 3.1, where these formulas were verified by an implementation; with the
+//! solution; docs/theory/HALFSPACE.md 3.1, where these formulas were verified by an implementation; with the
 //! parameter m = e^2 = 1 - b^2/a^2 of the elliptic integrals K(m), E(m), see
 //! [`crate::kernels::elliptic`]): for the gap h = A x'^2 + B y'^2 (A <= B) under the load F,
 //! - B/A = [(a^2/b^2) E - K] / (K - E) fixes the shape m;
@@ -13,10 +13,10 @@
 //! - p(x', y') = p0 sqrt(1 - x'^2/a^2 - y'^2/b^2) inside the ellipse.
 //!
 //! Johnson (1985) is cited by section; equation numbers are given only where they were read
-//! in a source (HALFSPACE.md), e.g. eq. (4.22) for E* (as in [`crate::material`]).
+//! in a source (docs/theory/HALFSPACE.md), e.g. eq. (4.22) for E* (as in [`crate::material`]).
 //!
 //! The exact solution is used, not the Hamrock-Brewe (1983) curve fits, which are 2-4 % off
-//! for the paper's nearly circular contact (HALFSPACE.md pitfall 7).
+//! for the paper's nearly circular contact (docs/theory/HALFSPACE.md pitfall 7).
 
 use crate::error::{Error, Result};
 use crate::kernels::elliptic::agm_first_kind_and_sum;
@@ -115,7 +115,7 @@ impl GapCurvature {
     /// principal plane is at `angle_between` from x. The gap is h = (1/2) x^T (C1 + C2) x with
     /// the bodies' curvature tensors C1, C2, diagonalised to A x'^2 + B y'^2 with A <= B,
     /// A + B = (1/2)(1/R1' + 1/R1'' + 1/R2' + 1/R2'') (Johnson 1985 sec. 4.1;
-    /// HALFSPACE.md 3.1). `angle` is the direction of A (of the long semi-axis of the contact
+    /// docs/theory/HALFSPACE.md 3.1). `angle` is the direction of A (of the long semi-axis of the contact
     /// ellipse) from x, in (-pi/2, pi/2].
     ///
     /// Errors: a radius that is 0 or NaN (`body1.radii`, `body2.radii`); a non-finite angle
@@ -296,7 +296,7 @@ impl HertzContact {
     /// Hertz contact under normal load `normal_load` F (N) with composite modulus `e_star`
     /// E* (Pa), 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2.
     ///
-    /// Exact elliptical solution (Johnson 1985 sec. 4.2; HALFSPACE.md
+    /// Exact elliptical solution (Johnson 1985 sec. 4.2; docs/theory/HALFSPACE.md
     /// 3.1): m from B/A = [(a^2/b^2) E - K]/(K - E) (bracketed bisection; A = B gives the
     /// circle exactly), a^3 = 3F(K - E)/(2 pi E* m A) (its limit 3F/(8 E* A) at m = 0),
     /// b = a sqrt(1 - m), p0 = 3F/(2 pi a b), delta = 3 F K/(2 pi a E*).
@@ -634,7 +634,7 @@ mod tests {
 
     #[test]
     fn papers_radii_give_a_50_b_60() {
-        // HALFSPACE.md section 4: body 2 concave (-10 mm) in the plane of R11 = 5 mm.
+        // docs/theory/HALFSPACE.md section 4: body 2 concave (-10 mm) in the plane of R11 = 5 mm.
         let g = GapCurvature::from_radii([0.005, 0.05], [-0.01, 0.01], 0.0).unwrap();
         assert!(rel(g.a_coefficient, 50.0) < 1e-14, "{g:?}");
         assert!(rel(g.b_coefficient, 60.0) < 1e-14, "{g:?}");
@@ -668,7 +668,7 @@ mod tests {
             // Invariance of A + B = (1/2) sum of principal curvatures (Johnson sec. 4.1).
             let sum = 0.5 * (1.0 / r1[0] + 1.0 / r1[1] + 1.0 / r2[0] + 1.0 / r2[1]);
             assert!(rel(g.a_coefficient + g.b_coefficient, sum) < 1e-14);
-            // |B - A| from Johnson sec. 4.1 as written in HALFSPACE.md 3.1.
+            // |B - A| from Johnson sec. 4.1 as written in docs/theory/HALFSPACE.md 3.1.
             let (d1, d2) = (1.0 / r1[0] - 1.0 / r1[1], 1.0 / r2[0] - 1.0 / r2[1]);
             let diff =
                 0.5 * (d1 * d1 + d2 * d2 + 2.0 * d1 * d2 * (2.0 * angle_between).cos()).sqrt();
@@ -712,7 +712,7 @@ mod tests {
 
     #[test]
     fn papers_case() {
-        // HALFSPACE.md section 4: A = 50, B = 60 1/m, F = 2000 N, E* = 1.10440e11 Pa give
+        // docs/theory/HALFSPACE.md section 4: A = 50, B = 60 1/m, F = 2000 N, E* = 1.10440e11 Pa give
         // a = 5.2964e-4, b = 4.6903e-4 m, p0 = 3.8440e9 Pa, delta = 2.7225e-5 m, b/a = 0.8856.
         // 5 significant digits: relative tolerance 1e-4 (b/a, 4 digits: 1e-4 absolute).
         let e_star = papers_e_star();
@@ -743,7 +743,7 @@ mod tests {
 
     #[test]
     fn comparison_combinations() {
-        // HALFSPACE.md section 4, 4 significant digits: relative tolerance 2e-4.
+        // docs/theory/HALFSPACE.md section 4, 4 significant digits: relative tolerance 2e-4.
         let e_star = papers_e_star();
         for (a, b, long, short, delta) in [
             (150.0, 60.0, 5.565e-4, 3.028e-4, 3.234e-5),
@@ -850,7 +850,7 @@ mod tests {
 
     #[test]
     fn greenwood_approximation() {
-        // Greenwood (1985), HALFSPACE.md 3.1: the circle with 1/R_e = 2 sqrt(AB) gives
+        // Greenwood (1985), docs/theory/HALFSPACE.md 3.1: the circle with 1/R_e = 2 sqrt(AB) gives
         // p0 = 3.8405e9 Pa vs exact 3.8440e9 for the paper's case: within 0.2 %.
         let e_star = papers_e_star();
         let h = HertzContact::from_load(&gap(50.0, 60.0), e_star, 2000.0).unwrap();

@@ -4,7 +4,7 @@
 //!
 //! Source: Brebbia & Dominguez, *Boundary Elements: An Introductory Course* (2nd ed., 1992),
 //! sec. 5.3 (U, T; eqs. 5.30-5.31 there) and sec. 5.6 (interior stress kernels D, S); Becker,
-//! *The Boundary Element Method in Engineering* (1992), ch. 8. In the paper (`shared/seed`) these
+//! *The Boundary Element Method in Engineering* (1992), ch. 8. In the paper (see the crate docs) these
 //! are the influence functions G of the surface operators L^(S,u) and L_sigma(L^(S,u)) of (10),
 //! with the interior state (11) written as the Somigliana identity
 //!

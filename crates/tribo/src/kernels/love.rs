@@ -2,7 +2,7 @@
 //! (Love 1929; Johnson 1985 eq. (3.25), p. 54). Used as the influence coefficients of
 //! the paper's operator (10) with piecewise-constant tractions.
 //!
-//! Conventions (HALFSPACE.md section 0, Johnson's): the half-space is z >= 0 with z pointing
+//! Conventions (docs/theory/HALFSPACE.md section 0, Johnson's): the half-space is z >= 0 with z pointing
 //! into the solid, so u_z > 0 is a displacement into the solid; a pressure p > 0 is
 //! compressive; a traction q_x > 0 acts on the solid in +x. The loaded rectangle is
 //! |xi| <= `half_x`, |eta| <= `half_y` (m), centred on the origin; the field point is
@@ -12,7 +12,7 @@
 //! Every integral below is evaluated as the double antiderivative of its integrand taken at
 //! the four corners (X, Y) in {k, l} x {m, n} with signs +(k, m), -(k, n), -(l, m), +(l, n),
 //! written so that terms with X = 0 or Y = 0 take their limits: the functions are finite and
-//! continuous everywhere, on element edges and corners included (HALFSPACE.md 1.1, "robust
+//! continuous everywhere, on element edges and corners included (docs/theory/HALFSPACE.md 1.1, "robust
 //! arcsinh form").
 //!
 //! Accuracy: at distances rho of many element sizes the four corner terms (of size
@@ -52,7 +52,7 @@ fn offset_over_distance_squared_antiderivative(x: f64, y: f64) -> f64 {
 
 /// F(x, y) = the integral of 1/rho over the rectangle |xi| <= half_x, |eta| <= half_y, seen
 /// from the surface point (x, y) (m), robust arcsinh form valid on element edges and corners
-/// (HALFSPACE.md 1.1). Unit: m.
+/// (docs/theory/HALFSPACE.md 1.1). Unit: m.
 ///
 /// F = f(k, m) - f(k, n) - f(l, m) + f(l, n), f(X, Y) = X asinh(Y/|X|) + Y asinh(X/|Y|), each
 /// term 0 where its prefactor is 0 (Love 1929; Johnson 1985 eq. (3.25), p. 54, where it is
@@ -64,20 +64,20 @@ pub fn rectangle_inverse_distance_integral(x: f64, y: f64, half_x: f64, half_y: 
 
 /// F_x = the integral of (y - eta)^2 / rho^3 over the rectangle, m: the k-, l-terms of F,
 /// k[asinh(m/|k|) - asinh(n/|k|)] - l[asinh(m/|l|) - asinh(n/|l|)] (Pohrt & Li 2014;
-/// HALFSPACE.md 1.1). F_x + F_y = F.
+/// docs/theory/HALFSPACE.md 1.1). F_x + F_y = F.
 pub fn rectangle_integral_f_x(x: f64, y: f64, half_x: f64, half_y: f64) -> f64 {
     corner_sum(x, y, half_x, half_y, x_asinh_y_over_abs_x)
 }
 
 /// F_y = the integral of (x - xi)^2 / rho^3 over the rectangle, m: the m-, n-terms of F,
 /// m[asinh(k/|m|) - asinh(l/|m|)] - n[asinh(k/|n|) - asinh(l/|n|)] (Pohrt & Li 2014;
-/// HALFSPACE.md 1.1). F_x + F_y = F.
+/// docs/theory/HALFSPACE.md 1.1). F_x + F_y = F.
 pub fn rectangle_integral_f_y(x: f64, y: f64, half_x: f64, half_y: f64) -> f64 {
     corner_sum(x, y, half_x, half_y, |cx, cy| x_asinh_y_over_abs_x(cy, cx))
 }
 
 /// H_x = the integral of (x - xi) / rho^2 over the rectangle, m (Johnson 1985 p. 54 style;
-/// Pohrt & Li 2014; HALFSPACE.md 1.1):
+/// Pohrt & Li 2014; docs/theory/HALFSPACE.md 1.1):
 /// H_x = 1/2[m ln((k^2+m^2)/(l^2+m^2)) + n ln((l^2+n^2)/(k^2+n^2))]
 ///       + k[atan(m/k) - atan(n/k)] + l[atan(n/l) - atan(m/l)],
 /// with k atan(./k) -> 0 at k = 0 (and likewise for l) and m ln(...) -> 0 at m = 0: finite
@@ -93,7 +93,7 @@ pub fn rectangle_integral_h_x(x: f64, y: f64, half_x: f64, half_y: f64) -> f64 {
 }
 
 /// H_y = the integral of (y - eta) / rho^2 over the rectangle, m: H_x with the roles of
-/// (k, l) and (m, n) exchanged (Pohrt & Li 2014; HALFSPACE.md 1.1). Even in x, odd in y.
+/// (k, l) and (m, n) exchanged (Pohrt & Li 2014; docs/theory/HALFSPACE.md 1.1). Even in x, odd in y.
 pub fn rectangle_integral_h_y(x: f64, y: f64, half_x: f64, half_y: f64) -> f64 {
     corner_sum(x, y, half_x, half_y, |cx, cy| {
         offset_over_distance_squared_antiderivative(cy, cx)
@@ -102,7 +102,7 @@ pub fn rectangle_integral_h_y(x: f64, y: f64, half_x: f64, half_y: f64) -> f64 {
 
 /// S = the integral of (x - xi)(y - eta) / rho^3 over the rectangle, m:
 /// S = sqrt(n^2+k^2) - sqrt(m^2+k^2) + sqrt(m^2+l^2) - sqrt(n^2+l^2) (Pohrt & Li 2014;
-/// HALFSPACE.md 1.1). Odd in x and in y.
+/// docs/theory/HALFSPACE.md 1.1). Odd in x and in y.
 pub fn rectangle_integral_s(x: f64, y: f64, half_x: f64, half_y: f64) -> f64 {
     -corner_sum(x, y, half_x, half_y, f64::hypot)
 }
@@ -111,7 +111,7 @@ pub fn rectangle_integral_s(x: f64, y: f64, half_x: f64, half_y: f64) -> f64 {
 /// unit pressure (p = 1 Pa, compressive, in +z) on the rectangle, for a half-space of shear
 /// modulus `shear_modulus` G (Pa) and Poisson's ratio `poisson_ratio` nu:
 /// u_x = -(1-2nu)/(4 pi G) H_x, u_y = -(1-2nu)/(4 pi G) H_y, u_z = (1-nu)/(2 pi G) F
-/// (Love 1929; Johnson 1985 eq. (3.25), p. 54 for u_z; Pohrt & Li 2014; HALFSPACE.md 1.1).
+/// (Love 1929; Johnson 1985 eq. (3.25), p. 54 for u_z; Pohrt & Li 2014; docs/theory/HALFSPACE.md 1.1).
 /// Multiply by the pressure for its displacement. Lengths in m; expects G > 0,
 /// half sizes > 0.
 pub fn pressure_displacement(
@@ -133,7 +133,7 @@ pub fn pressure_displacement(
 
 /// Surface displacement `[u_x, u_y, u_z]` (m per Pa) at (x, y) due to a uniform unit
 /// tangential traction q_x = 1 Pa (acting on the solid in +x) on the rectangle (Cerruti's
-/// problem integrated; Pohrt & Li 2014; HALFSPACE.md 1.1):
+/// problem integrated; Pohrt & Li 2014; docs/theory/HALFSPACE.md 1.1):
 /// u_x = [(1-nu) F_x + F_y]/(2 pi G), u_y = nu S/(2 pi G), u_z = +(1-2nu) H_x/(4 pi G)
 /// (the last is minus the u_x of [`pressure_displacement`]: reciprocity). G in Pa.
 pub fn shear_x_displacement(
@@ -157,7 +157,7 @@ pub fn shear_x_displacement(
 
 /// Surface displacement `[u_x, u_y, u_z]` (m per Pa) at (x, y) due to a uniform unit
 /// tangential traction q_y = 1 Pa (acting on the solid in +y) on the rectangle: x and y
-/// roles of [`shear_x_displacement`] exchanged (Pohrt & Li 2014; HALFSPACE.md 1.1):
+/// roles of [`shear_x_displacement`] exchanged (Pohrt & Li 2014; docs/theory/HALFSPACE.md 1.1):
 /// u_x = nu S/(2 pi G), u_y = [(1-nu) F_y + F_x]/(2 pi G), u_z = +(1-2nu) H_y/(4 pi G).
 pub fn shear_y_displacement(
     x: f64,
@@ -181,7 +181,7 @@ pub fn shear_y_displacement(
 /// Normal contact compliance, m per Pa: the combined normal displacement u_z1 + u_z2 of two
 /// bodies at (x, y) per unit pressure on the rectangle, F / (pi E*), with the composite
 /// modulus `composite_modulus` E* (Pa), 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2 (Johnson 1985
-/// eq. (3.25), p. 54 and eq. (4.22); HALFSPACE.md end of 1.1). This is the kernel of the
+/// eq. (3.25), p. 54 and eq. (4.22); docs/theory/HALFSPACE.md end of 1.1). This is the kernel of the
 /// paper's (16) for frictionless contact (tangential coupling neglected), sampled at
 /// element-centre offsets by the contact operator.
 pub fn normal_compliance(x: f64, y: f64, half_x: f64, half_y: f64, composite_modulus: f64) -> f64 {
@@ -235,7 +235,7 @@ mod tests {
 
     #[test]
     fn test_vectors_of_halfspace_md() {
-        // HALFSPACE.md 1.1 table: G = 1, nu = 0.3, unit square; 7 significant digits, so the
+        // docs/theory/HALFSPACE.md 1.1 table: G = 1, nu = 0.3, unit square; 7 significant digits, so the
         // tolerance is 1e-6 relative (values given to 7 digits carry up to 5e-7 rounding on
         // the smallest entries, e.g. 0.0030016).
         let table: [TestVector; 4] = [
@@ -287,7 +287,7 @@ mod tests {
 
     #[test]
     fn value_at_the_centre() {
-        // F(0,0) = 4[a asinh(b/a) + b asinh(a/b)] = 3.5254943 for the unit square (HALFSPACE.md 1.1).
+        // F(0,0) = 4[a asinh(b/a) + b asinh(a/b)] = 3.5254943 for the unit square (docs/theory/HALFSPACE.md 1.1).
         let f = rectangle_inverse_distance_integral(0.0, 0.0, 0.5, 0.5);
         assert!(rel(f, 4.0 * 1.0f64.asinh()) < 1e-15, "{f}");
         assert!((f - 3.5254943).abs() < 5e-8, "{f}");
@@ -354,7 +354,7 @@ mod tests {
     fn h_x_on_the_edge_has_its_closed_form() {
         // H_x at the middle of the right edge of the unit square, by hand: X = x - xi in [0, 1],
         // int_0^1 [atan(0.5/X) - atan(-0.5/X)] dX = int_0^1 (pi - 2 atan(2X)) dX
-        // = pi - 2 atan(2) + ln(5)/2. The log form of HALFSPACE.md would give 0 * ln 0 = NaN here.
+        // = pi - 2 atan(2) + ln(5)/2. The log form of docs/theory/HALFSPACE.md would give 0 * ln 0 = NaN here.
         let h = rectangle_integral_h_x(0.5, 0.0, 0.5, 0.5);
         let exact = PI - 2.0 * 2.0f64.atan() + 0.5 * 5.0f64.ln();
         assert!(rel(h, exact) < 1e-15, "{h} vs {exact}");
@@ -393,7 +393,7 @@ mod tests {
                     rectangle_integral_f_x(x, y, hx, hy)
                 ) < 1e-14
             );
-            // Reciprocity (Betti; HALFSPACE.md 0): u_z from q_x = -u_x from p; u_z from q_y =
+            // Reciprocity (Betti; docs/theory/HALFSPACE.md 0): u_z from q_x = -u_x from p; u_z from q_y =
             // -u_y from p; u_y from q_x = u_x from q_y.
             let p = pressure_displacement(x, y, hx, hy, 2.0, NU);
             let qx = shear_x_displacement(x, y, hx, hy, 2.0, NU);
@@ -421,7 +421,7 @@ mod tests {
 
     #[test]
     fn far_field_is_the_point_load() {
-        // At rho = 50 sizes F -> area/rho (Boussinesq point load, Johnson 1985 ch. 3; HALFSPACE.md 0).
+        // At rho = 50 sizes F -> area/rho (Boussinesq point load, Johnson 1985 ch. 3; docs/theory/HALFSPACE.md 0).
         // The first correction is the in-plane second moment: F = A/rho [1 + (I_x + I_y)/(2A rho^2)
         // + O(rho^-4)] with I_x + I_y = A (a^2 + b^2)/3, i.e. 1/(24 rho^2) = 1.7e-5 for the unit
         // square (along any direction, because the square's moment is isotropic). So
@@ -436,7 +436,7 @@ mod tests {
             assert!(rel(f, corrected) < 1e-8, "{f} vs {corrected}");
         }
         // The displacements become the surface values of Boussinesq and Cerruti
-        // (HALFSPACE.md 0): u_x(p) = -(1-2nu) x /(4 pi G rho^2) A, u_x(q_x) = [(1-nu)/rho
+        // (docs/theory/HALFSPACE.md 0): u_x(p) = -(1-2nu) x /(4 pi G rho^2) A, u_x(q_x) = [(1-nu)/rho
         // + nu x^2/rho^3] A/(2 pi G), u_y(q_x) = nu x y A /(2 pi G rho^3).
         let (x, y) = (40.0, 30.0);
         let p = pressure_displacement(x, y, 0.5, 0.5, 1.0, NU);

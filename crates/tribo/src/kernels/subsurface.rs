@@ -3,7 +3,7 @@
 //! Kalker 1986 and Lee, Gu & Jo 2000), used as the stress influence coefficients of the
 //! paper's spatial stress state (11).
 //!
-//! Conventions (HALFSPACE.md section 0, Johnson's): the half-space is z >= 0 with z pointing
+//! Conventions (docs/theory/HALFSPACE.md section 0, Johnson's): the half-space is z >= 0 with z pointing
 //! into the solid; a pressure p > 0 is compressive (acts in +z); a traction q_x > 0 acts on
 //! the solid in +x; stresses are tension-positive, so on the loaded surface
 //! sigma_zz = -p and sigma_xz = -q_x. The loaded rectangle is |xi| <= `half_x`,
@@ -52,10 +52,10 @@
 //!
 //! R+Y (and R+X) is evaluated as (X^2+z^2)/(R-Y) when Y < 0 and R-z as (X^2+Y^2)/(R+z), so
 //! no term loses digits by cancellation near the rectangle's edges. The result agrees with
-//! the HALFSPACE.md 2.1 quadrature table (slippy's Love and Lee-Gu-Jo kernels) to all printed
+//! the docs/theory/HALFSPACE.md 2.1 quadrature table (slippy's Love and Lee-Gu-Jo kernels) to all printed
 //! digits; see the tests.
 //!
-//! # Surface points, edges and corners (HALFSPACE.md 2.4, pitfall 3)
+//! # Surface points, edges and corners (docs/theory/HALFSPACE.md 2.4, pitfall 3)
 //!
 //! The closed forms are evaluated at the depth z_eff = max(z, 1e-12 (half_x + half_y)), in
 //! lengths normalised by half_x + half_y. On
@@ -164,7 +164,7 @@ impl StressTensor {
         (a * a + b * b + c * c) / 6.0 + self.xy * self.xy + self.yz * self.yz + self.xz * self.xz
     }
 
-    /// Stress intensity (von Mises equivalent stress, DESIGN.md sec. 2):
+    /// Stress intensity (von Mises equivalent stress, docs/theory/DESIGN.md sec. 2):
     /// sigma_int = sqrt(((s1-s2)^2 + (s2-s3)^2 + (s3-s1)^2)/2) = sqrt(3 J2), from components.
     pub fn von_mises(self) -> f64 {
         (3.0 * self.j2()).sqrt()
@@ -271,7 +271,7 @@ fn unit_direction(x: f64, y: f64, z: f64) -> Option<(f64, [f64; 3])> {
 /// Boussinesq's stresses (Pa per N) at (x, y, z) (m) due to a unit normal point force
 /// (compressive, in +z) at the origin of the surface, Cartesian form (Johnson 1985 sec. 3.2,
 /// eq. (3.22) rewritten in Cartesian coordinates; derived from the displacements of
-/// HALFSPACE.md section 0), R = sqrt(x^2+y^2+z^2):
+/// docs/theory/HALFSPACE.md section 0), R = sqrt(x^2+y^2+z^2):
 /// - sigma_xx = [(1-2nu){z/R^3 - 1/(R(R+z)) + x^2(2R+z)/(R^3(R+z)^2)} - 3x^2 z/R^5] / (2 pi),
 ///   sigma_yy likewise with y;
 /// - sigma_zz = -3 z^3/(2 pi R^5);
@@ -304,7 +304,7 @@ pub fn boussinesq_stress(x: f64, y: f64, z: f64, poisson_ratio: f64) -> StressTe
 
 /// Cerruti's stresses (Pa per N) at (x, y, z) (m) due to a unit tangential point force in +x
 /// at the origin of the surface (Johnson 1985 sec. 3.3, eq. (3.87); checked against
-/// derivatives of the displacements of HALFSPACE.md section 0), R = sqrt(x^2+y^2+z^2):
+/// derivatives of the displacements of docs/theory/HALFSPACE.md section 0), R = sqrt(x^2+y^2+z^2):
 /// - sigma_xx = [-3x^3/R^5 + (1-2nu){x/R^3 - 3x/(R(R+z)^2) + x^3/(R^3(R+z)^2)
 ///   + 2x^3/(R^2(R+z)^3)}] / (2 pi);
 /// - sigma_yy = [-3xy^2/R^5 + (1-2nu){x/R^3 - x/(R(R+z)^2) + xy^2/(R^3(R+z)^2)
@@ -715,7 +715,7 @@ mod tests {
     /// A point-load stress function (x, y, z, nu).
     type PointLoad = fn(f64, f64, f64, f64) -> StressTensor;
 
-    /// HALFSPACE.md 2.1 reference table (quadrature, unit square, nu = 0.3): point,
+    /// docs/theory/HALFSPACE.md 2.1 reference table (quadrature, unit square, nu = 0.3): point,
     /// stresses of p = 1, stresses of q_x = 1, order (xx, yy, zz, xy, yz, xz).
     const TABLE: [([f64; 3], [f64; 6], [f64; 6]); 5] = [
         (
@@ -815,7 +815,7 @@ mod tests {
         a.to_array().iter().fold(0.0, |m, d| m.max(d.abs()))
     }
 
-    /// Boussinesq and Cerruti displacements of HALFSPACE.md section 0 (G = 1, unit force).
+    /// Boussinesq and Cerruti displacements of docs/theory/HALFSPACE.md section 0 (G = 1, unit force).
     fn point_displacement(normal: bool, p: [f64; 3], nu: f64) -> [f64; 3] {
         let [x, y, z] = p;
         let r = (x * x + y * y + z * z).sqrt();
@@ -866,7 +866,7 @@ mod tests {
     }
 
     /// Johnson's point-load stresses equal Hooke's law applied to the (independently
-    /// verified) point-load displacements of HALFSPACE.md section 0. Central differences with
+    /// verified) point-load displacements of docs/theory/HALFSPACE.md section 0. Central differences with
     /// h = 1e-5 at distance ~1: truncation ~1e-10, rounding ~1e-11.
     #[test]
     fn point_loads_match_displacement_gradients() {
@@ -931,7 +931,7 @@ mod tests {
     }
 
     /// sigma_zz(q_x) = sigma_xz(p) and sigma_zz(q_y) = sigma_yz(p) (Betti reciprocity;
-    /// HALFSPACE.md 2.1 note), on a grid including the surface and element edges.
+    /// docs/theory/HALFSPACE.md 2.1 note), on a grid including the surface and element edges.
     #[test]
     fn reciprocity_identity() {
         let mut worst: f64 = 0.0;
@@ -949,7 +949,7 @@ mod tests {
         assert!(worst < 1e-13, "{worst}");
     }
 
-    /// CONTACT cross-check (HALFSPACE.md 2.1; eve70a/CONTACT examples/subsurf.ref_out and
+    /// CONTACT cross-check (docs/theory/HALFSPACE.md 2.1; eve70a/CONTACT examples/subsurf.ref_out and
     /// Kalker 1990 Fig. 5.20): unit pressure on the unit square, nu = 0.28. The references have
     /// 4 digits: tolerance 5e-5.
     #[test]

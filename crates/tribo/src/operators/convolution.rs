@@ -10,7 +10,7 @@
 //! displacement at an element centre due to a unit uniform traction on another element,
 //! the discretized operator (10) of the paper). A direct sum costs O(N^2) for N elements;
 //! here it is done in O(N log N) by the DC-FFT method (Liu, Wang & Liu 2000, Wear 243:101;
-//! Hockney 1970; HALFSPACE.md section 2.2):
+//! Hockney 1970; docs/theory/HALFSPACE.md section 2.2):
 //!
 //! 1. the kernel is laid out on a `2nx * 2ny` array in wrap-around order (index `k` holds
 //!    offset `k` for `k < n`, offset `k - 2n` for `k > n`, index `n` is never reached) and

@@ -13,7 +13,7 @@
 //! once, transforms each kernel once, accumulates the products `K^_{s,c} t^_s` over `s` in the
 //! spectral domain, and transforms back once per component: at each depth `6 n_s` forward and
 //! 6 inverse transforms instead of `12 n_s` for one operator per (s, c). The padding is that of
-//! [`super::ConvolutionOperator`] (Liu, Wang & Liu 2000, Wear 243:101; HALFSPACE.md 2.2): the
+//! [`super::ConvolutionOperator`] (Liu, Wang & Liu 2000, Wear 243:101; docs/theory/HALFSPACE.md 2.2): the
 //! kernel on a `2nx x 2ny` array in wrap-around order, the input zero-padded, so that the
 //! circular convolution equals the linear (non-periodic) one exactly.
 

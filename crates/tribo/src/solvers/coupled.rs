@@ -35,7 +35,7 @@ pub fn dundurs_beta(body1: &ElasticMaterial, body2: &ElasticMaterial) -> f64 {
 }
 
 /// The coefficient of the coupling kernels, m^2/N: c = (1 - 2 nu1)/(4 pi G1) -
-/// (1 - 2 nu2)/(4 pi G2) (HALFSPACE.md 1.1: a shear q on body 1 in +x moves its surface by
+/// (1 - 2 nu2)/(4 pi G2) (docs/theory/HALFSPACE.md 1.1: a shear q on body 1 in +x moves its surface by
 /// +(1 - 2 nu1) q H_x / (4 pi G1) into it; body 2 carries -q).
 pub fn coupling_coefficient(body1: &ElasticMaterial, body2: &ElasticMaterial) -> f64 {
     let four_pi = 4.0 * std::f64::consts::PI;
@@ -127,7 +127,7 @@ pub fn solve_coupled(
 /// Solve the coupled normal-tangential problem by alternation, with the tangential problem
 /// of `model`. Each pass solves the normal problem with the gap changed by the current
 /// traction, `h + K_x q_x + K_y q_y` ([`coupling_operator`] along x and y; Johnson 1985
-/// sec. 5.4, HALFSPACE.md 1.1), then the tangential problem with the tangential
+/// sec. 5.4, docs/theory/HALFSPACE.md 1.1), then the tangential problem with the tangential
 /// displacement of the pressure, `-(K_x * p, K_y * p)` (`K_qp = K_pq^T`, odd kernels),
 /// until the largest change of p (relative to p_max) and of q (relative to f p_max) is
 /// below `tolerance`. For the load-parallel model the offset along the load direction e is
@@ -332,7 +332,7 @@ mod tests {
 
     #[test]
     fn coupling_kernel_is_the_difference_of_the_bodies_cross_displacements() {
-        // Against the Pohrt-Li surface displacements (tested on HALFSPACE.md 1.1's vectors):
+        // Against the Pohrt-Li surface displacements (tested on docs/theory/HALFSPACE.md 1.1's vectors):
         // gap change per q_x = u_z1(q_x) - u_z2(q_x) (body 2 carries -q_x in its mirrored
         // frame), tangential displacement per p = u_x1(p) - u_x2(p) = -K_pq (reciprocity).
         let b1 = ElasticMaterial::new(2.1e11, 0.3).unwrap();

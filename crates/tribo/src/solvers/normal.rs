@@ -124,7 +124,7 @@ impl NormalContactSolution {
 
 /// The combined surface compliance of two bodies for uniform pressure on the elements of
 /// `grid`: `K(di, dj) = F(di dx, dj dy) / (pi E*)` (Love 1929; Johnson 1985 eq. (3.25);
-/// HALFSPACE.md 1.1), m/Pa. This is the operator of the paper's (16) discretized.
+/// docs/theory/HALFSPACE.md 1.1), m/Pa. This is the operator of the paper's (16) discretized.
 pub fn normal_compliance_kernel(
     grid: &SurfaceGrid,
     composite_modulus: f64,

@@ -1,7 +1,7 @@
 //! Rows of the 2D boundary element solver ([`crate::solvers::bem2d`]): one body (Lame,
 //! Kirsch, the cantilever), bonded zones (the compound cylinder), body forces (the rotating
 //! annulus) and contact (2D Hertz, the flat punch, Cattaneo-Mindlin, Nowell-Hills), each
-//! against its closed form (BEM2D.md section 2). The models are the unit tests' own
+//! against its closed form (docs/theory/BEM2D.md section 2). The models are the unit tests' own
 //! ([`crate::solvers::bem2d::reference`], [`crate::solvers::bem2d::contact::reference`]), at
 //! the unit tests' meshes: together they solve in a few tenths of a second.
 //!
@@ -43,11 +43,11 @@ fn radial(u: [f64; 2], theta: f64) -> f64 {
     u[0] * theta.cos() + u[1] * theta.sin()
 }
 
-/// Lame cylinder (BEM2D.md A1): the values at 16 elements per quarter arc and the observed
+/// Lame cylinder (docs/theory/BEM2D.md A1): the values at 16 elements per quarter arc and the observed
 /// orders 8 -> 16.
 fn lame_rows() -> Result<Vec<ValidationRow>> {
     let mut rows = Vec::new();
-    let src = "BEM2D.md A1 (Lame, plane strain; u_r(a) = 9.079e-6 m, sigma_t(a) = 166.67 MPa)";
+    let src = "docs/theory/BEM2D.md A1 (Lame, plane strain; u_r(a) = 9.079e-6 m, sigma_t(a) = 166.67 MPa)";
     let (coarse, _) = lame(4)?;
     let (fine, _) = lame(8)?;
     let case = "2D BEM, Lame cylinder a = 10, b = 20 mm, p = 100 MPa, 16 elements per quarter arc";
@@ -102,7 +102,7 @@ fn lame_rows() -> Result<Vec<ValidationRow>> {
     Ok(rows)
 }
 
-/// Kirsch plate (BEM2D.md A2), Kirsch's tractions on the outer edges, 24 elements on the
+/// Kirsch plate (docs/theory/BEM2D.md A2), Kirsch's tractions on the outer edges, 24 elements on the
 /// quarter hole.
 fn kirsch_rows() -> Result<Vec<ValidationRow>> {
     let sol = kirsch(8)?;
@@ -117,11 +117,11 @@ fn kirsch_rows() -> Result<Vec<ValidationRow>> {
         kt,
         ErrorMeasure::Relative,
         3e-3,
-        "BEM2D.md A2 (Kirsch equations, K_t = 3)",
+        "docs/theory/BEM2D.md A2 (Kirsch equations, K_t = 3)",
     )])
 }
 
-/// Cantilever with end shear (BEM2D.md A3), 16 elements along each long side.
+/// Cantilever with end shear (docs/theory/BEM2D.md A3), 16 elements along each long side.
 fn cantilever_rows() -> Result<Vec<ValidationRow>> {
     let sol = cantilever(4)?;
     // Measured 6.9e-5; the unit test asserts 1e-4 at this mesh. Euler-Bernoulli (PL^3/(3EI)
@@ -133,7 +133,7 @@ fn cantilever_rows() -> Result<Vec<ValidationRow>> {
         sol.displacement_at([BEAM_L, 0.0])?[1],
         ErrorMeasure::Relative,
         1e-4,
-        "BEM2D.md A3 (Timoshenko & Goodier; 8.9000e-3)",
+        "docs/theory/BEM2D.md A3 (Timoshenko & Goodier; 8.9000e-3)",
     )])
 }
 
@@ -154,7 +154,7 @@ fn compound_rows() -> Result<Vec<ValidationRow>> {
         hoop(&sol.stress_at([r * th.cos(), r * th.sin()])?, th),
         ErrorMeasure::Relative,
         4e-5,
-        "Lame per ring, u_r and sigma_r continuous at the bond (BEM2D.md A1)",
+        "Lame per ring, u_r and sigma_r continuous at the bond (docs/theory/BEM2D.md A1)",
     )])
 }
 
@@ -186,7 +186,7 @@ fn rotating_rows() -> Result<Vec<ValidationRow>> {
     )])
 }
 
-/// 2D Hertz, steel cylinder R = 10 mm on a steel block, P = 100 N/mm (BEM2D.md A4), 48
+/// 2D Hertz, steel cylinder R = 10 mm on a steel block, P = 100 N/mm (docs/theory/BEM2D.md A4), 48
 /// elements on the cylinder's arc and 40 on the block over |x| <= 2 b.
 fn hertz_rows() -> Result<Vec<ValidationRow>> {
     let s = steel()?;
@@ -202,7 +202,7 @@ fn hertz_rows() -> Result<Vec<ValidationRow>> {
                 48/40 elements over |x| <= 2b";
     // Measured 9.1e-4 on b and 2.1e-4 on p0 at this mesh; on the neighbouring meshes (40/32
     // .. 56/46) up to 5.1e-3 and 9.9e-4. Tolerances 1e-2 (the unit test's) and 2e-3.
-    let src = "BEM2D.md A4 (b = sqrt(4PR/(pi E*)) = 0.10505 mm, p0 = 2P/(pi b) = 606.04 MPa)";
+    let src = "docs/theory/BEM2D.md A4 (b = sqrt(4PR/(pi E*)) = 0.10505 mm, p0 = 2P/(pi b) = 606.04 MPa)";
     Ok(vec![
         ValidationRow::new(
             case,
@@ -225,7 +225,7 @@ fn hertz_rows() -> Result<Vec<ValidationRow>> {
     ])
 }
 
-/// Flat punch (BEM2D.md A6): pressure against P / (pi sqrt(a^2 - x^2)).
+/// Flat punch (docs/theory/BEM2D.md A6): pressure against P / (pi sqrt(a^2 - x^2)).
 fn punch_rows() -> Result<Vec<ValidationRow>> {
     let a = PUNCH_A;
     let mut cp = flat_punch(a, Grading::BothEnds(4.0), GapRule::NodeToSegment)?;
@@ -254,8 +254,8 @@ fn punch_rows() -> Result<Vec<ValidationRow>> {
     // Measured 4.3e-3 at the centre and 5.2e-3 over |x| <= 0.8 a (the finite block and the
     // punch's finite stiffness); tolerances 8e-3 and 1e-2 (the unit test's). Neighbouring
     // meshes (40/32 .. 56/46) give 4.0e-3 .. 4.7e-3 and 4.5e-3 .. 7.2e-3. The FEM reference
-    // of BEM2D.md A6 reaches 3e-3 at the centre with h = a/100.
-    let src = "BEM2D.md A6 (Sadowsky: p = P / (pi sqrt(a^2 - x^2)))";
+    // of docs/theory/BEM2D.md A6 reaches 3e-3 at the centre with h = a/100.
+    let src = "docs/theory/BEM2D.md A6 (Sadowsky: p = P / (pi sqrt(a^2 - x^2)))";
     Ok(vec![
         ValidationRow::new(
             case,
@@ -304,11 +304,11 @@ fn cattaneo_rows() -> Result<Vec<ValidationRow>> {
         c / a,
         ErrorMeasure::Relative,
         1.5e-2,
-        "BEM2D.md A5 (c = a sqrt(1 - Q/(f P)); Johnson 1985 sec. 7.1)",
+        "docs/theory/BEM2D.md A5 (c = a sqrt(1 - Q/(f P)); Johnson 1985 sec. 7.1)",
     )])
 }
 
-/// Nowell & Hills' fretting benchmark (BEM2D.md A5): the stick zone under Q and a bulk
+/// Nowell & Hills' fretting benchmark (docs/theory/BEM2D.md A5): the stick zone under Q and a bulk
 /// stress sigma.
 fn nowell_hills_rows() -> Result<Vec<ValidationRow>> {
     let (.., f, _, _) = NOWELL_HILLS;
@@ -327,7 +327,7 @@ fn nowell_hills_rows() -> Result<Vec<ValidationRow>> {
     // Tolerances 1e-2 and 2e-3 (the unit test: 2e-2 on both). Without the bulk stress the
     // shift would be 0, 0.2 a off; the row also checks its sign (toward +x, the sense of Q
     // and of the bulk tension here).
-    let src = "BEM2D.md A5 (Nowell & Hills 1990: c = a sqrt(1 - Q/(fP)), e = a sigma/(4 f p0))";
+    let src = "docs/theory/BEM2D.md A5 (Nowell & Hills 1990: c = a sqrt(1 - Q/(fP)), e = a sigma/(4 f p0))";
     Ok(vec![
         ValidationRow::new(
             case,
@@ -407,7 +407,7 @@ fn gmsh_rows() -> Result<Vec<ValidationRow>> {
         observed_order(e8, e16, 2.0, 1.0),
         ErrorMeasure::Order,
         0.4,
-        "BEM2D.md A1; quadratic elements through interpolated middle nodes (order 3)",
+        "docs/theory/BEM2D.md A1; quadratic elements through interpolated middle nodes (order 3)",
     ));
     rows.push(ValidationRow::new(
         "2D BEM, Lame ring from a first-order gmsh mesh, 32 elements per quarter arc",
@@ -416,7 +416,7 @@ fn gmsh_rows() -> Result<Vec<ValidationRow>> {
         e16,
         ErrorMeasure::Bound,
         3.5e-5,
-        "BEM2D.md A1 (measured 1.7e-5)",
+        "docs/theory/BEM2D.md A1 (measured 1.7e-5)",
     ));
     Ok(rows)
 }

@@ -1,5 +1,5 @@
 //! Verification of the region triangulation and the field sampling against closed forms:
-//! polygon and annulus areas, the Lame thick cylinder (BEM2D.md A1) and its dangerous area.
+//! polygon and annulus areas, the Lame thick cylinder (docs/theory/BEM2D.md A1) and its dangerous area.
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -40,7 +40,7 @@ fn plate_with_square_hole() -> BemMesh {
     BemMesh::new(&model).unwrap()
 }
 
-// Lame thick cylinder (BEM2D.md A1): a = 10 mm, b = 20 mm, E = 210 GPa, nu = 0.3,
+// Lame thick cylinder (docs/theory/BEM2D.md A1): a = 10 mm, b = 20 mm, E = 210 GPa, nu = 0.3,
 // p = 100 MPa, plane strain, quarter model with symmetry rollers (as solvers/bem2d/tests.rs).
 const LA: f64 = 0.010;
 const LB: f64 = 0.020;

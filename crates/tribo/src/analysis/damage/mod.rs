@@ -1,5 +1,5 @@
 //! Volume damageability: limiting values, relative damage, dangerous volumes and their
-//! accumulation in time, the paper's (19)-(24) and (36) (seed paper Sec. 4; DESIGN.md part F).
+//! accumulation in time, the paper's (19)-(24) and (36) (seed paper Sec. 4; docs/theory/DESIGN.md part F).
 //! Written once for 3D fields (the half-space grid, [`DamageMesh::from_field_grid`]) and 2D
 //! plane fields (triangles, [`DamageMesh::triangles`], [`DamageMesh::structured_2d`]; plane
 //! strain stress by [`plane_strain_stress`]; measures are areas per unit thickness).

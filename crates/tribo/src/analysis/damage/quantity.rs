@@ -90,7 +90,7 @@ pub enum DamageQuantity {
         tensor: TensorKind,
     },
     /// The intensity phi_int: for stress the von Mises equivalent stress
-    /// sigma_int = sqrt(((s1-s2)^2 + (s2-s3)^2 + (s3-s1)^2)/2) (DESIGN.md sec. 2); for strain
+    /// sigma_int = sqrt(((s1-s2)^2 + (s2-s3)^2 + (s3-s1)^2)/2) (docs/theory/DESIGN.md sec. 2); for strain
     /// the equivalent strain eps_int = (sqrt(2)/3) sqrt((e1-e2)^2 + (e2-e3)^2 + (e3-e1)^2)
     /// (= sigma_int / (3G) in the elastic range). Limit > 0.
     Intensity {

@@ -1,4 +1,4 @@
-//! Fatigue (Woehler, S-N) curves of a tribo-fatigue system, part J of DESIGN.md: the paper's
+//! Fatigue (Woehler, S-N) curves of a tribo-fatigue system, part J of docs/theory/DESIGN.md: the paper's
 //! Fig. 3, four curves from the SI wear-fatigue machines: mechanical fatigue (sigma, bending
 //! with rotation of the shaft), rolling fatigue (p, contact pressure of the roller), and
 //! mechano-rolling fatigue (sigma_p: the shaft's bending fatigue while it is rolled on;
@@ -11,7 +11,7 @@
 //! S_a = Delta S / 2 (a stress cycle between S_m - S_a and S_m + S_a has the range 2 S_a),
 //! a contact pressure (the maximum Hertz pressure p0 of each pass) is never converted. The
 //! convention difference between libraries (pyLife: amplitudes; fatpack and py-fatigue:
-//! ranges) is a known source of error (pyLife issue #202, `shared/references/FATIGUE.md`).
+//! ranges) is a known source of error (pyLife issue #202, `docs/theory/FATIGUE.md`).
 //!
 //! Submodules: [`fit`] fits curves to test data (ASTM E739 regression, maximum likelihood);
 //! [`stats`] the special functions; [`nelder_mead`] the minimiser of the likelihood.

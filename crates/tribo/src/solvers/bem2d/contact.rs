@@ -33,7 +33,7 @@
 //! and carry no traction. **Which side is the slave**: the finer mesh. Node-to-segment
 //! schemes keep slave nodes out of the master, not master nodes out of the slave; with a
 //! coarser slave the master nodes penetrate between slave nodes and the stick/slip sub-zones
-//! come out wrong (Blázquez, París, Mantič, EABE 21 (1998) 361-375, BEM2D.md sec. 1). The
+//! come out wrong (Blázquez, París, Mantič, EABE 21 (1998) 361-375, docs/theory/BEM2D.md sec. 1). The
 //! pair is taken as given; the rule is the caller's (documented) responsibility.
 //!
 //! # Condensation
@@ -182,7 +182,7 @@
 //! References: Johnson, *Contact Mechanics* (1985), ch. 4 (Hertz, flat punch: p = P /
 //! (pi sqrt(a^2 - x^2))) and ch. 7 (Cattaneo-Mindlin, c = a sqrt(1 - Q/(f P))); Nowell &
 //! Hills, Wear 136 (1990) and J. Mech. Phys. Solids 35 (1987) (shift of the stick zone by a
-//! bulk stress, e = a sigma / (4 f p0)); `shared/references/BEM2D.md` A4-A6.
+//! bulk stress, e = a sigma / (4 f p0)); `docs/theory/BEM2D.md` A4-A6.
 
 // Index loops read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]

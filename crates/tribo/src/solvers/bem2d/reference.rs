@@ -14,13 +14,13 @@ use crate::kernels::kelvin2d::PlaneCondition;
 use crate::material::ElasticMaterial;
 use crate::operators::bem2d::{BemModel, BodyForce, Grading, LoopItem, Region, Segment};
 
-/// The steel of the references: E = 210 GPa, nu = 0.3 (BEM2D.md A1, A4).
+/// The steel of the references: E = 210 GPa, nu = 0.3 (docs/theory/BEM2D.md A1, A4).
 pub(crate) fn steel() -> Result<ElasticMaterial> {
     ElasticMaterial::new(210e9, 0.3)
 }
 
 // ---------------------------------------------------------------------------------------
-// Lame thick cylinder (BEM2D.md A1): a = 10 mm, b = 20 mm, E = 210 GPa, nu = 0.3,
+// Lame thick cylinder (docs/theory/BEM2D.md A1): a = 10 mm, b = 20 mm, E = 210 GPa, nu = 0.3,
 // p = 100 MPa, plane strain, quarter model with symmetry rollers.
 
 /// Inner radius a of the Lame cylinder (m).
@@ -30,7 +30,7 @@ pub(crate) const LB: f64 = 0.020;
 /// Internal pressure p of the Lame cylinder (Pa).
 pub(crate) const LP: f64 = 100e6;
 
-/// Lame's plane-strain solution (u_r, sigma_r, sigma_t) at radius r (BEM2D.md A1, from
+/// Lame's plane-strain solution (u_r, sigma_r, sigma_t) at radius r (docs/theory/BEM2D.md A1, from
 /// solver-docs.pages.dev/verification/lame_cylinder.html):
 /// sigma_r = p a^2/(b^2-a^2) (1 - b^2/r^2), sigma_t = p a^2/(b^2-a^2) (1 + b^2/r^2),
 /// u_r = p a^2 r / (E (b^2-a^2)) [(1 - nu - 2 nu^2) + b^2 (1+nu)/r^2].
@@ -99,7 +99,7 @@ pub(crate) fn lame_errors(sol: &BemSolution) -> Result<(f64, f64, f64)> {
 
 // ---------------------------------------------------------------------------------------
 // Kirsch: infinite plate with a hole under remote sigma_xx = s, exact tractions on the
-// outer edges of a quarter model (BEM2D.md A2), plane stress, a = 1, L = 4.
+// outer edges of a quarter model (docs/theory/BEM2D.md A2), plane stress, a = 1, L = 4.
 
 /// Hole radius of the Kirsch model (m).
 pub(crate) const KIRSCH_A: f64 = 1.0;
@@ -107,7 +107,7 @@ pub(crate) const KIRSCH_A: f64 = 1.0;
 pub(crate) const KIRSCH_S: f64 = 1e6;
 
 /// Kirsch's stresses [sigma_xx, sigma_yy, sigma_xy] at p around a hole of radius a under
-/// remote sigma_xx = s (BEM2D.md A2, en.wikipedia.org/wiki/Kirsch_equations), from the polar
+/// remote sigma_xx = s (docs/theory/BEM2D.md A2, en.wikipedia.org/wiki/Kirsch_equations), from the polar
 /// components sigma_rr = s/2 (1 - a^2/r^2) + s/2 (1 + 3a^4/r^4 - 4a^2/r^2) cos 2t,
 /// sigma_tt = s/2 (1 + a^2/r^2) - s/2 (1 + 3a^4/r^4) cos 2t,
 /// sigma_rt = -s/2 (1 - 3a^4/r^4 + 2a^2/r^2) sin 2t.
@@ -127,7 +127,7 @@ pub(crate) fn kirsch_stress(p: [f64; 2], s: f64, a: f64) -> [f64; 3] {
     ]
 }
 
-/// The quarter Kirsch plate (E = 1e5, nu = 0.3, as in the benchmark of BEM2D.md A2) with
+/// The quarter Kirsch plate (E = 1e5, nu = 0.3, as in the benchmark of docs/theory/BEM2D.md A2) with
 /// `2 n` elements per straight edge (graded toward the hole, ratio 3) and `3 n` on the hole
 /// arc, Kirsch's tractions on the outer edges, solved.
 pub(crate) fn kirsch(n: usize) -> Result<BemSolution> {
@@ -166,14 +166,14 @@ pub(crate) fn kirsch(n: usize) -> Result<BemSolution> {
 }
 
 // ---------------------------------------------------------------------------------------
-// Cantilever with end shear (BEM2D.md A3): L = 48, D = 12, E = 3e7, nu = 0.3, P = 1000,
+// Cantilever with end shear (docs/theory/BEM2D.md A3): L = 48, D = 12, E = 3e7, nu = 0.3, P = 1000,
 // plane stress, exact displacements on the support x = 0 and the parabolic shear at x = L.
 
 /// Length L of the cantilever.
 pub(crate) const BEAM_L: f64 = 48.0;
 
 /// Timoshenko & Goodier's displacement [u_x, u_y] of the cantilever with end shear, plane
-/// stress (BEM2D.md A3, public MATLAB `Beam_AnalyticalSolution`):
+/// stress (docs/theory/BEM2D.md A3, public MATLAB `Beam_AnalyticalSolution`):
 /// u_x = -P y/(6EI) [(6L-3x) x + (2+nu)(y^2 - D^2/4)],
 /// u_y = P/(6EI) [3 nu y^2 (L-x) + (4+5nu) D^2 x/4 + (3L-x) x^2], I = D^3/12.
 pub(crate) fn beam_exact(p: [f64; 2]) -> [f64; 2] {
@@ -191,7 +191,7 @@ pub(crate) fn beam_exact(p: [f64; 2]) -> [f64; 2] {
 
 /// The cantilever with `4 n` elements along each long side and `n` across each end, the
 /// exact displacements of [`beam_exact`] on the support and the parabolic shear
-/// sigma_xy = P/(2I) (D^2/4 - y^2) (BEM2D.md A3) on the tip, solved.
+/// sigma_xy = P/(2I) (D^2/4 - y^2) (docs/theory/BEM2D.md A3) on the tip, solved.
 pub(crate) fn cantilever(n: usize) -> Result<BemSolution> {
     let (l, d) = (BEAM_L, 12.0);
     let i = d * d * d / 12.0;
@@ -244,7 +244,7 @@ pub(crate) fn compound_materials() -> Result<(ElasticMaterial, ElasticMaterial)>
 /// u = A r + B / r in each ring (sigma_r = 2 (lambda + mu) A - 2 mu B / r^2,
 /// sigma_t = 2 (lambda + mu) A + 2 mu B / r^2; Timoshenko & Goodier, Theory of Elasticity,
 /// ch. 4, thick-walled cylinder), pressure p at the bore, free rim, u_r and sigma_r
-/// continuous at the bond r = b (the bonded variant of BEM2D.md A1).
+/// continuous at the bond r = b (the bonded variant of docs/theory/BEM2D.md A1).
 pub(crate) fn compound_exact(
     m1: &ElasticMaterial,
     m2: &ElasticMaterial,

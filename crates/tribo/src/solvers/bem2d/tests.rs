@@ -130,7 +130,7 @@ fn constant_stress_patch_test_is_exact() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Lame thick cylinder (BEM2D.md A1): a = 10 mm, b = 20 mm, E = 210 GPa, nu = 0.3,
+// Lame thick cylinder (docs/theory/BEM2D.md A1): a = 10 mm, b = 20 mm, E = 210 GPa, nu = 0.3,
 // p = 100 MPa, plane strain, quarter model with symmetry rollers (reference::lame).
 
 fn lame(n: usize) -> (BemSolution, usize) {
@@ -170,7 +170,7 @@ fn lame_cylinder_converges() {
         prev = Some((eu, es, ei));
     }
     let (eu, es, ei) = prev.unwrap();
-    // At n = 8 (16 elements per quarter arc): the reference numbers of BEM2D.md A1
+    // At n = 8 (16 elements per quarter arc): the reference numbers of docs/theory/BEM2D.md A1
     // (u_r(a) = 9.079e-6 m, sigma_t(a) = 166.7 MPa) within these relative errors.
     assert!(
         eu < 1e-4 && es < 2e-3 && ei < 1e-4,
@@ -226,7 +226,7 @@ fn lame_stress_at_the_corners() {
 
 // ---------------------------------------------------------------------------------------
 // Kirsch: infinite plate with a hole under remote sigma_xx = s, exact tractions on the
-// outer edges of a quarter model (BEM2D.md A2), plane stress, a = 1, L = 4
+// outer edges of a quarter model (docs/theory/BEM2D.md A2), plane stress, a = 1, L = 4
 // (reference::kirsch).
 
 /// Max error of the hoop stress at the hole nodes against sigma_tt = s (1 - 2 cos 2 theta)
@@ -262,13 +262,13 @@ fn kirsch_plate_converges() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Cantilever with end shear (BEM2D.md A3): L = 48, D = 12, E = 3e7, nu = 0.3, P = 1000,
+// Cantilever with end shear (docs/theory/BEM2D.md A3): L = 48, D = 12, E = 3e7, nu = 0.3, P = 1000,
 // plane stress, exact displacements on the support x = 0 and the parabolic shear at x = L
 // (reference::cantilever).
 
 fn cantilever(n: usize) -> f64 {
     let sol = reference::cantilever(n).unwrap();
-    // Tip deflection at (L, 0), against 8.9000e-3 (BEM2D.md A3).
+    // Tip deflection at (L, 0), against 8.9000e-3 (docs/theory/BEM2D.md A3).
     let tip = sol.displacement_at([BEAM_L, 0.0]).unwrap()[1];
     assert!((beam_exact([BEAM_L, 0.0])[1] - 8.9e-3).abs() < 1e-7);
     (tip - beam_exact([BEAM_L, 0.0])[1]).abs() / 8.9e-3

@@ -36,7 +36,7 @@ fn model(g: &GmshImport) -> BemModel {
 
 // ----------------------------------------------------------------- Lame, the quarter ring
 
-/// Lame's radial displacement u_r(r) of the reference ring (BEM2D.md A1).
+/// Lame's radial displacement u_r(r) of the reference ring (docs/theory/BEM2D.md A1).
 fn lame_ur(r: f64) -> f64 {
     reference::lame_exact(r).0
 }

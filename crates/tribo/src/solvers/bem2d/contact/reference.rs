@@ -1,5 +1,5 @@
 //! Reference contact models of the 2D BEM verification (Johnson 1985 ch. 4, 5 and 7;
-//! BEM2D.md A4-A6): the closed forms, the bodies and the load steps that the unit tests
+//! docs/theory/BEM2D.md A4-A6): the closed forms, the bodies and the load steps that the unit tests
 //! (`tests.rs`) and the rows of `tribo validate` ([`crate::validation::bem2d_rows`]) share,
 //! so that both check the same model.
 
@@ -23,7 +23,7 @@ pub(crate) const P: f64 = 1e5;
 
 /// 2D Hertz: half-width b = sqrt(4 P R / (pi E*)) and peak pressure p0 = 2 P / (pi b) for
 /// load P per unit length, relative radius R and contact modulus E* (Johnson 1985 eq.
-/// 4.43-4.45; BEM2D.md A4).
+/// 4.43-4.45; docs/theory/BEM2D.md A4).
 pub(crate) fn hertz(r: f64, estar: f64, p: f64) -> (f64, f64) {
     let b = (4.0 * p * r / (PI * estar)).sqrt();
     (b, 2.0 * p / (PI * b))
@@ -172,7 +172,7 @@ pub(crate) fn stick_zone(pr: &PairResult, f: f64) -> (f64, f64) {
 }
 
 // ---------------------------------------------------------------------------------------
-// Steel half cylinder R = 10 mm on a steel block 20 mm x 10 mm (BEM2D.md A4).
+// Steel half cylinder R = 10 mm on a steel block 20 mm x 10 mm (docs/theory/BEM2D.md A4).
 
 /// The cylinder on the block: contact segments over |x| <= 2 b (Hertz b at [`P`]) with
 /// `nc_slave` elements on the cylinder's arc and `nc_master` on the block.
@@ -248,7 +248,7 @@ pub(crate) fn shear_step(q: f64) -> LoadStep {
 }
 
 // ---------------------------------------------------------------------------------------
-// Flat punch (BEM2D.md A6).
+// Flat punch (docs/theory/BEM2D.md A6).
 
 /// Half-width a of the flat punch (m).
 pub(crate) const PUNCH_A: f64 = 1e-3;
@@ -292,14 +292,14 @@ pub(crate) fn punch_step() -> LoadStep {
 }
 
 // ---------------------------------------------------------------------------------------
-// Nowell & Hills' fretting benchmark (BEM2D.md A5).
+// Nowell & Hills' fretting benchmark (docs/theory/BEM2D.md A5).
 
 /// E (Pa), nu, P (N/m), f, Q (N/m) and the bulk stress sigma (Pa) of the Nowell-Hills case.
 pub(crate) const NOWELL_HILLS: (f64, f64, f64, f64, f64, f64) =
     (72.1e9, 0.33, 135750.0, 0.3, 38750.0, 100e6);
 
 /// The closed form of the Nowell-Hills case (Nowell & Hills, Wear 136 (1990) 329-343;
-/// BEM2D.md A5): (a, p0) of [`hertz`] with E* = E / (2 (1 - nu^2)), the stick half-width
+/// docs/theory/BEM2D.md A5): (a, p0) of [`hertz`] with E* = E / (2 (1 - nu^2)), the stick half-width
 /// c = a sqrt(1 - Q/(f P)) and the shift of its centre e = a sigma / (4 f p0).
 pub(crate) fn nowell_hills_exact() -> (f64, f64, f64, f64) {
     let (e, nu, p, f, q, sigma) = NOWELL_HILLS;

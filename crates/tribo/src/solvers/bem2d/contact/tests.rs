@@ -1,5 +1,5 @@
 //! Verification of the 2D BEM contact solver against closed forms (Johnson 1985 ch. 4 and 7;
-//! BEM2D.md A4-A6).
+//! docs/theory/BEM2D.md A4-A6).
 
 use std::f64::consts::PI;
 
@@ -32,7 +32,7 @@ fn pressure_error(pr: &PairResult, b: f64, p0: f64, within: f64) -> f64 {
 }
 
 /// Frictionless Hertz, steel half cylinder R = 10 mm on a steel block, P = 100 N/mm
-/// (BEM2D.md A4: b = 0.10505 mm, p0 = 606.04 MPa). Slave: 48 elements over |x| <= 2b
+/// (docs/theory/BEM2D.md A4: b = 0.10505 mm, p0 = 606.04 MPa). Slave: 48 elements over |x| <= 2b
 /// (24 across the contact), master: 40 (20 across). Measured (weighted rule): b and p0 from
 /// the least-squares semi-ellipse within 0.3 %, max |p - p_H| / p0 = 0.97 % over |x| < 0.9 b
 /// (the largest next to the edge, where the sqrt profile is not polynomial); the collocated
@@ -83,7 +83,7 @@ fn hertz_cylinder_on_block() {
             pr.slave_force
         );
     }
-    // The full boundary state of the step gives the subsurface field (McEwen; BEM2D.md A4):
+    // The full boundary state of the step gives the subsurface field (McEwen; docs/theory/BEM2D.md A4):
     // on the axis sigma_z = -p0 / sqrt(1 + z'^2), and max |sigma_x - sigma_z| / 2 =
     // 0.3003 p0 at z = 0.7862 b. Measured: sigma_y within 1e-4 p0; sigma_x offset by a
     // near-uniform +0.0075 p0 at every depth (the finite 10 mm block's own global stress, which
@@ -123,7 +123,7 @@ fn hertz_cylinder_on_block() {
     assert!(ep < 0.005, "refined p(x) error {ep:.3e}");
 }
 
-/// Two steel half cylinders R1 = R2 = 10 mm, P = 100 N/mm (BEM2D.md A4: b = 0.07428 mm,
+/// Two steel half cylinders R1 = R2 = 10 mm, P = 100 N/mm (docs/theory/BEM2D.md A4: b = 0.07428 mm,
 /// p0 = 857.07 MPa), 48 / 40 elements over |x| <= 2 b. Same tolerances as above.
 #[test]
 fn hertz_two_cylinders() {
@@ -163,13 +163,13 @@ fn hertz_two_cylinders() {
     assert!(ep < 0.015, "p(x) error {ep:.3e}");
 }
 
-/// Flat punch (Johnson 1985 sec. 5.2, eq. 5.31 with 2D plane strain; BEM2D.md A6): a block
+/// Flat punch (Johnson 1985 sec. 5.2, eq. 5.31 with 2D plane strain; docs/theory/BEM2D.md A6): a block
 /// 1000 times stiffer than the base, half-width a = 1 mm, pressed with P = 100 N/mm on a
 /// steel block 40 a x 20 a. Frictionless: p = P / (pi sqrt(a^2 - x^2)). Both contact
 /// segments span exactly |x| <= a and are graded toward the punch corners (ratio 4; with
 /// uniform, non-matching elements the singular edge makes the pressure oscillate by 5-20 %
 /// over the outer 20 %). Measured: 0.52 % over |x| <= 0.8 a, p(0) pi a / P = 1.0043, 1.5 %
-/// over |x| <= 0.9 a. The FEM reference of BEM2D.md reaches 0.3-0.5 % at 0.5 a and 2.2 % at
+/// over |x| <= 0.9 a. The FEM reference of docs/theory/BEM2D.md reaches 0.3-0.5 % at 0.5 a and 2.2 % at
 /// 0.9 a with h = a/100. Tolerances: 1 % (0.8 a) and 2 % (0.9 a), the finite block and the
 /// punch's finite stiffness (1e-3) adding a few 0.1 %.
 #[test]
@@ -265,7 +265,7 @@ fn cattaneo_mindlin_partial_slip() {
     }
 }
 
-/// Nowell & Hills (Wear 136, 1990; BEM2D.md A5): the fretting benchmark E = 72.1 GPa,
+/// Nowell & Hills (Wear 136, 1990; docs/theory/BEM2D.md A5): the fretting benchmark E = 72.1 GPa,
 /// nu = 0.33, R = 10 mm, P = 135750 N/m, f = 0.3, Q = 38750 N/m and a bulk stress
 /// sigma = 100 MPa in the specimen: a = 0.20670 mm, p0 = 418.104 MPa, stick zone
 /// c = a sqrt(1 - Q/(f P)) = 0.22022 a shifted by e = a sigma / (4 f p0) = 0.1993 a. The
