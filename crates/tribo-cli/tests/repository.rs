@@ -22,8 +22,10 @@ fn text_files(dir: &Path, out: &mut Vec<PathBuf>) {
         let path = entry.path();
         let name = entry.file_name().to_string_lossy().into_owned();
         if path.is_dir() {
-            if matches!(name.as_str(), "target" | ".git" | ".venv" | "tribo-out" | "out")
-                || name.starts_with('.')
+            if matches!(
+                name.as_str(),
+                "target" | ".git" | ".venv" | "tribo-out" | "out"
+            ) || name.starts_with('.')
             {
                 continue;
             }
@@ -37,7 +39,7 @@ fn text_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// Names like `HALFSPACE.md` or `docs/theory/BEM2D.md` cited in a text.
+/// Upper-case document names ending in `.md` cited in a text, with their path if any.
 fn cited_documents(text: &str) -> Vec<String> {
     let bytes = text.as_bytes();
     let mut found = Vec::new();
@@ -58,7 +60,9 @@ fn cited_documents(text: &str) -> Vec<String> {
         // An upper-case document name (the project's own notes), not a word ending in ".md".
         let base = name.rsplit('/').next().unwrap_or(name);
         if !base.is_empty()
-            && base.chars().all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
+            && base
+                .chars()
+                .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
             && !after.is_ascii_alphanumeric()
         {
             found.push(format!("{name}.md"));
@@ -80,9 +84,19 @@ fn every_cited_document_is_in_the_repository() {
         let Ok(text) = std::fs::read_to_string(file) else {
             continue;
         };
+        let rel = file
+            .strip_prefix(&root)
+            .unwrap_or(file)
+            .display()
+            .to_string();
         for doc in cited_documents(&text) {
+            // Paths assembled in code (`../..`) are not citations; the theory notes also name
+            // files of other repositories by their paths there, so only their bare names
+            // (one note citing another) are ours to check.
+            if doc.contains("..") || (rel.starts_with("docs/theory/") && doc.contains('/')) {
+                continue;
+            }
             cited += 1;
-            let rel = file.strip_prefix(&root).unwrap_or(file).display().to_string();
             // A citation must be a path from the repository root (or the file's folder).
             let here = file.parent().map(|p| p.join(&doc));
             if !root.join(&doc).is_file() && !here.is_some_and(|p| p.is_file()) {
@@ -92,7 +106,10 @@ fn every_cited_document_is_in_the_repository() {
     }
     // The theory notes are cited about 150 times; a walk that finds none is broken.
     assert!(cited > 100, "found only {cited} citations");
-    assert!(missing.is_empty(), "cited but not in the repository:\n{missing:#?}");
+    assert!(
+        missing.is_empty(),
+        "cited but not in the repository:\n{missing:#?}"
+    );
 }
 
 #[test]
@@ -111,7 +128,9 @@ fn licence_files_match_cargo() {
 }
 
 fn version(text: &str) -> Vec<u64> {
-    text.split('.').map(|p| p.parse().unwrap_or(0)).collect()
+    let mut parts: Vec<u64> = text.split('.').map(|p| p.parse().unwrap_or(0)).collect();
+    parts.resize(3, 0);
+    parts
 }
 
 #[test]
