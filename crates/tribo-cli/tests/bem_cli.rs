@@ -338,7 +338,7 @@ fn the_clamp_knife_base_example_balances_and_shows_the_papers_effects() {
         let sum = |region: Option<&str>, d: usize| -> f64 {
             forces
                 .iter()
-                .filter(|f| region.map_or(true, |r| f["region"] == r))
+                .filter(|f| region.is_none_or(|r| f["region"] == r))
                 .map(|f| f["force_n_per_m"][d].as_f64().unwrap())
                 .sum()
         };
