@@ -56,9 +56,16 @@ pub fn show(value: &Value) -> String {
     }
 }
 
-/// A plain number (float or integer), dimensionless.
+/// A plain finite number (float or integer), dimensionless. TOML's `inf`, `-inf` and `nan`
+/// floats are refused here, for every field; the one field where infinity means something (a
+/// flat direction's radius of curvature) handles it before calling this.
 pub fn number(field: &str, value: &Value) -> CliResult<f64> {
     match value {
+        Value::Float(f) if !f.is_finite() => Err(CliError::field(
+            field,
+            show(value),
+            "must be a finite number (TOML inf and nan are not accepted here)",
+        )),
         Value::Float(f) => Ok(*f),
         Value::Integer(i) => Ok(*i as f64),
         other => Err(CliError::field(field, show(other), "must be a number")),
@@ -311,6 +318,21 @@ mod tests {
             } else {
                 proptest::prop_assert!(got.is_err(), "{:?} overflows but gave {:?}", text, got);
             }
+        }
+    }
+
+    /// TOML's non-finite floats used to pass as numbers (issue 11 item 10).
+    #[test]
+    fn non_finite_floats_are_refused() {
+        for x in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+            let e = number("grid.extent", &Value::Float(x))
+                .unwrap_err()
+                .to_string();
+            assert!(e.starts_with("grid.extent") && e.contains("finite"), "{e}");
+            let e = quantity("body1.E", &Value::Float(x), Dim::Pressure)
+                .unwrap_err()
+                .to_string();
+            assert!(e.starts_with("body1.E") && e.contains("finite"), "{e}");
         }
     }
 

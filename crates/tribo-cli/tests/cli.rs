@@ -1391,3 +1391,72 @@ fn free_traction_direction_solves_the_2d_problem() {
         "contact.traction_direction",
     );
 }
+
+/// Issue 11 item 10, corrupt input silently accepted: two default damage limits (one was
+/// dropped), non-finite TOML floats (passed as numbers, echoed as null). Each exits 2 naming
+/// the field and writes nothing; `radii = [inf, inf]` as TOML floats means flat like the
+/// string "inf" and is echoed as "inf".
+#[test]
+fn conflicting_or_non_finite_input_is_refused_naming_the_field() {
+    let paper = PAPER.replacen(
+        "load = 2000.0\n",
+        &format!("load = 2000.0\n{DAMAGE_BASE}"),
+        1,
+    );
+    let both = format!(
+        "{paper}[field]\nn = [5, 5, 3]\n[damage]\nlimit_over_p0 = 0.2\nlimit_load = 4000.0\n"
+    );
+    assert_bad_input(&both, &[], "damage.limit_load");
+    let (o, _, _d) = run_case(&both, &[], &[]);
+    assert!(
+        stderr(&o).contains("not both") && stderr(&o).contains("damage.limit_over_p0"),
+        "{}",
+        stderr(&o)
+    );
+    for (text, field) in [
+        (
+            PAPER.replace("[-0.01, 0.01]", "[-inf, 0.01]"),
+            "body2.radii[0]",
+        ),
+        (
+            PAPER.replace("[-0.01, 0.01]", "[nan, 0.01]"),
+            "body2.radii[0]",
+        ),
+        (
+            PAPER.replace("[-0.01, 0.01]", "[-0.01, \"-inf m\"]"),
+            "body2.radii[1]",
+        ),
+        (PAPER.replace("extent = 1.5", "extent = inf"), "grid.extent"),
+        (PAPER.replace("load = 2000.0", "load = inf"), "contact.load"),
+        (
+            PAPER.replace("load = 2000.0", "load = \"inf kN\""),
+            "contact.load",
+        ),
+        (
+            format!("{paper}[field]\nn = [5, 5, 3]\n[damage]\nlimit_over_p0 = nan\n"),
+            "damage.limit_over_p0",
+        ),
+    ] {
+        assert_bad_input(&text, &[], field);
+    }
+    // TOML inf floats: flat, the same case as the strings, echoed as "inf" (not null).
+    let flat = |r: &str| {
+        PAPER
+            .replace("radii = [0.005, 0.05]", r)
+            .replace("[-0.01, 0.01]", "[0.01, 0.01]")
+    };
+    let (o, out, _d) = run_case(&flat("radii = [inf, inf]"), &[], &["--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    assert_eq!(
+        s["case"]["body1"]["radii"],
+        serde_json::json!(["inf", "inf"])
+    );
+    let (o2, out2, _d2) = run_case(&flat("radii = [\"inf\", \"inf\"]"), &[], &[]);
+    assert_eq!(o2.status.code(), Some(0), "{}", stderr(&o2));
+    let s2 = read_json(&out2.join("summary.json"));
+    assert_eq!(s["contact"], s2["contact"]);
+    assert!(s["contact"]["max_pressure"]
+        .as_f64()
+        .is_some_and(|p| p > 0.0));
+}
