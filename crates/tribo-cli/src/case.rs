@@ -682,6 +682,7 @@ fn validate(
                         "the window half width must be finite and > 0 (m)",
                     ));
                 }
+                crate::units::check_length(&format!("grid.half_width[{k}]"), h, *w)?;
             }
             Window::HalfWidth(hw)
         }
@@ -1687,12 +1688,20 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
 fn material(name: &str, b: &RawBody) -> CliResult<ElasticMaterial> {
     let e = quantity(&format!("{name}.E"), &b.e, Dim::Pressure)?;
     let nu = number(&format!("{name}.nu"), &b.nu)?;
-    Ok(ElasticMaterial::named(name, e, nu)?)
+    let m = ElasticMaterial::named(name, e, nu)?;
+    crate::units::check_modulus(&format!("{name}.E"), &b.e, e)?;
+    Ok(m)
 }
 
+/// A quantity that must be finite and > 0; a length of the geometry (any `Dim::Length` but
+/// the approach, which is checked relative to the window in `run::prepare`) also within
+/// [`crate::units::LENGTH_RANGE`].
 fn positive(field: &str, value: &Value, dim: Dim, what: &str) -> CliResult<f64> {
     let x = quantity(field, value, dim)?;
     if x.is_finite() && x > 0.0 {
+        if dim == Dim::Length && field != "contact.approach" {
+            crate::units::check_length(field, value, x)?;
+        }
         Ok(x)
     } else {
         Err(CliError::field(
@@ -1777,6 +1786,7 @@ fn radius(field: &str, v: &Value) -> CliResult<f64> {
     if r.is_nan() {
         return Err(CliError::field(field, show(v), "a radius must be a number"));
     }
+    crate::units::check_length(field, v, r)?;
     Ok(r)
 }
 

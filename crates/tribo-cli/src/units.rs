@@ -52,6 +52,10 @@ impl Dim {
 pub fn show(value: &Value) -> String {
     match value {
         Value::String(s) => format!("{s:?}"),
+        // Scientific notation where TOML's display would write hundreds of digits.
+        Value::Float(x) if x.is_finite() && *x != 0.0 && !(1e-4..1e16).contains(&x.abs()) => {
+            format!("{x:e}")
+        }
         other => other.to_string(),
     }
 }
@@ -144,6 +148,87 @@ pub fn shifted_decimal(num: &str, power: i32) -> Option<f64> {
         Err(_) => plain,
     };
     v.is_finite().then_some(v)
+}
+
+// ------------------------------------------------------------ physical ranges
+//
+// Values that pass the sign and finiteness rules can still be absurd (E = 1e-308 Pa, a load of
+// 1e308 N) and then end deep in a solver as a "numerical failure" that names no field. These
+// ranges refuse them up front, each with its physical reason; README.md ("Ranges") and
+// `tribo run --help` list them.
+
+/// Young's modulus accepted, Pa: from 1e2 (the softest hydrogels and tissues, ~1e2-1e3 Pa;
+/// elastomers are ~1e6) to 1e13 (diamond, the stiffest solid, is 1.2e12). Outside, the value
+/// is a unit mistake, not a material.
+pub const MODULUS_RANGE: [f64; 2] = [1e2, 1e13];
+
+/// Lengths of the geometry accepted (radii of curvature, window half widths, roller radius
+/// and length, field sizes), m: from 1 nm (below, a continuum model of a solid does not
+/// apply: a few atomic spacings) to 1000 km.
+pub const LENGTH_RANGE: [f64; 2] = [1e-9, 1e6];
+
+/// Largest load accepted as a strain: the Hertz peak pressure over E* (or, where the gap is
+/// not Hertzian, the mean pressure over the window over E*, or the approach over the window
+/// half width), dimensionless. Half-space contact theory is linear elasticity with small
+/// strains (docs/theory/HALFSPACE.md: the surfaces' slopes and strains are small); at
+/// p0/E* = 0.1 the strain is already ~10 %, beyond any metal's elastic limit (~1 %).
+pub const MAX_STRAIN: f64 = 0.1;
+
+/// Smallest load accepted as a strain (same measure as [`MAX_STRAIN`]): the deformation is
+/// then 1e-15 of the contact size, below the f64 resolution of positions (16 digits), and
+/// the solution is rounding noise.
+pub const MIN_STRAIN: f64 = 1e-15;
+
+/// `E` (Pa) of the field `field` within [`MODULUS_RANGE`].
+pub fn check_modulus(field: &str, value: &Value, e: f64) -> CliResult<()> {
+    let [lo, hi] = MODULUS_RANGE;
+    if (lo..=hi).contains(&e) {
+        Ok(())
+    } else {
+        Err(CliError::field(
+            field,
+            show(value),
+            format!(
+                "Young's modulus must be in [{lo:e}, {hi:e}] Pa (soft hydrogels ~1e2 Pa to \
+                 diamond 1.2e12 Pa); a value outside is a unit mistake"
+            ),
+        ))
+    }
+}
+
+/// A geometric length `x` (m, its magnitude) within [`LENGTH_RANGE`].
+pub fn check_length(field: &str, value: &Value, x: f64) -> CliResult<()> {
+    let [lo, hi] = LENGTH_RANGE;
+    if (lo..=hi).contains(&x.abs()) {
+        Ok(())
+    } else {
+        Err(CliError::field(
+            field,
+            show(value),
+            format!(
+                "a length of the geometry must be in [{lo:e}, {hi:e}] m in magnitude (below \
+                 1 nm a continuum model does not apply)"
+            ),
+        ))
+    }
+}
+
+/// A load measured as a strain (see [`MAX_STRAIN`]), `what` saying which measure, within
+/// [[`MIN_STRAIN`], [`MAX_STRAIN`]].
+pub fn check_strain(field: &str, value: String, strain: f64, what: &str) -> CliResult<()> {
+    if (MIN_STRAIN..=MAX_STRAIN).contains(&strain) {
+        Ok(())
+    } else {
+        Err(CliError::field(
+            field,
+            value,
+            format!(
+                "gives {what} = {strain:.3e}, outside [{MIN_STRAIN:e}, {MAX_STRAIN}]: the \
+                 half-space theory assumes small strains (<= {MAX_STRAIN}), and below \
+                 {MIN_STRAIN:e} the deformation is lost in rounding"
+            ),
+        ))
+    }
 }
 
 /// A value that is either one item (used for both x and y) or an array of two.
@@ -334,6 +419,27 @@ mod tests {
                 .to_string();
             assert!(e.starts_with("body1.E") && e.contains("finite"), "{e}");
         }
+    }
+
+    #[test]
+    fn ranges() {
+        let v = Value::Float(0.0);
+        assert!(check_modulus("body1.E", &v, 2.1e11).is_ok());
+        assert!(check_modulus("body1.E", &v, 1e6).is_ok());
+        for e in [1e-308, 50.0, 1e14, 1e308] {
+            let m = check_modulus("body1.E", &v, e).unwrap_err().to_string();
+            assert!(
+                m.starts_with("body1.E") && m.contains("[1e2, 1e13] Pa"),
+                "{m}"
+            );
+        }
+        assert!(check_length("r", &v, -0.01).is_ok());
+        assert!(check_length("r", &v, 1e-10).is_err());
+        assert!(check_length("r", &v, 1e7).is_err());
+        assert!(check_strain("contact.load", "1".into(), 0.01, "p0/E*").is_ok());
+        assert!(check_strain("contact.load", "1".into(), 0.2, "p0/E*").is_err());
+        assert!(check_strain("contact.load", "1".into(), 1e-16, "p0/E*").is_err());
+        assert!(check_strain("contact.load", "1".into(), f64::NAN, "p0/E*").is_err());
     }
 
     #[test]
