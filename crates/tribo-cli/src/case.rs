@@ -558,8 +558,28 @@ pub fn parse_raw<T: serde::de::DeserializeOwned>(
     let raw: T =
         toml::from_str(text).map_err(|e| parse_error(e.to_string().trim_end().to_string()))?;
     let table: toml::Table = toml::from_str(text).map_err(|e| parse_error(e.to_string()))?;
-    let echo = serde_json::to_value(&table).map_err(|e| parse_error(e.to_string()))?;
+    let echo = echo_json(&Value::Table(table));
     Ok((raw, echo))
+}
+
+/// The case as JSON for the summary's echo. JSON has no infinity: TOML's `inf`, `-inf` and
+/// `nan` floats are echoed as the strings "inf", "-inf" and "nan" (serde_json would write
+/// null, which reads back as a different case); dates as their TOML text.
+fn echo_json(v: &Value) -> serde_json::Value {
+    use serde_json::Value as J;
+    match v {
+        Value::String(s) => J::String(s.clone()),
+        Value::Integer(i) => J::from(*i),
+        Value::Float(x) if x.is_nan() => J::String("nan".into()),
+        Value::Float(x) if x.is_infinite() => {
+            J::String(if *x > 0.0 { "inf" } else { "-inf" }.into())
+        }
+        Value::Float(x) => J::from(*x),
+        Value::Boolean(b) => J::Bool(*b),
+        Value::Datetime(d) => J::String(d.to_string()),
+        Value::Array(a) => J::Array(a.iter().map(echo_json).collect()),
+        Value::Table(t) => J::Object(t.iter().map(|(k, v)| (k.clone(), echo_json(v))).collect()),
+    }
 }
 
 fn validate(
@@ -662,6 +682,7 @@ fn validate(
                         "the window half width must be finite and > 0 (m)",
                     ));
                 }
+                crate::units::check_length(&format!("grid.half_width[{k}]"), h, *w)?;
             }
             Window::HalfWidth(hw)
         }
@@ -794,6 +815,16 @@ fn damage_spec(
             ))
         }
     };
+    // Two default limits for the criteria without their own: the second would be silently
+    // ignored (limit_load took precedence), so exactly one may be given.
+    if let (Some(l), Some(_)) = (&d.limit_load, &d.limit_over_p0) {
+        return Err(CliError::field(
+            "damage.limit_load",
+            format!("{} (and damage.limit_over_p0)", show(l)),
+            "give at most one of damage.limit_load (N) and damage.limit_over_p0 (the default \
+             limit of the criteria without their own in damage.limits), not both",
+        ));
+    }
     let over_p0 = match &d.limit_over_p0 {
         None => None,
         Some(v) => Some(positive_number("damage.limit_over_p0", v)?),
@@ -1657,12 +1688,20 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
 fn material(name: &str, b: &RawBody) -> CliResult<ElasticMaterial> {
     let e = quantity(&format!("{name}.E"), &b.e, Dim::Pressure)?;
     let nu = number(&format!("{name}.nu"), &b.nu)?;
-    Ok(ElasticMaterial::named(name, e, nu)?)
+    let m = ElasticMaterial::named(name, e, nu)?;
+    crate::units::check_modulus(&format!("{name}.E"), &b.e, e)?;
+    Ok(m)
 }
 
+/// A quantity that must be finite and > 0; a length of the geometry (any `Dim::Length` but
+/// the approach, which is checked relative to the window in `run::prepare`) also within
+/// [`crate::units::LENGTH_RANGE`].
 fn positive(field: &str, value: &Value, dim: Dim, what: &str) -> CliResult<f64> {
     let x = quantity(field, value, dim)?;
     if x.is_finite() && x > 0.0 {
+        if dim == Dim::Length && field != "contact.approach" {
+            crate::units::check_length(field, value, x)?;
+        }
         Ok(x)
     } else {
         Err(CliError::field(
@@ -1706,11 +1745,28 @@ struct ShapeContext<'a> {
     base_dir: &'a Path,
 }
 
+/// A principal radius of curvature, m: a number, a unit string, or infinite (flat) written
+/// as the string "inf" or the TOML float `inf` (both echoed as "inf" in summary.json). A
+/// negative infinity or a NaN is refused: a concave flat direction is not a different shape,
+/// and the sign convention asks for an explicit "inf".
 fn radius(field: &str, v: &Value) -> CliResult<f64> {
     if let Value::String(s) = v {
         let t = s.trim();
         if t.eq_ignore_ascii_case("inf") || t.eq_ignore_ascii_case("infinity") {
             return Ok(f64::INFINITY);
+        }
+    }
+    if let Value::Float(x) = v {
+        if *x == f64::INFINITY {
+            return Ok(f64::INFINITY);
+        }
+        if !x.is_finite() {
+            return Err(CliError::field(
+                field,
+                show(v),
+                "a radius must be a finite number in m, or inf / \"inf\" (flat); -inf and \
+                 nan are refused",
+            ));
         }
     }
     let r = quantity(field, v, Dim::Length).map_err(|_| {
@@ -1730,6 +1786,7 @@ fn radius(field: &str, v: &Value) -> CliResult<f64> {
     if r.is_nan() {
         return Err(CliError::field(field, show(v), "a radius must be a number"));
     }
+    crate::units::check_length(field, v, r)?;
     Ok(r)
 }
 
@@ -2185,7 +2242,7 @@ extent = 1.5
         assert_eq!(e, "body1.nu = 0.55: Poisson's ratio must be in (-1, 0.5)");
         assert!(err(&PAPER.replacen("E = 2.01e11", "E = -1.0", 2)).starts_with("body1.E"));
         let t = PAPER.replacen("[body2]\nE = 2.01e11", "[body2]\nE = nan", 1);
-        assert!(err(&t).starts_with("body2.E = NaN"), "{}", err(&t));
+        assert!(err(&t).starts_with("body2.E = nan"), "{}", err(&t));
         assert!(err(&PAPER.replacen("nu = 0.3", "nu = -1.0", 1)).starts_with("body1.nu"));
     }
 

@@ -6,6 +6,7 @@ mod case;
 mod error;
 mod examples;
 mod fatigue;
+mod memory;
 mod output;
 mod run;
 mod units;
@@ -34,6 +35,14 @@ Conventions:
   * Each body's surface z_k(x, y) is measured from the tangent plane away from the other
     body; the initial gap is h = z1 + z2.
   * The composite modulus is 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.
+  * Unit strings are read as one decimal (\"9 mm\" is exactly 9e-3). TOML inf/nan are
+    refused, except a radius of inf (flat).
+  * Ranges (exit 2 naming the field): E in [1e2, 1e13] Pa; lengths of the geometry in
+    [1e-9, 1e6] m; the load as a strain (Hertz p0/E*, or mean window pressure / E*, or
+    approach / window half width) in [1e-15, 0.1], the small-strain range of the theory.
+  * Memory: a case whose estimated peak memory exceeds --max-memory (default: what the
+    machine has) is refused with exit 2 before solving; --dry-run prints the estimate.
+    Case files over 16 MiB are refused.
 
 A case file is TOML; `tribo example` lists ready-made ones and `tribo example NAME` prints
 one. A case with `kind = \"bem2d\"` is a 2D boundary element model of n bodies (regions from
@@ -129,9 +138,15 @@ Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3
         /// No progress on stderr.
         #[arg(short, long)]
         quiet: bool,
-        /// Validate the case and print the grid it would use; solve nothing, write nothing.
+        /// Validate the case and print the grid it would use and its memory estimate; solve
+        /// nothing, write nothing.
         #[arg(long)]
         dry_run: bool,
+        /// Refuse (exit 2, nothing written) a case whose estimated peak memory exceeds SIZE
+        /// ("4 GiB", "100MiB", "512 MB"); default: what the machine has (MemAvailable, or the
+        /// cgroup's memory.max where smaller).
+        #[arg(long, value_name = "SIZE", value_parser = memory::parse_size)]
+        max_memory: Option<u64>,
     },
     /// List the example cases, or print one (`tribo example NAME > case.toml`).
     Example {
@@ -158,7 +173,8 @@ fn main() -> ExitCode {
             json,
             quiet,
             dry_run,
-        } => cmd_run(case.as_deref(), &out, json, quiet, dry_run),
+            max_memory,
+        } => cmd_run(case.as_deref(), &out, json, quiet, dry_run, max_memory),
         Command::Example { name } => cmd_example(name.as_deref()),
         Command::Validate { json } => cmd_validate(json),
         Command::Fatigue(cmd) => fatigue::run(cmd),
@@ -186,27 +202,53 @@ fn read_case(case: Option<&Path>) -> CliResult<(String, String, PathBuf)> {
                 PathBuf::from("."),
             ))
         }
-        Some(p) if p.as_os_str() == "-" => {
-            let mut text = String::new();
-            std::io::stdin()
-                .read_to_string(&mut text)
-                .map_err(|source| CliError::Unreadable {
-                    field: "case".into(),
-                    path: p.to_path_buf(),
-                    source,
-                })?;
-            Ok((text, "<stdin>".into(), PathBuf::from(".")))
-        }
+        Some(p) if p.as_os_str() == "-" => Ok((
+            read_bounded(std::io::stdin().lock(), p)?,
+            "<stdin>".into(),
+            PathBuf::from("."),
+        )),
         Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|source| CliError::Unreadable {
+            let unreadable = |source| CliError::Unreadable {
                 field: "case".into(),
                 path: p.to_path_buf(),
                 source,
-            })?;
+            };
+            let text = read_bounded(std::fs::File::open(p).map_err(unreadable)?, p)?;
             let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
             Ok((text, p.display().to_string(), base))
         }
     }
+}
+
+/// A case file's text, refused before reading beyond [`memory::MAX_CASE_FILE_BYTES`] (the
+/// parser needs ~80 times the file's size).
+fn read_bounded(reader: impl Read, path: &Path) -> CliResult<String> {
+    let limit = memory::MAX_CASE_FILE_BYTES;
+    let mut bytes = Vec::new();
+    reader
+        .take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|source| CliError::Unreadable {
+            field: "case".into(),
+            path: path.to_path_buf(),
+            source,
+        })?;
+    if bytes.len() as u64 > limit {
+        return Err(CliError::field(
+            "case",
+            path.display(),
+            format!(
+                "the case file is larger than {} (a case is a few hundred lines; height maps \
+                 and meshes go in their own files)",
+                memory::human(limit)
+            ),
+        ));
+    }
+    String::from_utf8(bytes).map_err(|e| CliError::Unreadable {
+        field: "case".into(),
+        path: path.to_path_buf(),
+        source: std::io::Error::new(std::io::ErrorKind::InvalidData, e),
+    })
 }
 
 fn cmd_run(
@@ -215,16 +257,24 @@ fn cmd_run(
     json: bool,
     quiet: bool,
     dry_run: bool,
+    max_memory: Option<u64>,
 ) -> CliResult<u8> {
     let (text, source, base_dir) = read_case(case)?;
     if bem::is_bem_text(&text) {
-        let Some(summary) = bem::run_text(&text, &source, &base_dir, out, quiet, dry_run)? else {
+        let Some(summary) =
+            bem::run_text(&text, &source, &base_dir, out, quiet, dry_run, max_memory)?
+        else {
             return Ok(EXIT_OK);
         };
         return print_summary(&summary, &summary.human(out), json);
     }
     let case = case::parse_case(&text, &source, &base_dir)?;
     let prepared = run::prepare(&case)?;
+    let estimate = memory::half_space(&case);
+    if dry_run {
+        println!("memory: {}", estimate.describe());
+    }
+    memory::check(&estimate, max_memory)?;
     if dry_run {
         let g = &prepared.grid;
         let (hx, hy) = g.half_widths();

@@ -208,10 +208,53 @@ pub fn prepare(case: &Case) -> CliResult<Prepared> {
         ) => {
             let curvature = GapCurvature::from_radii(*r1, *r2, a2 - a1)?;
             let contact = match case.loading {
-                NormalLoading::Force(f) => HertzContact::from_load(&curvature, e_star, f)?,
-                NormalLoading::Approach(d) => HertzContact::from_approach(&curvature, e_star, d)?,
+                NormalLoading::Force(f) => HertzContact::from_load(&curvature, e_star, f),
+                NormalLoading::Approach(d) => HertzContact::from_approach(&curvature, e_star, d),
             };
-            Some(HertzReference { curvature, contact })
+            match contact {
+                Ok(c) if c.max_pressure.is_finite() && c.semi_major.is_finite() => {
+                    let (field, value) = load_field(case.loading);
+                    crate::units::check_strain(
+                        field,
+                        value,
+                        c.max_pressure / e_star,
+                        "the Hertz peak pressure over E*, p0/E*",
+                    )?;
+                    Some(HertzReference {
+                        curvature,
+                        contact: c,
+                    })
+                }
+                other => {
+                    // Hertz itself overflowed or failed: name the load by the estimate of a
+                    // sphere of the larger gap curvature B (radius 1/(2B)), p0/E* =
+                    // (6 F / (pi^3 E* R^2))^(1/3) or (2/pi) sqrt(delta/R) (Johnson 1985,
+                    // (4.23), (4.25)), in logarithms so that it cannot overflow.
+                    let r = 1.0 / (2.0 * curvature.b_coefficient);
+                    let estimate = match case.loading {
+                        NormalLoading::Force(f) => ((6.0f64.ln() + f.ln()
+                            - 3.0 * std::f64::consts::PI.ln()
+                            - 2.0 * r.ln()
+                            - e_star.ln())
+                            / 3.0)
+                            .exp(),
+                        NormalLoading::Approach(d) => {
+                            2.0 / std::f64::consts::PI * (0.5 * (d.ln() - r.ln())).exp()
+                        }
+                    };
+                    let (field, value) = load_field(case.loading);
+                    crate::units::check_strain(
+                        field,
+                        value,
+                        estimate,
+                        "the Hertz peak pressure over E*, p0/E* (estimated)",
+                    )?;
+                    Some(HertzReference {
+                        curvature,
+                        contact: other?,
+                    })
+                }
+            }
         }
         _ => None,
     };
@@ -227,6 +270,25 @@ pub fn prepare(case: &Case) -> CliResult<Prepared> {
             ));
         }
     };
+    if hertz.is_none() {
+        // No Hertz p0: the mean pressure over the window (a lower bound of the contact's) or
+        // the approach over the window's smaller half width (a lower bound of delta / a).
+        let (field, value) = load_field(case.loading);
+        match case.loading {
+            NormalLoading::Force(f) => crate::units::check_strain(
+                field,
+                value,
+                f / (4.0 * half_widths[0] * half_widths[1]) / e_star,
+                "the mean pressure over the window over E*",
+            )?,
+            NormalLoading::Approach(d) => crate::units::check_strain(
+                field,
+                value,
+                d / half_widths[0].min(half_widths[1]),
+                "the approach over the window half width",
+            )?,
+        }
+    }
     let grid = SurfaceGrid::centred(case.n[0], case.n[1], half_widths[0], half_widths[1])?;
     let gap = match &hertz {
         Some(h) => grid.sample(|x, y| h.curvature.gap(x, y)),
@@ -242,6 +304,14 @@ pub fn prepare(case: &Case) -> CliResult<Prepared> {
         composite_modulus: e_star,
         hertz,
     })
+}
+
+/// The case field that sets the load, and its value for messages.
+fn load_field(loading: NormalLoading) -> (&'static str, String) {
+    match loading {
+        NormalLoading::Force(f) => ("contact.load", format!("{f:e} N")),
+        NormalLoading::Approach(d) => ("contact.approach", format!("{d:e} m")),
+    }
 }
 
 /// A spinner on stderr while the solver runs (hidden with `quiet` or when stderr is not a

@@ -1391,3 +1391,248 @@ fn free_traction_direction_solves_the_2d_problem() {
         "contact.traction_direction",
     );
 }
+
+/// Issue 11 item 10, corrupt input silently accepted: two default damage limits (one was
+/// dropped), non-finite TOML floats (passed as numbers, echoed as null). Each exits 2 naming
+/// the field and writes nothing; `radii = [inf, inf]` as TOML floats means flat like the
+/// string "inf" and is echoed as "inf".
+#[test]
+fn conflicting_or_non_finite_input_is_refused_naming_the_field() {
+    let paper = PAPER.replacen(
+        "load = 2000.0\n",
+        &format!("load = 2000.0\n{DAMAGE_BASE}"),
+        1,
+    );
+    let both = format!(
+        "{paper}[field]\nn = [5, 5, 3]\n[damage]\nlimit_over_p0 = 0.2\nlimit_load = 4000.0\n"
+    );
+    assert_bad_input(&both, &[], "damage.limit_load");
+    let (o, _, _d) = run_case(&both, &[], &[]);
+    assert!(
+        stderr(&o).contains("not both") && stderr(&o).contains("damage.limit_over_p0"),
+        "{}",
+        stderr(&o)
+    );
+    for (text, field) in [
+        (
+            PAPER.replace("[-0.01, 0.01]", "[-inf, 0.01]"),
+            "body2.radii[0]",
+        ),
+        (
+            PAPER.replace("[-0.01, 0.01]", "[nan, 0.01]"),
+            "body2.radii[0]",
+        ),
+        (
+            PAPER.replace("[-0.01, 0.01]", "[-0.01, \"-inf m\"]"),
+            "body2.radii[1]",
+        ),
+        (PAPER.replace("extent = 1.5", "extent = inf"), "grid.extent"),
+        (PAPER.replace("load = 2000.0", "load = inf"), "contact.load"),
+        (
+            PAPER.replace("load = 2000.0", "load = \"inf kN\""),
+            "contact.load",
+        ),
+        (
+            format!("{paper}[field]\nn = [5, 5, 3]\n[damage]\nlimit_over_p0 = nan\n"),
+            "damage.limit_over_p0",
+        ),
+    ] {
+        assert_bad_input(&text, &[], field);
+    }
+    // TOML inf floats: flat, the same case as the strings, echoed as "inf" (not null).
+    let flat = |r: &str| {
+        PAPER
+            .replace("radii = [0.005, 0.05]", r)
+            .replace("[-0.01, 0.01]", "[0.01, 0.01]")
+    };
+    let (o, out, _d) = run_case(&flat("radii = [inf, inf]"), &[], &["--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    assert_eq!(
+        s["case"]["body1"]["radii"],
+        serde_json::json!(["inf", "inf"])
+    );
+    let (o2, out2, _d2) = run_case(&flat("radii = [\"inf\", \"inf\"]"), &[], &[]);
+    assert_eq!(o2.status.code(), Some(0), "{}", stderr(&o2));
+    let s2 = read_json(&out2.join("summary.json"));
+    assert_eq!(s["contact"], s2["contact"]);
+    assert!(s["contact"]["max_pressure"]
+        .as_f64()
+        .is_some_and(|p| p > 0.0));
+}
+
+/// Issue 11 item 10: absurd values within the old rules (E = 1e-308, load = 1e308) ended as
+/// exit 1 "numerical failure" naming no field; now the physical ranges (README "Ranges")
+/// refuse them with exit 2, naming the field and the rule.
+#[test]
+fn absurd_values_are_refused_by_their_physical_range() {
+    for (text, field, rule) in [
+        (
+            PAPER.replacen("E = 2.01e11", "E = 1e-308", 1),
+            "body1.E = 1e-308",
+            "[1e2, 1e13] Pa",
+        ),
+        (
+            PAPER.replacen("E = 2.01e11", "E = \"1e5 GPa\"", 1),
+            "body1.E",
+            "[1e2, 1e13] Pa",
+        ),
+        (
+            PAPER.replace("load = 2000.0", "load = 1e308"),
+            "contact.load",
+            "p0/E*",
+        ),
+        (
+            PAPER.replace("load = 2000.0", "load = 1e-300"),
+            "contact.load",
+            "p0/E*",
+        ),
+        // 2 MN on a 10 mm steel roller: p0/E* = 0.28.
+        (
+            PAPER.replace("load = 2000.0", "load = \"2 MN\""),
+            "contact.load",
+            "small strains",
+        ),
+        (
+            PAPER.replace("load = 2000.0", "approach = 1e300"),
+            "contact.approach",
+            "p0/E*",
+        ),
+        (
+            PAPER.replace("[-0.01, 0.01]", "[-0.01, 1e-300]"),
+            "body2.radii[1]",
+            "[1e-9, 1e6] m",
+        ),
+        (
+            PAPER.replace("[-0.01, 0.01]", "[-1e300, 0.01]"),
+            "body2.radii[0]",
+            "[1e-9, 1e6] m",
+        ),
+        (
+            MAP.replace("half_width = 1e-4", "half_width = 1e-12"),
+            "grid.half_width[0]",
+            "[1e-9, 1e6] m",
+        ),
+        (
+            MAP.replace("load = 10.0", "load = 1e12"),
+            "contact.load",
+            "mean pressure",
+        ),
+    ] {
+        let (o, out, _d) = run_case(&text, &[("map.csv", "0,1,0\n1,2,1\n0,1,0\n")], &[]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{field}: {err}");
+        assert!(
+            err.contains(field) && err.contains(rule),
+            "{field}, {rule}: {err}"
+        );
+        assert!(!out.exists());
+    }
+}
+
+/// Issue 11 item 10, memory: a case whose estimate exceeds `--max-memory` exits 2 with the
+/// estimate and writes nothing (it used to abort in an allocation or the VTK writer after
+/// minutes); `--dry-run` prints the estimate; a case file beyond 16 MiB is refused before it
+/// is parsed (a 50 MB file needed 3.9 GB).
+#[test]
+fn memory_beyond_the_limit_is_refused_before_solving() {
+    let big = PAPER.replace("n = 21", "n = 1024");
+    let (o, out, _d) = run_case(&big, &[], &["--max-memory", "100MiB"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("memory = about")
+            && err.contains("contact grid")
+            && err.contains("--max-memory"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    // The same case under a larger limit passes the check (dry run: nothing solved).
+    let (o, _, _d) = run_case(&big, &[], &["--max-memory", "64 GiB", "--dry-run"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("memory: about"), "{}", stdout(&o));
+    // The 2D BEM: the dense matrices of the clamp-knife-base example (2096 unknowns).
+    let knife = tribo(&["example", "clamp-knife-base"], None);
+    let knife = String::from_utf8(knife.stdout).unwrap();
+    let (o, out, _d) = run_case(&knife, &[], &["--max-memory", "100MiB"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("dense H, G") && err.contains("--max-memory"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    for bad in ["lots", "4 GB/s", "0"] {
+        let (o, _, _d) = run_case(PAPER, &[], &["--max-memory", bad]);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {}", stderr(&o));
+    }
+    // A 17 MiB case file (comments): refused before parsing, naming the limit.
+    let huge = format!(
+        "{PAPER}{}",
+        "# padding padding padding padding padding\n".repeat(420_000)
+    );
+    assert!(huge.len() > 16 << 20);
+    let (o, out, _d) = run_case(&huge, &[], &[]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("case") && err.contains("16.0 MiB"), "{err}");
+    assert!(!out.exists());
+}
+
+/// The estimate against the measured peak resident set (`/usr/bin/time -v`, "Maximum
+/// resident set size"; skipped where it is not installed) of mid-size runs: within a factor
+/// of 2 either way.
+#[test]
+fn memory_estimate_is_within_a_factor_of_two_of_the_peak() {
+    let time = Path::new("/usr/bin/time");
+    if !time.is_file() {
+        eprintln!("skipped: /usr/bin/time not installed");
+        return;
+    }
+    let field = PAPER.replace("n = 21", "n = 64") + "[field]\nn = [40, 40, 20]\n";
+    let contact = PAPER.replace("n = 21", "n = 256");
+    for text in [field, contact] {
+        let (o, _, _d) = run_case(&text, &[], &["--dry-run"]);
+        let line = stdout(&o);
+        let estimate = line
+            .lines()
+            .find_map(|l| l.strip_prefix("memory: about "))
+            .unwrap_or_else(|| panic!("no estimate in {line}"))
+            .to_string();
+        let (num, rest) = estimate.split_once(' ').unwrap();
+        let scale = match &rest[..3] {
+            "MiB" => 1048576.0,
+            "GiB" => 1073741824.0,
+            "KiB" => 1024.0,
+            other => panic!("{other}"),
+        };
+        let estimate = num.parse::<f64>().unwrap() * scale;
+        let dir = tempfile::tempdir().unwrap();
+        let case = dir.path().join("case.toml");
+        std::fs::write(&case, &text).unwrap();
+        let o = std::process::Command::new(time)
+            .arg("-v")
+            .arg(env!("CARGO_BIN_EXE_tribo"))
+            .args(["run", case.to_str().unwrap(), "--quiet", "-o"])
+            .arg(dir.path().join("out"))
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        let peak_kib: f64 = stderr(&o)
+            .lines()
+            .find_map(|l| {
+                l.trim()
+                    .strip_prefix("Maximum resident set size (kbytes): ")
+            })
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap();
+        let ratio = estimate / (peak_kib * 1024.0);
+        assert!(
+            (0.5..=2.0).contains(&ratio),
+            "estimate {estimate:.3e} B, peak {:.3e} B, ratio {ratio:.2}",
+            peak_kib * 1024.0
+        );
+    }
+}

@@ -383,6 +383,7 @@ fn validate(
         let e = quantity(&format!("{field}.E"), &m.e, Dim::Pressure)?;
         let nu = number(&format!("{field}.nu"), &m.nu)?;
         let mat = ElasticMaterial::named(&field, e, nu).map_err(CliError::from)?;
+        crate::units::check_modulus(&format!("{field}.E"), &m.e, e)?;
         materials.insert(name.clone(), mat);
         if let Some(s) = &m.source {
             material_sources.insert(name.clone(), s.clone());

@@ -27,11 +27,22 @@ pub fn run_text(
     out: &Path,
     quiet: bool,
     dry_run: bool,
+    max_memory: Option<u64>,
 ) -> CliResult<Option<output::BemSummary>> {
     let case = case::parse(text, source, base_dir)?;
+    let built = run::model(&case, None)?;
+    let mesh = tribo::operators::bem2d::BemMesh::new(&built.model)?;
+    // Interior points: the default triangle size is 1/40 of the model's extent, about 3200
+    // points per region and step.
+    let estimate = crate::memory::bem(
+        mesh.dof(),
+        3200 * mesh.regions.len() * case.steps.len().max(1),
+    );
     if dry_run {
-        let built = run::model(&case, None)?;
-        let mesh = tribo::operators::bem2d::BemMesh::new(&built.model)?;
+        println!("memory: {}", estimate.describe());
+    }
+    crate::memory::check(&estimate, max_memory)?;
+    if dry_run {
         println!(
             "{}: valid; plane {}, {} regions, {} segments, {} boundary unknowns, {} contact pairs, {} steps",
             case.title,

@@ -244,23 +244,53 @@ pub fn parse_csv(text: &str, path: &Path) -> CliResult<Vec<FatigueTest>> {
         .next()
         .ok_or_else(|| bad(0, "no header line (load_Pa, cycles, runout)".into()))?;
     let cols: Vec<String> = header.split(',').map(|c| c.trim().to_string()).collect();
-    let find = |names: &[&str]| cols.iter().position(|c| names.contains(&c.as_str()));
-    let (load_col, scale) = match (find(&["load", "load_Pa"]), find(&["load_MPa"])) {
-        (Some(i), _) => (i, 1.0),
-        (None, Some(i)) => (i, 1e6),
-        _ => {
+    // Each quantity in exactly one column: a repeated column, or two spellings of one
+    // quantity (load and load_MPa; runout and fracture, which are each other's negation),
+    // would silently take the first and drop the other.
+    for (i, c) in cols.iter().enumerate() {
+        if !c.is_empty() && cols[..i].contains(c) {
+            return Err(bad(
+                hline,
+                format!("header {header:?} names the column {c:?} twice; give each column once"),
+            ));
+        }
+    }
+    let find_one = |what: &str, names: &[&str]| -> CliResult<Option<usize>> {
+        let found: Vec<usize> = (0..cols.len())
+            .filter(|&i| names.contains(&cols[i].as_str()))
+            .collect();
+        match found.as_slice() {
+            [] => Ok(None),
+            [i] => Ok(Some(*i)),
+            _ => Err(bad(
+                hline,
+                format!(
+                    "header {header:?} has {} {what} columns ({}): give exactly one",
+                    found.len(),
+                    found
+                        .iter()
+                        .map(|&i| cols[i].as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            )),
+        }
+    };
+    let (load_col, unit_power) = match find_one("load", &["load", "load_Pa", "load_MPa"])? {
+        Some(i) if cols[i] == "load_MPa" => (i, 6),
+        Some(i) => (i, 0),
+        None => {
             return Err(bad(
                 hline,
                 format!("header {header:?} has no load column (load_Pa, load or load_MPa)"),
             ))
         }
     };
-    let cycles_col = find(&["cycles", "N"])
+    let cycles_col = find_one("cycles", &["cycles", "N"])?
         .ok_or_else(|| bad(hline, format!("header {header:?} has no cycles column")))?;
-    let (flag_col, is_runout) = match (find(&["runout"]), find(&["fracture"])) {
-        (Some(i), _) => (i, true),
-        (None, Some(i)) => (i, false),
-        _ => {
+    let (flag_col, is_runout) = match find_one("flag", &["runout", "fracture"])? {
+        Some(i) => (i, cols[i] == "runout"),
+        None => {
             return Err(bad(
                 hline,
                 format!("header {header:?} has no runout (or fracture) column"),
@@ -276,13 +306,13 @@ pub fn parse_csv(text: &str, path: &Path) -> CliResult<Vec<FatigueTest>> {
                 format!("{} columns, the header has {}", cells.len(), cols.len()),
             ));
         }
-        let num = |i: usize, what: &str| {
-            cells[i]
-                .parse::<f64>()
-                .map_err(|_| bad(ln, format!("{what} {:?} is not a number", cells[i])))
+        // Loads in MPa: the decimal exponent is shifted, so "300" MPa is exactly 3e8 Pa.
+        let num = |i: usize, what: &str, power: i32| {
+            crate::units::shifted_decimal(cells[i], power)
+                .ok_or_else(|| bad(ln, format!("{what} {:?} is not a finite number", cells[i])))
         };
-        let load = num(load_col, "load")? * scale;
-        let cycles = num(cycles_col, "cycles")?;
+        let load = num(load_col, "load", unit_power)?;
+        let cycles = num(cycles_col, "cycles", 0)?;
         let f = flag(cells[flag_col]).ok_or_else(|| {
             bad(
                 ln,
@@ -812,5 +842,40 @@ mod tests {
         assert!(e.to_string().contains("runout"), "{e}");
         let e = parse_csv("load,cycles,runout\n1,x,true\n", Path::new("x.csv")).unwrap_err();
         assert!(e.to_string().contains("line 2"), "{e}");
+        let t = parse_csv("load_MPa,cycles,runout\n0.3,1e5,0\n", Path::new("x.csv")).unwrap();
+        assert_eq!(t[0].load.to_bits(), 3e5f64.to_bits());
+    }
+
+    /// A duplicated column, or two columns for one quantity, was silently resolved by taking
+    /// the first (issue 11 item 10): now refused, naming the columns and the rule.
+    #[test]
+    fn csv_with_conflicting_columns_is_refused() {
+        for (text, names) in [
+            ("load,cycles,runout,runout\n1,2,1,0\n", "\"runout\" twice"),
+            ("load,cycles,cycles,runout\n1,2,3,1\n", "\"cycles\" twice"),
+            (
+                "load,cycles,runout,fracture\n1,2,1,1\n",
+                "2 flag columns (runout, fracture)",
+            ),
+            (
+                "load_Pa,load_MPa,cycles,runout\n1,2,3,1\n",
+                "2 load columns (load_Pa, load_MPa)",
+            ),
+            (
+                "load,N,cycles,runout\n1,2,3,1\n",
+                "2 cycles columns (N, cycles)",
+            ),
+        ] {
+            let e = parse_csv(text, Path::new("x.csv")).unwrap_err().to_string();
+            assert!(e.contains(names), "{text:?}: {e}");
+            assert!(e.contains("line 1"), "{e}");
+        }
+        for cell in ["inf", "NaN", "-inf"] {
+            let text = format!("load,cycles,runout\n{cell},1e5,0\n");
+            let e = parse_csv(&text, Path::new("x.csv"))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("finite"), "{e}");
+        }
     }
 }
