@@ -75,7 +75,7 @@ impl MeshedCurve {
     /// alternating). Errors: fewer than 3 points or an even count, a point that is not
     /// finite, a piece of zero length.
     pub fn new(points: Vec<[f64; 2]>) -> Result<Self> {
-        if points.len() < 3 || points.len() % 2 == 0 {
+        if points.len() < 3 || points.len().is_multiple_of(2) {
             return Err(Error::invalid(
                 "meshed curve points",
                 points.len(),

@@ -616,7 +616,7 @@ fn project(elements: &[Element], p: [f64; 2]) -> Option<(usize, f64)> {
         let xi = nearest_xi(e, p);
         let f = e.point(xi);
         let d = (f[0] - p[0]).hypot(f[1] - p[1]);
-        if best.map_or(true, |b| d < b.0) {
+        if best.is_none_or(|b| d < b.0) {
             best = Some((d, k, xi));
         }
     }
@@ -1910,7 +1910,7 @@ impl ContactProblem {
                         } else {
                             0.0
                         });
-                        if hold > 1e-6 && best.map_or(true, |b| g[i] < b.0) {
+                        if hold > 1e-6 && best.is_none_or(|b| g[i] < b.0) {
                             best = Some((g[i], i));
                         }
                     }
