@@ -48,6 +48,20 @@ pub enum Error {
         /// Why, in words.
         detail: String,
     },
+    /// A large allocation failed: the machine (or the process's memory limit) does not have
+    /// `bytes` for `what`. Returned instead of aborting, e.g. by the 2D BEM's dense matrices
+    /// ([`crate::operators::bem2d::BemModel::memory_estimate`] tells beforehand).
+    #[error(
+        "out of memory: {what} needs {bytes} bytes ({:.2} GiB) that could not be allocated; \
+         reduce the model (fewer elements) or run it where more memory is available",
+        *bytes as f64 / 1073741824.0
+    )]
+    OutOfMemory {
+        /// What was being allocated, in words.
+        what: String,
+        /// Bytes asked for (usize::MAX where the size itself overflows).
+        bytes: usize,
+    },
     /// A numerical operation failed (e.g. a singular factorization).
     #[error("numerical failure in {context}: {detail}")]
     Numerical {

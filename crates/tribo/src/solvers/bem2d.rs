@@ -76,9 +76,11 @@ use faer::Mat;
 
 use crate::error::{Error, Result};
 use crate::kernels::kelvin2d::Kelvin2d;
+use crate::operators::bem2d::assemble::{matrix_bytes, probe_memory, try_zeros};
 use crate::operators::bem2d::integrate::{element_interior, piece_distance};
 use crate::operators::bem2d::mesh::{dist, Element};
 use crate::operators::bem2d::{assemble, BemMesh, BemModel, RegionOperators};
+use crate::solvers::nan_max;
 
 /// A scalar load or displacement distribution along a segment.
 #[derive(Clone)]
@@ -319,7 +321,7 @@ impl BemProblem {
     /// Meshes, validates and assembles `model`.
     pub fn new(model: &BemModel) -> Result<Self> {
         let mesh = BemMesh::new(model)?;
-        let operators = assemble(&mesh);
+        let operators = assemble(&mesh)?;
         Ok(Self { mesh, operators })
     }
 
@@ -569,8 +571,9 @@ impl BemProblem {
             .iter()
             .map(|r| r.kernels.shear_modulus())
             .fold(0.0_f64, f64::max);
-        let mut a = Mat::<f64>::zeros(nrow, ncol);
-        let mut b = Mat::<f64>::zeros(nrow, 1);
+        let what = format!("the 2D BEM system matrix ({nrow} x {ncol})");
+        let mut a = try_zeros(&what, nrow, ncol)?;
+        let mut b = try_zeros(&what, nrow, 1)?;
         let mut offset = 0;
         for (r, ops) in self.operators.iter().enumerate() {
             let n2 = ops.h.nrows();
@@ -607,6 +610,11 @@ impl BemProblem {
             }
             offset += n2;
         }
+        // The LU's copy of A and the residual check's product: allocated inside faer.
+        probe_memory(
+            &format!("the LU factorization of the 2D BEM system ({nrow} x {ncol})"),
+            matrix_bytes(nrow, ncol),
+        )?;
         let lu = a.partial_piv_lu();
         let x = lu.solve(&b);
         let res = &a * &x - &b;
@@ -614,7 +622,7 @@ impl BemProblem {
             let mut v = 0.0_f64;
             for i in 0..m.nrows() {
                 let row: f64 = (0..m.ncols()).map(|j| m[(i, j)].abs()).sum();
-                v = v.max(row);
+                v = nan_max(v, row);
             }
             v
         };
@@ -888,7 +896,10 @@ impl BemSolution {
         u.iter_mut().for_each(|v| *v *= lam);
         s.iter_mut().for_each(|v| *v *= lam);
         let particular = region.body_force.is_some();
-        for e in &region.elements {
+        // The Somigliana integrals in model-local coordinates (`RegionMesh::local_elements`).
+        let o = self.mesh.origin;
+        let pl = [p[0] - o[0], p[1] - o[1]];
+        for e in &region.local_elements {
             let (mut ue, mut te) = self.nodal(r, e);
             if particular {
                 for (k, &m) in e.nodes.iter().enumerate() {
@@ -899,7 +910,7 @@ impl BemSolution {
                     }
                 }
             }
-            element_interior(&region.kernels, e, p, &ue, &te, &mut u, &mut s);
+            element_interior(&region.kernels, e, pl, &ue, &te, &mut u, &mut s);
         }
         (u, s)
     }
@@ -1095,3 +1106,6 @@ mod tests;
 
 #[cfg(test)]
 mod body_force_tests;
+
+#[cfg(test)]
+mod rigid_motion_tests;

@@ -16,6 +16,7 @@ use crate::grid::SurfaceGrid;
 use crate::kernels::love;
 use crate::material::ElasticMaterial;
 use crate::operators::ConvolutionOperator;
+use crate::solvers::nan_max;
 use crate::solvers::normal::{
     normal_compliance_operator, solve_normal_cg_with, NormalContactParams, NormalContactSolution,
     NormalLoading,
@@ -245,11 +246,11 @@ pub fn solve_coupled_with(
                 let largest = |a: &[f64], b: &[f64]| {
                     a.iter()
                         .zip(b)
-                        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+                        .fold(0.0f64, |m, (x, y)| nan_max(m, (x - y).abs()))
                 };
                 let dp = largest(&normal.pressure, p_old);
-                let dq = largest(&q[0], &q_old[0]).max(largest(&q[1], &q_old[1]));
-                (dp / p_max).max(dq / (friction * p_max))
+                let dq = nan_max(largest(&q[0], &q_old[0]), largest(&q[1], &q_old[1]));
+                nan_max(dp / p_max, dq / (friction * p_max))
             }
         };
         if uncoupled || change <= tolerance {

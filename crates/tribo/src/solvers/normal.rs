@@ -26,6 +26,7 @@ use crate::error::{Error, Result};
 use crate::grid::SurfaceGrid;
 use crate::kernels::love;
 use crate::operators::{ConvolutionOperator, ConvolutionWorkspace, DenseInfluence};
+use crate::solvers::nan_max;
 
 /// How the normal contact is loaded.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -164,12 +165,18 @@ pub fn normal_compliance_operator(
 /// the grid, so one tolerance means the same on every grid; the round-off floor of the FFT
 /// operator is ~1e-13 in this measure up to 1024^2 elements.
 pub fn complementarity_residual(pressure: &[f64], gap: &[f64], displacement_scale: f64) -> f64 {
-    let p_max = pressure.iter().fold(0.0f64, |m, &p| m.max(p));
+    let p_max = pressure.iter().fold(0.0f64, |m, &p| nan_max(m, p));
     if !(p_max > 0.0 && displacement_scale > 0.0) {
         return f64::INFINITY;
     }
     pressure.iter().zip(gap).fold(0.0f64, |m, (&p, &g)| {
-        m.max((p / p_max).min(g / displacement_scale).abs())
+        // NaN-aware: a NaN pressure or gap makes the residual NaN, never "converged".
+        let r = if p.is_nan() || g.is_nan() {
+            f64::NAN
+        } else {
+            (p / p_max).min(g / displacement_scale).abs()
+        };
+        nan_max(m, r)
     })
 }
 
@@ -385,7 +392,7 @@ pub fn solve_normal_cg_with(
         let mut displacement_scale = 0.0f64;
         for i in 0..n {
             gap[i] = displacement[i] + h[i];
-            displacement_scale = displacement_scale.max(displacement[i].abs());
+            displacement_scale = nan_max(displacement_scale, displacement[i].abs());
             if pressure[i] > 0.0 {
                 n_contact += 1;
                 gap_sum += gap[i];
@@ -603,7 +610,7 @@ pub fn solve_normal_active_set(
         }
         let displacement = dense.apply(&pressure);
         let gap: Vec<f64> = (0..n).map(|i| displacement[i] + h[i] - approach).collect();
-        let displacement_scale = displacement.iter().fold(0.0f64, |m, u| m.max(u.abs()));
+        let displacement_scale = displacement.iter().fold(0.0f64, |m, u| nan_max(m, u.abs()));
         residual = complementarity_residual(&pressure, &gap, displacement_scale);
         let mut entered = false;
         for i in 0..n {

@@ -37,6 +37,7 @@ use crate::grid::SurfaceGrid;
 use crate::kernels::love;
 use crate::material::ElasticMaterial;
 use crate::operators::{ConvolutionOperator, ConvolutionWorkspace};
+use crate::solvers::nan_max;
 
 /// How the tangential contact is loaded.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -394,20 +395,22 @@ pub fn solve_tangential_with_offset(
             });
         }
         shift /= n_free as f64;
-        let u_scale = displacement.iter().fold(0.0f64, |m, u| m.max(u.abs()));
+        let u_scale = displacement.iter().fold(0.0f64, |m, u| nan_max(m, u.abs()));
         let mut worst = 0.0f64;
         for i in 0..n {
             let r = displacement[i] - shift;
             residual_field[i] = r;
-            if free[i] {
-                worst = worst.max(r.abs());
+            if r.is_nan() || tau[i].is_nan() {
+                worst = f64::NAN;
+            } else if free[i] {
+                worst = nan_max(worst, r.abs());
             } else if bound[i] > 0.0 && r * tau[i] > 0.0 {
                 // At the bound with the slip W - C tau against tau: must re-enter stick.
-                worst = worst.max(r.abs());
+                worst = nan_max(worst, r.abs());
             }
         }
         let force_error = (tau.iter().sum::<f64>() - target).abs() / target;
-        residual = (worst / u_scale).max(force_error);
+        residual = nan_max(worst / u_scale, force_error);
         if residual <= params.tolerance {
             let slip: Vec<f64> = (0..n)
                 .map(|i| {

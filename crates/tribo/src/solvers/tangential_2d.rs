@@ -37,6 +37,7 @@ use crate::grid::SurfaceGrid;
 use crate::kernels::love;
 use crate::material::ElasticMaterial;
 use crate::operators::{ConvolutionOperator, ConvolutionWorkspace};
+use crate::solvers::nan_max;
 use crate::solvers::tangential::{
     direction, solve_tangential, TangentialLoading, TangentialParams, TangentialProblem,
     TangentialSolution,
@@ -220,13 +221,18 @@ pub fn solve_tangential_2d_with_offset(
             });
         }
         shift = [shift[0] / n_free as f64, shift[1] / n_free as f64];
-        let u_scale = (0..n).fold(0.0f64, |m, i| m.max(norm(u[0][i], u[1][i])));
+        let u_scale = (0..n).fold(0.0f64, |m, i| nan_max(m, norm(u[0][i], u[1][i])));
         let mut worst = 0.0f64;
         for i in 0..n {
             r[0][i] = u[0][i] - shift[0];
             r[1][i] = u[1][i] - shift[1];
-            if free[i] {
-                worst = worst.max(norm(r[0][i], r[1][i]));
+            if [r[0][i], r[1][i], q[0][i], q[1][i]]
+                .iter()
+                .any(|v| v.is_nan())
+            {
+                worst = f64::NAN;
+            } else if free[i] {
+                worst = nan_max(worst, norm(r[0][i], r[1][i]));
             } else if bound[i] > 0.0 {
                 // Slip s = W - u = -r must be lambda q / |q| with lambda >= 0.
                 let qn = norm(q[0][i], q[1][i]);
@@ -234,12 +240,12 @@ pub fn solve_tangential_2d_with_offset(
                 let (sx, sy) = (-r[0][i], -r[1][i]);
                 let lambda = sx * ex + sy * ey;
                 let across = norm(sx - lambda * ex, sy - lambda * ey);
-                worst = worst.max(if lambda < 0.0 { norm(sx, sy) } else { across });
+                worst = nan_max(worst, if lambda < 0.0 { norm(sx, sy) } else { across });
             }
         }
         let sum = [q[0].iter().sum::<f64>(), q[1].iter().sum::<f64>()];
         let force_error = norm(sum[0] - target[0], sum[1] - target[1]) / target_norm;
-        residual = (worst / u_scale).max(force_error);
+        residual = nan_max(worst / u_scale, force_error);
         if residual <= params.tolerance {
             iterations = iteration;
             break;

@@ -422,9 +422,27 @@ fn gmsh_rows() -> Result<Vec<ValidationRow>> {
     Ok(rows)
 }
 
+/// The constant-stress patch test on a square graded 1e6 (the end of the documented range),
+/// 100 mm from the origin and turned by 0.5 rad (issue 11 items 2 and 10: an element-local
+/// and model-local integration; before, the LU solve failed).
+fn graded_patch_rows() -> Result<Vec<ValidationRow>> {
+    let (eu, et) = crate::solvers::bem2d::reference::graded_patch([-0.1, -0.01], 0.5, 1e6)?;
+    Ok(vec![ValidationRow::new(
+        "2D BEM, constant-stress patch, 20 mm square graded 1e6 at 100 mm from the origin, \
+         turned 0.5 rad",
+        "max nodal error of u and t (relative)",
+        0.0,
+        eu.max(et),
+        ErrorMeasure::Bound,
+        1e-7,
+        "exact: quadratic elements reproduce a linear displacement field",
+    )])
+}
+
 /// Rows of the 2D boundary element solver.
 pub fn bem2d_rows() -> Result<Vec<ValidationRow>> {
     let mut rows = lame_rows()?;
+    rows.extend(graded_patch_rows()?);
     rows.extend(gmsh_rows()?);
     rows.extend(kirsch_rows()?);
     rows.extend(cantilever_rows()?);

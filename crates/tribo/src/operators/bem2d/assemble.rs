@@ -21,6 +21,41 @@ use rayon::prelude::*;
 
 use super::integrate::element_hg;
 use super::mesh::{BemMesh, RegionMesh};
+use crate::error::{Error, Result};
+
+/// Bytes of an `rows x cols` f64 matrix; None where the size overflows usize.
+pub(crate) fn matrix_bytes(rows: usize, cols: usize) -> Option<usize> {
+    rows.checked_mul(cols)?
+        .checked_mul(std::mem::size_of::<f64>())
+}
+
+/// An `rows x cols` zero matrix, or [`Error::OutOfMemory`] naming `what` where the
+/// allocation fails (faer's own constructors abort on failure).
+pub(crate) fn try_zeros(what: &str, rows: usize, cols: usize) -> Result<Mat<f64>> {
+    let oom = |bytes| Error::OutOfMemory {
+        what: what.to_string(),
+        bytes,
+    };
+    let bytes = matrix_bytes(rows, cols).ok_or_else(|| oom(usize::MAX))?;
+    let mut m = Mat::<f64>::new();
+    m.try_reserve(rows, cols).map_err(|_| oom(bytes))?;
+    m.resize_with(rows, cols, |_, _| 0.0);
+    Ok(m)
+}
+
+/// Checks that `bytes` more can be allocated now (a temporary reservation, released at
+/// once), for work areas allocated inside faer (an LU factorization's copy of its
+/// matrix), whose own allocation aborts on failure: [`Error::OutOfMemory`] naming `what`.
+pub(crate) fn probe_memory(what: &str, bytes: Option<usize>) -> Result<()> {
+    let oom = |bytes| Error::OutOfMemory {
+        what: what.to_string(),
+        bytes,
+    };
+    let bytes = bytes.ok_or_else(|| oom(usize::MAX))?;
+    let mut v: Vec<u8> = Vec::new();
+    v.try_reserve_exact(bytes).map_err(|_| oom(bytes))?;
+    Ok(())
+}
 
 /// The collocation matrices of one region: 2n x 2n for n functional nodes, DOF 2 i + d for
 /// node i and direction d (0 = x, 1 = y), row 2 i + d the equation collocated at node i in
@@ -34,46 +69,142 @@ pub struct RegionOperators {
 }
 
 /// Assembles H and G of every region of `mesh`.
-pub fn assemble(mesh: &BemMesh) -> Vec<RegionOperators> {
+///
+/// Errors: [`Error::OutOfMemory`] where the dense matrices cannot be allocated (see
+/// [`crate::operators::bem2d::BemModel::memory_estimate`]).
+pub fn assemble(mesh: &BemMesh) -> Result<Vec<RegionOperators>> {
     mesh.regions.iter().map(assemble_region).collect()
 }
 
-/// Assembles H and G of one region.
-pub fn assemble_region(region: &RegionMesh) -> RegionOperators {
+/// Assembles H and G of one region ([`Error::OutOfMemory`] where they cannot be
+/// allocated).
+pub fn assemble_region(region: &RegionMesh) -> Result<RegionOperators> {
     let n = region.nodes.len();
     let dof = 2 * n;
-    // For each node: its two H rows then its two G rows, row-major.
-    let rows: Vec<Vec<f64>> = (0..n)
-        .into_par_iter()
-        .map(|i| {
-            let p = region.nodes[i].position;
-            let mut buf = vec![0.0; 4 * dof];
-            for e in &region.elements {
-                let singular = e.nodes.iter().position(|&m| m == i);
-                let (h, g) = element_hg(&region.kernels, e, p, singular);
-                for (k, &m) in e.nodes.iter().enumerate() {
-                    for a in 0..2 {
-                        for b in 0..2 {
-                            buf[a * dof + 2 * m + b] += h[a][2 * k + b];
-                            buf[(2 + a) * dof + 2 * m + b] += g[a][2 * k + b];
+    let what = format!(
+        "the H and G matrices of region '{}' ({dof} x {dof})",
+        region.name
+    );
+    let mut h = try_zeros(&what, dof, dof)?;
+    let mut g = try_zeros(&what, dof, dof)?;
+    // The rows are computed in parallel blocks of nodes (each node: its two H rows then its
+    // two G rows, row-major), each block copied into H and G before the next: the buffer
+    // stays a small fraction of the matrices.
+    let block = 256.max(rayon::current_num_threads() * 16);
+    let oom = |bytes| Error::OutOfMemory {
+        what: what.clone(),
+        bytes,
+    };
+    for start in (0..n).step_by(block) {
+        let end = (start + block).min(n);
+        let rows: Vec<Vec<f64>> = (start..end)
+            .into_par_iter()
+            .map(|i| {
+                // Model-local coordinates (see `RegionMesh::local_elements`).
+                let p = region.local_positions[i];
+                let len = 4 * dof;
+                let mut buf = Vec::new();
+                buf.try_reserve_exact(len)
+                    .map_err(|_| oom(len.saturating_mul(8)))?;
+                buf.resize(len, 0.0);
+                for e in &region.local_elements {
+                    let singular = e.nodes.iter().position(|&m| m == i);
+                    let (h, g) = element_hg(&region.kernels, e, p, singular);
+                    for (k, &m) in e.nodes.iter().enumerate() {
+                        for a in 0..2 {
+                            for b in 0..2 {
+                                buf[a * dof + 2 * m + b] += h[a][2 * k + b];
+                                buf[(2 + a) * dof + 2 * m + b] += g[a][2 * k + b];
+                            }
                         }
                     }
                 }
-            }
-            // Rigid-body translation: the diagonal block closes the row sums of H.
-            for a in 0..2 {
-                for b in 0..2 {
-                    let mut sum = 0.0;
-                    for m in (0..n).filter(|&m| m != i) {
-                        sum += buf[a * dof + 2 * m + b];
+                // Rigid-body translation: the diagonal block closes the row sums of H.
+                for a in 0..2 {
+                    for b in 0..2 {
+                        let mut sum = 0.0;
+                        for m in (0..n).filter(|&m| m != i) {
+                            sum += buf[a * dof + 2 * m + b];
+                        }
+                        buf[a * dof + 2 * i + b] = -sum;
                     }
-                    buf[a * dof + 2 * i + b] = -sum;
+                }
+                Ok(buf)
+            })
+            .collect::<Result<_>>()?;
+        for (k, buf) in rows.iter().enumerate() {
+            let i = start + k;
+            for a in 0..2 {
+                for c in 0..dof {
+                    h[(2 * i + a, c)] = buf[a * dof + c];
+                    g[(2 * i + a, c)] = buf[(2 + a) * dof + c];
                 }
             }
-            buf
-        })
-        .collect();
-    let h = Mat::from_fn(dof, dof, |r, c| rows[r / 2][(r % 2) * dof + c]);
-    let g = Mat::from_fn(dof, dof, |r, c| rows[r / 2][(2 + r % 2) * dof + c]);
-    RegionOperators { h, g }
+        }
+    }
+    Ok(RegionOperators { h, g })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::kernels::kelvin2d::PlaneCondition;
+    use crate::material::ElasticMaterial;
+    use crate::operators::bem2d::{BemModel, Region, Segment};
+
+    /// An allocation that cannot succeed is a typed error naming what and how much, not an
+    /// abort (issue 11 item 10: a 3000-element segment under a 4 GiB limit aborted in a faer
+    /// allocation, exit 101).
+    #[test]
+    fn impossible_allocations_are_typed_errors() {
+        // 2^31 x 2^31 f64 = 2^65 bytes: the size itself overflows.
+        match try_zeros("H", 1 << 31, 1 << 31) {
+            Err(Error::OutOfMemory { what, bytes }) => {
+                assert_eq!((what.as_str(), bytes), ("H", usize::MAX));
+            }
+            other => panic!("{other:?}"),
+        }
+        // 2^29 x 2^29 f64 = 2^61 bytes: no machine has it.
+        match try_zeros("G", 1 << 29, 1 << 29) {
+            Err(Error::OutOfMemory { what, bytes }) => {
+                assert_eq!((what.as_str(), bytes), ("G", 1 << 61));
+            }
+            other => panic!("{other:?}"),
+        }
+        let e = probe_memory("the LU", matrix_bytes(1 << 29, 1 << 29)).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("the LU needs 2305843009213693952 bytes"),
+            "{e}"
+        );
+        let m = try_zeros("small", 3, 2).unwrap();
+        assert_eq!((m.nrows(), m.ncols(), m[(2, 1)]), (3, 2, 0.0));
+    }
+
+    /// The estimate counts 2 n + 1 nodes per segment of n elements, two DOFs each:
+    /// 16 N_r^2 (H, G) + 24 N^2 (system, LU, right-hand sides) bytes.
+    #[test]
+    fn memory_estimate_counts_the_dense_matrices() {
+        let steel = ElasticMaterial::new(210e9, 0.3).unwrap();
+        let square = |n: usize| {
+            BemModel::new(
+                PlaneCondition::Strain,
+                vec![Region::new(
+                    "r",
+                    steel,
+                    vec![
+                        Segment::line("a", [0.0, 0.0], [1.0, 0.0], n),
+                        Segment::line("b", [1.0, 0.0], [1.0, 1.0], n),
+                        Segment::line("c", [1.0, 1.0], [0.0, 1.0], n),
+                        Segment::line("d", [0.0, 1.0], [0.0, 0.0], n),
+                    ],
+                )],
+            )
+        };
+        // 4 x 5 nodes, 40 DOFs: 16 * 1600 + 24 * 1600.
+        assert_eq!(square(2).memory_estimate(), 64_000);
+        // One segment of 3000 elements (the issue's case): 12002 DOFs at least, 5.8 GB.
+        let big = square(750).memory_estimate();
+        assert!(big > 5_000_000_000 && big < 6_000_000_000, "{big}");
+    }
 }

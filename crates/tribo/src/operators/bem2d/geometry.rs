@@ -193,6 +193,44 @@ fn projection(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> f64 {
 }
 
 impl SegmentShape {
+    /// The same shape translated by `-origin` (the mesh's model-local coordinates).
+    pub(crate) fn shifted(&self, origin: [f64; 2]) -> Result<Self> {
+        let sub = |p: [f64; 2]| [p[0] - origin[0], p[1] - origin[1]];
+        Ok(match self {
+            SegmentShape::Line { start, end } => SegmentShape::Line {
+                start: sub(*start),
+                end: sub(*end),
+            },
+            SegmentShape::Arc {
+                center,
+                radius,
+                start_angle,
+                end_angle,
+            } => SegmentShape::Arc {
+                center: sub(*center),
+                radius: *radius,
+                start_angle: *start_angle,
+                end_angle: *end_angle,
+            },
+            SegmentShape::Meshed(c) => SegmentShape::Meshed(MeshedCurve::new(
+                c.points().iter().map(|&p| sub(p)).collect(),
+            )?),
+        })
+    }
+
+    /// The points that span the shape's extent (line ends, an arc's centre +- its radius,
+    /// a meshed curve's nodes).
+    pub(crate) fn extent_points(&self) -> Vec<[f64; 2]> {
+        match self {
+            SegmentShape::Line { start, end } => vec![*start, *end],
+            SegmentShape::Arc { center, radius, .. } => vec![
+                [center[0] - radius, center[1] - radius],
+                [center[0] + radius, center[1] + radius],
+            ],
+            SegmentShape::Meshed(c) => c.points().to_vec(),
+        }
+    }
+
     /// The point at parameter `t` in [0, 1] (proportional to arc length).
     pub fn point(&self, t: f64) -> [f64; 2] {
         match *self {
@@ -448,15 +486,27 @@ impl Segment {
         Ok(())
     }
 
+    /// Number of elements of the segment (its pieces for a meshed curve), computed without
+    /// meshing (saturating for absurd divisions).
+    pub fn element_count(&self) -> usize {
+        if let SegmentShape::Meshed(c) = &self.shape {
+            return c.pieces();
+        }
+        match self.division {
+            Division::Count(n) => n,
+            // A length that is a whole number of sizes up to rounding (1e-9) gives that
+            // number, wherever the segment sits (its length is computed from translated
+            // end points).
+            Division::Size(h) => ((self.shape.length() / h - 1e-9).ceil() as usize).max(1),
+        }
+    }
+
     /// Element break points in the segment parameter t, from 0 to 1.
     pub(crate) fn breakpoints(&self) -> Vec<f64> {
         if let SegmentShape::Meshed(c) = &self.shape {
             return c.breakpoints();
         }
-        let n = match self.division {
-            Division::Count(n) => n,
-            Division::Size(h) => ((self.shape.length() / h).ceil() as usize).max(1),
-        };
+        let n = self.element_count();
         let weights: Vec<f64> = match self.grading {
             Grading::Uniform => vec![1.0; n],
             Grading::Start(q) | Grading::End(q) => {
@@ -652,6 +702,46 @@ impl BemModel {
     /// A model of the given regions.
     pub fn new(plane: PlaneCondition, regions: Vec<Region>) -> Self {
         Self { plane, regions }
+    }
+
+    /// Estimated peak memory (bytes) of meshing, assembling and solving the model
+    /// ([`crate::solvers::bem2d::BemProblem::new`] then `solve`, or the contact solver),
+    /// from the element counts alone (no meshing; saturating at usize::MAX).
+    ///
+    /// A segment of n quadratic elements has 2n + 1 functional nodes (two DOFs each) in
+    /// every region whose loops hold it (its owner, and the region sharing it). With
+    /// N_r DOFs in region r and N = sum N_r: the kept H and G take 16 sum N_r^2 bytes, and
+    /// the solve the system matrix, its LU copy and the right-hand sides, at most 24 N^2
+    /// (the contact solver factors the same system body by body, with one right-hand side
+    /// per contact unknown). The small per-node data are neglected.
+    pub fn memory_estimate(&self) -> usize {
+        let nodes_of = |s: &Segment| s.element_count().saturating_mul(2).saturating_add(1);
+        let owned: std::collections::HashMap<&str, usize> = self
+            .regions
+            .iter()
+            .flat_map(|r| r.loops.iter().flatten())
+            .filter_map(|it| match it {
+                LoopItem::Segment(s) => Some((s.name.as_str(), nodes_of(s))),
+                LoopItem::Shared(_) => None,
+            })
+            .collect();
+        let mut kept: usize = 0;
+        let mut total: usize = 0;
+        for r in &self.regions {
+            let nodes = r
+                .loops
+                .iter()
+                .flatten()
+                .map(|it| match it {
+                    LoopItem::Segment(s) => nodes_of(s),
+                    LoopItem::Shared(name) => owned.get(name.as_str()).copied().unwrap_or(0),
+                })
+                .fold(0usize, usize::saturating_add);
+            let dof = nodes.saturating_mul(2);
+            kept = kept.saturating_add(dof.saturating_mul(dof).saturating_mul(16));
+            total = total.saturating_add(dof);
+        }
+        kept.saturating_add(total.saturating_mul(total).saturating_mul(24))
     }
 }
 

@@ -337,6 +337,18 @@ fn read(text: &str) -> Result<RawMesh> {
             ));
         }
     }
+    // A section the import reads must be there once: a second $Nodes (or $Elements, ...)
+    // would otherwise be silently ignored or merged.
+    for name in ["Nodes", "Elements", "Entities", "PhysicalNames"] {
+        let mut found = sections.iter().filter(|s| s.name == name);
+        if let (Some(_), Some(second)) = (found.next(), found.next()) {
+            return Err(err(
+                format!("msh line {}", second.end_line),
+                format!("${name}"),
+                format!("the file has a second ${name} section (ending here): a mesh has one"),
+            ));
+        }
+    }
     let find = |name: &str| sections.iter().find(|s| s.name == name);
     let (Some(nodes), Some(elements)) = (find("Nodes"), find("Elements")) else {
         return Err(err(
@@ -356,6 +368,7 @@ fn read(text: &str) -> Result<RawMesh> {
         read_nodes_v4(nodes, &mut mesh)?;
         read_elements_v4(elements, &entities, &mut mesh)?;
     }
+    check_element_nodes(&mesh)?;
     Ok(mesh)
 }
 
@@ -434,7 +447,7 @@ fn read_elements_v2(s: &Section, mesh: &mut RawMesh) -> Result<()> {
     for _ in 0..n {
         let line = t.line_of_next();
         let _tag = t.tag("an element tag")?;
-        let kind = t.count("an element type")? as u32;
+        let kind = element_kind(t.count("an element type")?, line)?;
         let ntags = t.count("the number of tags")?;
         let mut tags = Vec::with_capacity(ntags.min(t.remaining()));
         for _ in 0..ntags {
@@ -461,6 +474,92 @@ fn read_elements_v2(s: &Section, mesh: &mut RawMesh) -> Result<()> {
         });
     }
     t.finish()
+}
+
+/// An element type number as read; a number beyond u32 is refused as unsupported (it
+/// must not wrap around onto a supported type: 4294967298 is not type 2).
+fn element_kind(raw: usize, line: usize) -> Result<u32> {
+    u32::try_from(raw).map_err(|_| {
+        err(
+            format!("msh line {line}"),
+            format!("element type {raw}"),
+            "element types read: points (15), lines (1, 8), triangles (2, 9) and quadrangles \
+             (3, 16, 10), first or second order: save the mesh with order 1 or 2",
+        )
+    })
+}
+
+/// Checks the elements against the nodes: every node tag an element names is in $Nodes,
+/// and no element names a node twice (a repeated corner or middle node is a degenerate
+/// element, and a repeated middle node silently moves the edge's midpoint).
+fn check_element_nodes(mesh: &RawMesh) -> Result<()> {
+    for (k, e) in mesh.elements.iter().enumerate() {
+        for (i, tag) in e.nodes.iter().enumerate() {
+            if !mesh.nodes.contains_key(tag) {
+                return Err(err(
+                    format!("msh line {} (element {})", e.line, k + 1),
+                    format!("node {tag}"),
+                    "an element names a node that $Nodes does not hold",
+                ));
+            }
+            if e.nodes[..i].contains(tag) {
+                return Err(err(
+                    format!("msh line {} (element {})", e.line, k + 1),
+                    format!("node {tag}"),
+                    "an element names the same node twice (a degenerate element)",
+                ));
+            }
+        }
+    }
+    // A middle node belongs to one edge: the same corner pair wherever it is named, and it
+    // is no element's corner.
+    let edges = |kind: u32| -> (&'static [usize], Option<&'static [usize]>) {
+        match kind {
+            1 => (&[0, 1], None),
+            8 => (&[0, 1], Some(&[2])),
+            k => element_edges(k),
+        }
+    };
+    let mut edge_of_mid: HashMap<u64, (u64, u64, usize)> = HashMap::new();
+    let mut corners: HashSet<u64> = HashSet::new();
+    for e in &mesh.elements {
+        let (c, _) = edges(e.kind);
+        corners.extend(c.iter().filter_map(|&i| e.nodes.get(i)));
+    }
+    for (k, e) in mesh.elements.iter().enumerate() {
+        let (c, Some(m)) = edges(e.kind) else {
+            continue;
+        };
+        for (j, &mi) in m.iter().enumerate() {
+            let (Some(&a), Some(&b), Some(&mid)) = (
+                e.nodes.get(c[j]),
+                e.nodes.get(c[(j + 1) % c.len()]),
+                e.nodes.get(mi),
+            ) else {
+                continue;
+            };
+            let here = (a.min(b), a.max(b));
+            let bad = corners.contains(&mid)
+                || edge_of_mid
+                    .get(&mid)
+                    .is_some_and(|&(x, y, _)| (x, y) != here);
+            if bad {
+                let other = edge_of_mid.get(&mid).map_or(String::new(), |&(x, y, l)| {
+                    format!(" (line {l} uses it on the edge {x}-{y})")
+                });
+                return Err(err(
+                    format!("msh line {} (element {})", e.line, k + 1),
+                    format!("middle node {mid} of the edge {a}-{b}"),
+                    format!(
+                        "a middle node belongs to one edge and is no corner{other}: the \
+                         mesh is corrupt"
+                    ),
+                ));
+            }
+            edge_of_mid.insert(mid, (here.0, here.1, e.line));
+        }
+    }
+    Ok(())
 }
 
 fn unsupported_type(kind: u32, line: usize) -> Error {
@@ -565,9 +664,16 @@ fn read_elements_v4(
     let mut read = 0;
     for _ in 0..blocks {
         let line = t.line_of_next();
-        let dim = t.count("the entity dimension")? as u32;
+        let dim = t.count("the entity dimension")?;
         let entity = t.int("the entity tag")?;
-        let kind = t.count("the element type")? as u32;
+        let kind = element_kind(t.count("the element type")?, line)?;
+        let dim = u32::try_from(dim).map_err(|_| {
+            err(
+                format!("msh line {line}"),
+                format!("entity dimension {dim}"),
+                "an entity dimension is 0, 1, 2 or 3",
+            )
+        })?;
         let n = t.count("the number of elements in the block")?;
         let Some((type_dim, count)) = element_type(kind) else {
             return Err(unsupported_type(kind, line));

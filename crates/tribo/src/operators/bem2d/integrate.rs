@@ -124,8 +124,10 @@ pub(crate) fn adaptive<F: FnMut(f64, f64)>(
     }
 }
 
-/// Calls `f(xi, w)` at the points of the singular rule on both sides of `xi_s`.
-pub(crate) fn singular<F: FnMut(f64, f64)>(xi_s: f64, f: &mut F) {
+/// Calls `f(xi, dxi, w)` at the points of the singular rule on both sides of `xi_s`, with
+/// `dxi = xi - xi_s` formed directly (not as a difference of two nearby numbers), so that
+/// the kernel's r can be formed from it in element-local terms ([`Element::chord`]).
+pub(crate) fn singular<F: FnMut(f64, f64, f64)>(xi_s: f64, f: &mut F) {
     let (eta, w) = singular_rule();
     for end in [-1.0, 1.0] {
         let span = end - xi_s;
@@ -133,7 +135,8 @@ pub(crate) fn singular<F: FnMut(f64, f64)>(xi_s: f64, f: &mut F) {
             continue;
         }
         for (e, wi) in eta.iter().zip(w) {
-            f(xi_s + span * e, span.abs() * wi);
+            let dxi = span * e;
+            f(xi_s + dxi, dxi, span.abs() * wi);
         }
     }
 }
@@ -150,10 +153,11 @@ pub(crate) fn element_hg(
 ) -> ([[f64; 6]; 2], [[f64; 6]; 2]) {
     let mut h = [[0.0; 6]; 2];
     let mut g = [[0.0; 6]; 2];
-    let mut add = |xi: f64, w: f64| {
-        let x = e.point(xi);
+    // r = x(xi) - p is formed in element-local terms (never as a difference of absolute
+    // coordinates): from the parameter offset on the singular rule, from the element's
+    // node differences otherwise.
+    let mut add = |xi: f64, r: [f64; 2], w: f64| {
         let (n, jac) = e.normal_jacobian(xi);
-        let r = [x[0] - p[0], x[1] - p[1]];
         let nk = e.field_shape(xi);
         let t = kernels.traction(r, n);
         let u = kernels.displacement(r);
@@ -169,8 +173,13 @@ pub(crate) fn element_hg(
         }
     };
     match singular_node {
-        Some(ks) => singular(e.local[ks], &mut add),
-        None => adaptive(e, p, -1.0, 1.0, 0, &mut add),
+        Some(ks) => {
+            let xs = e.local[ks];
+            singular(xs, &mut |xi, dxi, w| add(xi, e.chord(xs, dxi), w));
+        }
+        None => adaptive(e, p, -1.0, 1.0, 0, &mut |xi, w| {
+            add(xi, e.offset_from(xi, p), w)
+        }),
     }
     if let Some(ks) = singular_node {
         for row in h.iter_mut() {
@@ -194,9 +203,9 @@ pub(crate) fn element_interior(
     s: &mut [f64; 3],
 ) {
     let mut add = |xi: f64, w: f64| {
-        let x = e.point(xi);
         let (n, jac) = e.normal_jacobian(xi);
-        let r = [x[0] - p[0], x[1] - p[1]];
+        // Element-local r (see [`Element::offset_from`]).
+        let r = e.offset_from(xi, p);
         let nk = e.field_shape(xi);
         let mut uu = [0.0; 2];
         let mut tt = [0.0; 2];

@@ -14,7 +14,7 @@
 
 use std::collections::HashMap;
 
-use super::geometry::{mesh_segment, BemModel, BodyForce, LoopItem, SegmentShape};
+use super::geometry::{mesh_segment, BemModel, BodyForce, LoopItem, Segment, SegmentShape};
 use crate::error::{Error, Result};
 use crate::kernels::body_force2d::AffineBodyForce;
 use crate::kernels::kelvin2d::{Kelvin2d, PlaneCondition};
@@ -51,6 +51,37 @@ impl Element {
             m[0] * g[0][0] + m[1] * g[1][0] + m[2] * g[2][0],
             m[0] * g[0][1] + m[1] * g[1][1] + m[2] * g[2][1],
         ]
+    }
+
+    /// The vector x(xi) - p, formed from the element's own differences
+    /// sum_a M_a(xi) (x_a - p) (the shape functions sum to 1), so that its rounding error
+    /// is relative to the element's size and distance from p, not to |x| (a model far from
+    /// the origin loses no accuracy).
+    pub fn offset_from(&self, xi: f64, p: [f64; 2]) -> [f64; 2] {
+        let m = geometry_shape(xi);
+        let g = &self.geometry;
+        let mut r = [0.0; 2];
+        for d in 0..2 {
+            r[d] = m[0] * (g[0][d] - p[d]) + m[1] * (g[1][d] - p[d]) + m[2] * (g[2][d] - p[d]);
+        }
+        r
+    }
+
+    /// The chord x(xi_s + dxi) - x(xi_s) from the element's own differences: with the
+    /// quadratic shape functions, M_a(xi_s + dxi) - M_a(xi_s) = dxi c_a with
+    /// c = [(2 xi_s + dxi - 1)/2, -(2 xi_s + dxi), (2 xi_s + dxi + 1)/2] (summing to 0), so
+    /// the chord is dxi [c_0 (x_0 - x_1) + c_2 (x_2 - x_1)]: accurate to rounding relative
+    /// to its own length however small dxi is and wherever the element sits (the singular
+    /// rule evaluates the kernels at |dxi| down to 1e-12).
+    pub fn chord(&self, xi_s: f64, dxi: f64) -> [f64; 2] {
+        let s = 2.0 * xi_s + dxi;
+        let (c0, c2) = (0.5 * (s - 1.0), 0.5 * (s + 1.0));
+        let g = &self.geometry;
+        let mut r = [0.0; 2];
+        for d in 0..2 {
+            r[d] = dxi * (c0 * (g[0][d] - g[1][d]) + c2 * (g[2][d] - g[1][d]));
+        }
+        r
     }
 
     /// Tangent dx/dxi.
@@ -132,6 +163,13 @@ pub struct RegionMesh {
     /// The region's body forces summed into one affine field about the centroid of its
     /// nodes (None without body forces).
     pub body_force: Option<AffineBodyForce>,
+    /// The elements in model-local coordinates (relative to [`BemMesh::origin`]), as
+    /// generated from the model's segments shifted there: the element integrals and the
+    /// contact geometry use these, so that a model far from the origin loses no accuracy
+    /// (the global `elements` carry the rounding of their absolute coordinates).
+    pub local_elements: Vec<Element>,
+    /// The node positions relative to [`BemMesh::origin`], m.
+    pub local_positions: Vec<[f64; 2]>,
 }
 
 impl RegionMesh {
@@ -222,6 +260,10 @@ pub struct BemMesh {
     pub regions: Vec<RegionMesh>,
     /// Segments.
     pub segments: Vec<SegmentInfo>,
+    /// The model-local origin (m): the centre of the bounding box of the segments'
+    /// defining points. [`RegionMesh::local_elements`] and
+    /// [`RegionMesh::local_positions`] are relative to it.
+    pub origin: [f64; 2],
 }
 
 impl BemMesh {
@@ -243,6 +285,28 @@ impl BemMesh {
                 "at least one region is needed",
             ));
         }
+        // The model-local origin: the centre of the bounding box of the segments' defining
+        // points. The elements are generated from the segments shifted to it, so that the
+        // mesh's own differences (element lengths, node spacings, kernel distances) carry no
+        // rounding of large absolute coordinates (issue 11 item 2).
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for item in model.regions.iter().flat_map(|r| r.loops.iter().flatten()) {
+            if let LoopItem::Segment(s) = item {
+                for p in s.shape.extent_points() {
+                    if p[0].is_finite() && p[1].is_finite() {
+                        for d in 0..2 {
+                            lo[d] = lo[d].min(p[d]);
+                            hi[d] = hi[d].max(p[d]);
+                        }
+                    }
+                }
+            }
+        }
+        let origin = if lo[0] <= hi[0] && lo[1] <= hi[1] {
+            [0.5 * lo[0] + 0.5 * hi[0], 0.5 * lo[1] + 0.5 * hi[1]]
+        } else {
+            [0.0, 0.0]
+        };
         let mut segments: Vec<SegmentInfo> = Vec::new();
         let mut seg_mesh = Vec::new();
         let mut by_name: HashMap<String, usize> = HashMap::new();
@@ -274,7 +338,11 @@ impl BemMesh {
                         ));
                     }
                     by_name.insert(s.name.clone(), segments.len());
-                    let (elements, n_nodes) = mesh_segment(s);
+                    let local = Segment {
+                        shape: s.shape.shifted(origin)?,
+                        ..s.clone()
+                    };
+                    let (elements, n_nodes) = mesh_segment(&local);
                     seg_mesh.push((elements, n_nodes));
                     segments.push(SegmentInfo {
                         name: s.name.clone(),
@@ -387,10 +455,10 @@ impl BemMesh {
                     }
                     elements.extend(new_elements);
                 }
-                check_loop(&region.name, l, &elements[loop_start..], &segments)?;
+                check_loop(&region.name, l, &elements[loop_start..], &segments, origin)?;
                 loop_ranges.push(loop_start..elements.len());
             }
-            check_self_intersection(&region.name, &elements, &segments)?;
+            check_region_geometry(&region.name, &elements, &loop_ranges, &segments, origin)?;
             for (l, range) in loop_ranges.into_iter().enumerate() {
                 check_orientation(&region.name, l, &elements[range])?;
             }
@@ -398,7 +466,40 @@ impl BemMesh {
             let centroid = nodes.iter().fold([0.0, 0.0], |c, n| {
                 [c[0] + n.position[0] / k, c[1] + n.position[1] / k]
             });
-            let body_force = affine_body_force(&region.name, &region.body_forces, centroid)?;
+            // Back to global coordinates, keeping the local copies for the integrals.
+            let centroid = [centroid[0] + origin[0], centroid[1] + origin[1]];
+            let local_elements = elements.clone();
+            let local_positions: Vec<[f64; 2]> = nodes.iter().map(|n| n.position).collect();
+            let add = |p: [f64; 2]| [p[0] + origin[0], p[1] + origin[1]];
+            for e in &mut elements {
+                e.geometry = e.geometry.map(add);
+            }
+            for n in &mut nodes {
+                n.position = add(n.position);
+            }
+            // The particular solution's origin: the common centre where every body force is
+            // a rotation about one centre (no constant part: the axisymmetric field alone),
+            // else the centroid of the nodes. Both move with the model.
+            let centers: Vec<[f64; 2]> = region
+                .body_forces
+                .iter()
+                .filter_map(|f| match *f {
+                    BodyForce::Centrifugal { center, .. } => Some(center),
+                    BodyForce::Gravity { .. } => None,
+                })
+                .collect();
+            let origin_bf = match centers.first() {
+                Some(&c)
+                    if centers.len() == region.body_forces.len()
+                        && centers.iter().all(|&d| d == c)
+                        && c[0].is_finite()
+                        && c[1].is_finite() =>
+                {
+                    c
+                }
+                _ => centroid,
+            };
+            let body_force = affine_body_force(&region.name, &region.body_forces, origin_bf)?;
             regions.push(RegionMesh {
                 name: region.name.clone(),
                 material: region.material,
@@ -406,6 +507,8 @@ impl BemMesh {
                 elements,
                 nodes,
                 body_force,
+                local_elements,
+                local_positions,
             });
         }
         super::overlap::check_overlap(&regions)?;
@@ -413,6 +516,7 @@ impl BemMesh {
             plane: model.plane,
             regions,
             segments,
+            origin,
         })
     }
 
@@ -433,6 +537,7 @@ fn check_loop(
     l: usize,
     elements: &[Element],
     segments: &[SegmentInfo],
+    origin: [f64; 2],
 ) -> Result<()> {
     let scale = elements
         .iter()
@@ -462,7 +567,10 @@ fn check_loop(
                 format!(
                     "the loop is open: the end ({:.6e}, {:.6e}) of '{sa}' is not the start \
                      ({:.6e}, {:.6e}) of '{sb}'",
-                    a.geometry[2][0], a.geometry[2][1], b.geometry[0][0], b.geometry[0][1]
+                    a.geometry[2][0] + origin[0],
+                    a.geometry[2][1] + origin[1],
+                    b.geometry[0][0] + origin[0],
+                    b.geometry[0][1] + origin[1]
                 ),
             ));
         }
@@ -473,10 +581,13 @@ fn check_loop(
 /// Orientation of a closed loop: the outer loop counter-clockwise, holes clockwise.
 fn check_orientation(region: &str, l: usize, elements: &[Element]) -> Result<()> {
     // Signed area (shoelace over the chords through all geometric nodes).
+    // Relative to the loop's first point: no cancellation far from the origin.
+    let o = elements.first().map_or([0.0; 2], |e| e.geometry[0]);
     let mut area = 0.0;
     for e in elements {
         for c in 0..2 {
             let (p, q) = (e.geometry[c], e.geometry[c + 1]);
+            let (p, q) = ([p[0] - o[0], p[1] - o[1]], [q[0] - o[0], q[1] - o[1]]);
             area += 0.5 * (p[0] * q[1] - q[0] * p[1]);
         }
     }
@@ -495,79 +606,237 @@ fn check_orientation(region: &str, l: usize, elements: &[Element]) -> Result<()>
     Ok(())
 }
 
-/// Whether the closed segments pq and rs intersect.
-fn segments_cross(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool {
+/// Closest distance between the segments pq and rs (0 where they cross or touch) and a
+/// point of pq where it is reached.
+fn chord_distance(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> (f64, [f64; 2]) {
+    // Coordinates relative to p, so that far from the origin nothing is lost.
+    let sub = |a: [f64; 2]| [a[0] - p[0], a[1] - p[1]];
+    let (q, r, s) = (sub(q), sub(r), sub(s));
+    let o = [0.0, 0.0];
     let orient = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
         (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
     };
-    let d1 = orient(r, s, p);
-    let d2 = orient(r, s, q);
-    let d3 = orient(p, q, r);
-    let d4 = orient(p, q, s);
+    let back = |a: [f64; 2]| [a[0] + p[0], a[1] + p[1]];
+    let (d1, d2, d3, d4) = (
+        orient(r, s, o),
+        orient(r, s, q),
+        orient(o, q, r),
+        orient(o, q, s),
+    );
     if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
         && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
     {
-        return true;
+        let t = d1 / (d1 - d2);
+        return (0.0, back([t * q[0], t * q[1]]));
     }
-    let on = |a: [f64; 2], b: [f64; 2], c: [f64; 2], d: f64| {
-        d == 0.0
-            && c[0] >= a[0].min(b[0])
-            && c[0] <= a[0].max(b[0])
-            && c[1] >= a[1].min(b[1])
-            && c[1] <= a[1].max(b[1])
+    let foot = |x: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let l2 = dx * dx + dy * dy;
+        let t = if l2 > 0.0 {
+            (((x[0] - a[0]) * dx + (x[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let f = [a[0] + t * dx, a[1] + t * dy];
+        (dist(x, f), f)
     };
-    on(r, s, p, d1) || on(r, s, q, d2) || on(p, q, r, d3) || on(p, q, s, d4)
+    let mut best = foot(o, r, s);
+    best.1 = o;
+    let (dq, _) = foot(q, r, s);
+    if dq < best.0 {
+        best = (dq, q);
+    }
+    for x in [r, s] {
+        let (d, f) = foot(x, o, q);
+        if d < best.0 {
+            best = (d, f);
+        }
+    }
+    (best.0, back(best.1))
 }
 
-/// No two non-adjacent chords of a region's boundary may touch.
-fn check_self_intersection(
+/// Pieces per element in the geometry checks (refined where two pieces come close).
+const CHECK_CHORDS: usize = 8;
+
+/// Two parts of a region's boundary closer than this fraction of the shorter of their
+/// elements touch: the collocation cannot resolve a narrower gap.
+pub const TOUCH_TOLERANCE: f64 = 1e-3;
+
+/// A piece xi in [t0, t1] of an element's quadratic curve: its chord and the largest
+/// distance of the curve from the chord (for a quadratic curve exactly the distance at the
+/// middle parameter, the deviation being c (t - t0)(t1 - t)).
+fn curve_piece(e: &Element, t0: f64, t1: f64) -> ([f64; 2], [f64; 2], f64) {
+    let (a, b) = (e.point(t0), e.point(t1));
+    let m = e.offset_from(0.5 * (t0 + t1), [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]);
+    (a, b, m[0].hypot(m[1]))
+}
+
+/// Whether the curve pieces [ti0, ti1] of `ei` and [tj0, tj1] of `ej` come within `tol`
+/// of each other, and a point where; bisection while the chords' distance is within the
+/// pieces' deviation from their chords (depth-limited at 2^-20 of an element).
+fn pieces_touch(
+    ei: &Element,
+    ti: (f64, f64),
+    ej: &Element,
+    tj: (f64, f64),
+    tol: f64,
+    depth: u32,
+) -> Option<[f64; 2]> {
+    let (a, b, si) = curve_piece(ei, ti.0, ti.1);
+    let (c, d, sj) = curve_piece(ej, tj.0, tj.1);
+    let (dist, x) = chord_distance(a, b, c, d);
+    if dist - si - sj > tol {
+        return None;
+    }
+    if si + sj <= 0.1 * tol || depth >= 20 {
+        return (dist <= tol + si + sj).then_some(x);
+    }
+    let (mi, mj) = (0.5 * (ti.0 + ti.1), 0.5 * (tj.0 + tj.1));
+    for pi in [(ti.0, mi), (mi, ti.1)] {
+        for pj in [(tj.0, mj), (mj, tj.1)] {
+            if let Some(x) = pieces_touch(ei, pi, ej, pj, tol, depth + 1) {
+                return Some(x);
+            }
+        }
+    }
+    None
+}
+
+/// Winding angle of a loop's elements around `p` (+-2 pi inside, 0 outside), formed from
+/// differences to p.
+fn loop_winding(elements: &[Element], p: [f64; 2]) -> f64 {
+    let mut wn = 0.0;
+    for e in elements {
+        for m in 0..CHECK_CHORDS {
+            let a = e.offset_from(-1.0 + 2.0 * m as f64 / CHECK_CHORDS as f64, p);
+            let b = e.offset_from(-1.0 + 2.0 * (m + 1) as f64 / CHECK_CHORDS as f64, p);
+            wn += (a[0] * b[1] - a[1] * b[0]).atan2(a[0] * b[0] + a[1] * b[1]);
+        }
+    }
+    wn
+}
+
+/// The region's loops must be simple closed curves, every hole strictly inside the outer
+/// loop and outside the other holes, and no two of them may touch, at a node or between
+/// nodes: on the discretized geometry (each element's quadratic curve, as [`CHECK_CHORDS`]
+/// pieces bisected where close), any two pieces that are not neighbours along a loop must
+/// stay apart by more than [`TOUCH_TOLERANCE`] of the shorter of their elements. Errors
+/// ([`Error::InvalidParameter`]) name the region, the segments or the loops, the point and
+/// the rule.
+fn check_region_geometry(
     region: &str,
     elements: &[Element],
+    loops: &[std::ops::Range<usize>],
     segments: &[SegmentInfo],
+    origin: [f64; 2],
 ) -> Result<()> {
-    // Chords with their element index; adjacency = consecutive chords in a loop (shared end
-    // point). Chords that share an end point exactly are skipped.
-    let mut chords: Vec<([f64; 2], [f64; 2], usize)> = Vec::with_capacity(2 * elements.len());
-    for (k, e) in elements.iter().enumerate() {
-        chords.push((e.geometry[0], e.geometry[1], k));
-        chords.push((e.geometry[1], e.geometry[2], k));
+    struct Chord {
+        /// Parameter interval on its element.
+        t: (f64, f64),
+        element: usize,
+        lp: usize,
+        /// Position in its loop's chord sequence.
+        index: usize,
+        tol: f64,
+        bbox: [f64; 4],
     }
-    let bbox = |a: [f64; 2], b: [f64; 2]| {
-        [
-            a[0].min(b[0]),
-            a[1].min(b[1]),
-            a[0].max(b[0]),
-            a[1].max(b[1]),
-        ]
-    };
-    let boxes: Vec<[f64; 4]> = chords.iter().map(|c| bbox(c.0, c.1)).collect();
-    let scale = boxes.iter().fold(0.0_f64, |m, b| {
-        m.max(b[0].abs())
-            .max(b[1].abs())
-            .max(b[2].abs())
-            .max(b[3].abs())
-    });
-    let close = |a: [f64; 2], b: [f64; 2]| dist(a, b) <= 1e-9 * scale;
-    for i in 0..chords.len() {
-        for j in i + 1..chords.len() {
-            let (bi, bj) = (&boxes[i], &boxes[j]);
-            if bi[2] < bj[0] || bj[2] < bi[0] || bi[3] < bj[1] || bj[3] < bi[1] {
-                continue;
-            }
-            let (p, q, ei) = chords[i];
-            let (r, s, ej) = chords[j];
-            if close(q, r) || close(s, p) || close(p, r) || close(q, s) {
-                continue;
-            }
-            if segments_cross(p, q, r, s) {
-                let (a, b) = (
-                    &segments[elements[ei].segment].name,
-                    &segments[elements[ej].segment].name,
+    let mut chords = Vec::with_capacity(CHECK_CHORDS * elements.len());
+    let mut loop_len = Vec::with_capacity(loops.len());
+    for (l, range) in loops.iter().enumerate() {
+        let mut index = 0;
+        for k in range.clone() {
+            let e = &elements[k];
+            let tol = TOUCH_TOLERANCE * e.chord_length();
+            for m in 0..CHECK_CHORDS {
+                let t = (
+                    -1.0 + 2.0 * m as f64 / CHECK_CHORDS as f64,
+                    -1.0 + 2.0 * (m + 1) as f64 / CHECK_CHORDS as f64,
                 );
+                let (a, b, sag) = curve_piece(e, t.0, t.1);
+                let pad = tol + sag;
+                let bbox = [
+                    a[0].min(b[0]) - pad,
+                    a[1].min(b[1]) - pad,
+                    a[0].max(b[0]) + pad,
+                    a[1].max(b[1]) + pad,
+                ];
+                chords.push(Chord {
+                    t,
+                    element: k,
+                    lp: l,
+                    index,
+                    tol,
+                    bbox,
+                });
+                index += 1;
+            }
+        }
+        loop_len.push(index);
+    }
+    // Sweep over the chords sorted by the left edge of their boxes.
+    let mut order: Vec<usize> = (0..chords.len()).collect();
+    order.sort_by(|&i, &j| chords[i].bbox[0].total_cmp(&chords[j].bbox[0]));
+    for (oi, &i) in order.iter().enumerate() {
+        let ci = &chords[i];
+        for &j in &order[oi + 1..] {
+            let cj = &chords[j];
+            if cj.bbox[0] > ci.bbox[2] {
+                break;
+            }
+            if cj.bbox[1] > ci.bbox[3] || ci.bbox[1] > cj.bbox[3] {
+                continue;
+            }
+            if ci.lp == cj.lp {
+                let n = loop_len[ci.lp];
+                let gap = ci.index.abs_diff(cj.index);
+                if gap == 1 || gap + 1 == n {
+                    continue;
+                }
+            }
+            let (ei, ej) = (&elements[ci.element], &elements[cj.element]);
+            if let Some(x) = pieces_touch(ei, ci.t, ej, cj.t, ci.tol.min(cj.tol), 0) {
+                let (sa, sb) = (&segments[ei.segment].name, &segments[ej.segment].name);
+                let what = match (ci.lp.min(cj.lp), ci.lp.max(cj.lp)) {
+                    (a, b) if a == b && a == 0 => "the outer loop crosses or touches itself".into(),
+                    (a, b) if a == b => format!("hole {a} (loop {a}) crosses or touches itself"),
+                    (0, b) => format!("hole {b} (loop {b}) crosses or touches the outer loop"),
+                    (a, b) => format!("holes {a} and {b} (loops {a} and {b}) cross or touch"),
+                };
+                let x = [x[0] + origin[0], x[1] + origin[1]];
                 return Err(Error::invalid(
                     format!("region '{region}'"),
-                    format!("'{a}' and '{b}'"),
-                    "the boundary intersects itself (segments cross or touch)",
+                    format!(
+                        "segments '{sa}' and '{sb}' at ({:.6e}, {:.6e}) m",
+                        x[0], x[1]
+                    ),
+                    format!(
+                        "{what}: every loop must be a simple closed curve and every hole lie \
+                         strictly inside the outer loop, no two parts of the boundary touching \
+                         (at a node or between nodes) or closer than {TOUCH_TOLERANCE} of their \
+                         element length"
+                    ),
+                ));
+            }
+        }
+    }
+    // With no crossings, one point per hole tells where the whole hole lies.
+    for (l, range) in loops.iter().enumerate().skip(1) {
+        let p = elements[range.start].geometry[1];
+        let seg = &segments[elements[range.start].segment].name;
+        if loop_winding(&elements[loops[0].clone()], p).abs() < std::f64::consts::PI {
+            return Err(Error::invalid(
+                format!("region '{region}' loop {l}"),
+                format!("hole through segment '{seg}'"),
+                "the hole lies outside the outer loop: a hole must lie strictly inside its \
+                 region's outline",
+            ));
+        }
+        for (m, other) in loops.iter().enumerate().skip(1) {
+            if m != l && loop_winding(&elements[other.clone()], p).abs() > std::f64::consts::PI {
+                return Err(Error::invalid(
+                    format!("region '{region}' loop {l}"),
+                    format!("hole through segment '{seg}'"),
+                    format!("the hole lies inside hole {m} (loop {m}): holes may not nest"),
                 ));
             }
         }

@@ -195,7 +195,9 @@ use faer::Mat;
 use super::{nearest_xi, BemProblem, BemSolution, BoundaryConditions, Dof, SegmentBc};
 use crate::error::{Error, Result};
 use crate::kernels::quadrature::gauss_legendre;
+use crate::operators::bem2d::assemble::{matrix_bytes, probe_memory, try_zeros};
 use crate::operators::bem2d::{BemModel, Element};
+use crate::solvers::nan_max;
 
 /// How the gap and slip of a slave node are measured (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -593,10 +595,13 @@ pub struct ContactProblem {
     states: Vec<ContactState>,
 }
 
+/// The elements of segment `seg` in model-local coordinates (`RegionMesh::local_elements`:
+/// the pair geometry, gaps and transfer are formed there, free of the rounding of large
+/// absolute coordinates).
 fn seg_elements(problem: &BemProblem, seg: usize) -> Vec<Element> {
     let owner = problem.mesh.segments[seg].owner;
     problem.mesh.regions[owner]
-        .elements
+        .local_elements
         .iter()
         .filter(|e| e.segment == seg)
         .copied()
@@ -844,10 +849,11 @@ impl ContactProblem {
             let mut any = false;
             for &o in &sseg.owner_nodes {
                 let node = &sregion.nodes[o];
-                let x = node.position;
+                // Model-local position for the geometry; the global one for the results.
+                let x = sregion.local_positions[o];
                 let mut sn = SlaveNode {
                     region_node: o,
-                    position: x,
+                    position: node.position,
                     param: node.param,
                     normal: [0.0, 0.0],
                     tangent: [0.0, 0.0],
@@ -862,7 +868,10 @@ impl ContactProblem {
                     if g0 < -1e-6 * hmin {
                         return Err(Error::invalid(
                             format!("contact_pair[{k}]"),
-                            format!("initial gap {g0:.3e} m at ({:.6e}, {:.6e})", x[0], x[1]),
+                            format!(
+                                "initial gap {g0:.3e} m at ({:.6e}, {:.6e})",
+                                node.position[0], node.position[1]
+                            ),
                             "the bodies overlap: a slave node lies inside the master body \
                              (initial penetration beyond 1e-6 of the slave's smallest element)",
                         ));
@@ -1216,8 +1225,9 @@ impl ContactProblem {
                 .collect();
             let bp_index: HashMap<usize, usize> =
                 bparams.iter().enumerate().map(|(i, &k)| (k, i)).collect();
-            let mut a = Mat::<f64>::zeros(rows, rows);
-            let mut rhs = Mat::<f64>::zeros(rows, next + bparams.len());
+            let what = format!("the 2D BEM contact body system ({rows} x {rows})");
+            let mut a = try_zeros(&what, rows, rows)?;
+            let mut rhs = try_zeros(&what, rows, next + bparams.len())?;
             for &(r, off) in &regions {
                 let ops = &problem.operators[r];
                 let n2 = ops.h.nrows();
@@ -1279,6 +1289,13 @@ impl ContactProblem {
                     rhs[(off + row, 0)] += v;
                 }
             }
+            // The LU's copy of the matrix and the solution, allocated inside faer.
+            probe_memory(
+                &format!(
+                    "the LU factorization of the 2D BEM contact body system ({rows} x {rows})"
+                ),
+                matrix_bytes(rows, rows + next + bparams.len()),
+            )?;
             let lu = a.partial_piv_lu();
             let x = lu.solve(&rhs);
             // Accuracy check on the external-load column and two parameter columns (a
@@ -1289,16 +1306,16 @@ impl ContactProblem {
             let res = &a * &xs - &bs;
             let na = (0..rows)
                 .map(|i| (0..rows).map(|c| a[(i, c)].abs()).sum::<f64>())
-                .fold(0.0_f64, f64::max);
+                .fold(0.0_f64, nan_max);
             let mut worst = 0.0_f64;
             for j in 0..k {
                 let (mut nr_, mut nx, mut nb) = (0.0_f64, 0.0_f64, 0.0_f64);
                 for i in 0..rows {
-                    nr_ = nr_.max(res[(i, j)].abs());
-                    nx = nx.max(xs[(i, j)].abs());
-                    nb = nb.max(bs[(i, j)].abs());
+                    nr_ = nan_max(nr_, res[(i, j)].abs());
+                    nx = nan_max(nx, xs[(i, j)].abs());
+                    nb = nan_max(nb, bs[(i, j)].abs());
                 }
-                worst = worst.max(nr_ / (na * nx + nb).max(f64::MIN_POSITIVE));
+                worst = nan_max(worst, nr_ / nan_max(na * nx + nb, f64::MIN_POSITIVE));
             }
             let finite = (0..x.ncols()).all(|j| (0..rows).all(|i| x[(i, j)].is_finite()));
             if !finite {
@@ -1741,7 +1758,12 @@ impl ContactProblem {
         }
         let (vals, vecs) = symmetric_eigen(gram);
         let k = (0..m).min_by(|&a, &b| vals[a].total_cmp(&vals[b]))?;
-        if vals[k].max(0.0).sqrt() < 1e-8 {
+        // Relative to the largest eigenvalue: the smallest of a rank-deficient Gram matrix
+        // is round-off of the largest, whose scale is that of the weights (an absolute
+        // threshold took a mode held by one node's normal and tangential rows together
+        // with another as held, or not, by the rounding of the geometry).
+        let largest = vals.iter().cloned().fold(0.0_f64, nan_max);
+        if largest.is_nan() || largest <= 0.0 || vals[k].max(0.0).sqrt() < 1e-7 * largest.sqrt() {
             Some((0..m).map(|i| vecs[i][k]).collect())
         } else {
             None
@@ -2002,10 +2024,10 @@ impl ContactProblem {
                 if !y[(r, 0)].is_finite() {
                     bad = true;
                 }
-                rn = rn.max(chk[(r, 0)].abs());
-                yn = yn.max(y[(r, 0)].abs());
+                rn = nan_max(rn, chk[(r, 0)].abs());
+                yn = nan_max(yn, y[(r, 0)].abs());
             }
-            if bad || rn > 1e-8 * (yn + 1.0) {
+            if bad || rn.is_nan() || rn > 1e-8 * (yn + 1.0) {
                 if !any_active {
                     return Err(Error::NoContact {
                         detail: format!(
@@ -2059,7 +2081,7 @@ impl ContactProblem {
             // New sets and the complementarity residual.
             let mut new_states = states.clone();
             let mut rmax = 0.0_f64;
-            let pmax = (0..n).map(|i| z[i]).fold(0.0_f64, f64::max);
+            let pmax = (0..n).map(|i| z[i]).fold(0.0_f64, nan_max);
             for i in 0..n {
                 if states[i] == ContactState::Outside {
                     continue;
@@ -2069,9 +2091,14 @@ impl ContactProblem {
                 let pn = p - cn[i] * g[i];
                 let qt = q - ct[i] * ds;
                 let bound = fric[i] * pn.max(0.0);
-                rmax = rmax
-                    .max((p - pn.max(0.0)).abs())
-                    .max((q - qt.clamp(-bound, bound)).abs());
+                let r = if pn.is_nan() || qt.is_nan() || bound.is_nan() {
+                    f64::NAN
+                } else {
+                    (p - pn.max(0.0))
+                        .abs()
+                        .max((q - qt.clamp(-bound, bound)).abs())
+                };
+                rmax = nan_max(rmax, r);
                 new_states[i] = if pn <= 0.0 {
                     ContactState::Open
                 } else if fric[i] == 0.0 || qt.abs() <= bound {
@@ -2082,9 +2109,18 @@ impl ContactProblem {
                     ContactState::SlipNegative
                 };
             }
-            residual = rmax / pmax.max(f64::MIN_POSITIVE);
+            residual = rmax / nan_max(pmax, f64::MIN_POSITIVE);
             if pmax == 0.0 {
                 residual = rmax;
+            }
+            if !residual.is_finite() {
+                return Err(Error::Numerical {
+                    context: "2D BEM contact step",
+                    detail: format!(
+                        "load step {k}, iteration {iterations}: the complementarity residual is \
+                         {residual} (a non-finite contact pressure, shear, gap or slip)"
+                    ),
+                });
             }
             if new_states == states && residual <= options.tolerance {
                 break;

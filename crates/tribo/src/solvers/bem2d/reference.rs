@@ -8,8 +8,9 @@ use std::f64::consts::FRAC_PI_2;
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 
-use super::{BemProblem, BemSolution, BoundaryConditions, Profile, SegmentBc};
+use super::{BemProblem, BemSolution, BoundaryConditions, Component, Profile, SegmentBc};
 use crate::error::Result;
+use crate::kernels::kelvin2d::Kelvin2d;
 use crate::kernels::kelvin2d::PlaneCondition;
 use crate::material::ElasticMaterial;
 use crate::operators::bem2d::{BemModel, BodyForce, Grading, LoopItem, Region, Segment};
@@ -372,4 +373,87 @@ pub(crate) fn rotating_rings(
         r_in = r_out;
     }
     (BemModel::new(plane, regions), bcs)
+}
+
+// ---------------------------------------------------------------------------------------
+// Constant-stress patch test on a strongly graded square anywhere in the plane.
+
+/// The constant-stress patch test on a 20 mm square with corner `x0` (m), turned by `theta`
+/// (rad) about it, every side of 10 elements graded toward both ends by `ratio` (largest /
+/// smallest element): the linear displacement of sigma = (100, -40, 25) MPa (global axes)
+/// prescribed on the left side, its tractions sigma n on the right and top, the x
+/// displacement and y traction on the bottom. Quadratic elements reproduce the linear field
+/// exactly, so the errors are those of the integrals and the solve. Returns (max nodal
+/// |u - u_exact| / max |u_exact|, max nodal |t - sigma n| / 100 MPa).
+pub(crate) fn graded_patch(x0: [f64; 2], theta: f64, ratio: f64) -> Result<(f64, f64)> {
+    let m = steel()?;
+    let k = Kelvin2d::new(&m, PlaneCondition::Strain);
+    let sig = [100e6, -40e6, 25e6];
+    let eps = k.strain_from_stress(sig);
+    let (sn, cs) = theta.sin_cos();
+    let rot = move |v: [f64; 2]| [cs * v[0] - sn * v[1], sn * v[0] + cs * v[1]];
+    let side = 0.02;
+    let p = |x: f64, y: f64| {
+        let r = rot([x * side, y * side]);
+        [x0[0] + r[0], x0[1] + r[1]]
+    };
+    let g = Grading::BothEnds(ratio);
+    let model = BemModel::new(
+        PlaneCondition::Strain,
+        vec![Region::new(
+            "plate",
+            m,
+            vec![
+                Segment::line("bottom", p(0.0, 0.0), p(1.0, 0.0), 10).graded(g),
+                Segment::line("right", p(1.0, 0.0), p(1.0, 1.0), 10).graded(g),
+                Segment::line("top", p(1.0, 1.0), p(0.0, 1.0), 10).graded(g),
+                Segment::line("left", p(0.0, 1.0), p(0.0, 0.0), 10).graded(g),
+            ],
+        )],
+    );
+    // The exact field about the square's own corner (a rigid motion of it is also exact).
+    let ux = move |q: [f64; 2]| eps[0] * (q[0] - x0[0]) + eps[2] * (q[1] - x0[1]);
+    let uy = move |q: [f64; 2]| eps[2] * (q[0] - x0[0]) + eps[1] * (q[1] - x0[1]);
+    let traction = |n: [f64; 2]| [sig[0] * n[0] + sig[2] * n[1], sig[2] * n[0] + sig[1] * n[1]];
+    let (tr, tt, tb) = (
+        traction(rot([1.0, 0.0])),
+        traction(rot([0.0, 1.0])),
+        traction(rot([0.0, -1.0])),
+    );
+    let bcs = BoundaryConditions::new()
+        .set(
+            "left",
+            SegmentBc::displacement(Profile::function(ux), Profile::function(uy)),
+        )
+        .set(
+            "bottom",
+            SegmentBc::Components {
+                x: Component::Displacement(Profile::function(ux)),
+                y: Component::Traction(Profile::Uniform(tb[1])),
+            },
+        )
+        .set(
+            "right",
+            SegmentBc::traction(Profile::Uniform(tr[0]), Profile::Uniform(tr[1])),
+        )
+        .set(
+            "top",
+            SegmentBc::traction(Profile::Uniform(tt[0]), Profile::Uniform(tt[1])),
+        );
+    let sol = BemProblem::new(&model)?.solve(&bcs)?;
+    let region = &sol.mesh().regions[0];
+    let (mut eu, mut et, mut umax) = (0.0_f64, 0.0_f64, 0.0_f64);
+    for (i, node) in region.nodes.iter().enumerate() {
+        let q = node.position;
+        let t = traction(node.normal);
+        let (u, tn) = (sol.displacement[0][i], sol.traction[0][i]);
+        umax = umax.max(ux(q).abs()).max(uy(q).abs());
+        for v in [u[0] - ux(q), u[1] - uy(q)] {
+            eu = crate::solvers::nan_max(eu, v.abs());
+        }
+        for v in [tn[0] - t[0], tn[1] - t[1]] {
+            et = crate::solvers::nan_max(et, v.abs());
+        }
+    }
+    Ok((eu / umax, et / 100e6))
 }

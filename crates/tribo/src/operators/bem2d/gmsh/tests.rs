@@ -475,6 +475,81 @@ fn bad_meshes_are_refused_naming_the_item() {
     );
 }
 
+/// Corrupt meshes that were silently accepted (issue 11 item 10): each is refused naming
+/// the line and element and the rule.
+#[test]
+fn corrupt_meshes_are_refused_naming_the_line() {
+    let tri = msh22(
+        &SQUARE,
+        &[(2, 1, &[1, 2, 3]), (2, 1, &[1, 3, 4]), (1, 2, &[1, 2])],
+        &[(2, 1, "s"), (1, 2, "base")],
+    );
+    import_msh(&tri, &all_steel).unwrap();
+    // Second order: tri 1-2-3 (middles 5, 6, 7) and tri 1-3-4 (middles 7, 8, 9).
+    let mut nodes = SQUARE.to_vec();
+    nodes.extend([[0.5, 0.0], [1.0, 0.5], [0.5, 0.5], [0.5, 1.0], [0.0, 0.5]]);
+    let quad = |second: &[u64]| {
+        msh22(
+            &nodes,
+            &[(9, 1, &[1, 2, 3, 5, 6, 7]), (9, 1, second)],
+            &[(2, 1, "s")],
+        )
+    };
+    import_msh(&quad(&[1, 3, 4, 7, 8, 9]), &all_steel).unwrap();
+    let nodes_section = tri
+        .split("$Nodes")
+        .nth(1)
+        .and_then(|r| r.split("$EndNodes").next())
+        .unwrap()
+        .to_string();
+    let cases: Vec<(String, Vec<&str>)> = vec![
+        // A 1D element naming a node that $Nodes does not hold.
+        (
+            tri.replace("3 1 2 2 1 1 2", "3 1 2 2 1 1 9"),
+            vec!["msh line", "element 3", "node 9", "$Nodes does not hold"],
+        ),
+        // Element type 2^32 + 2: once read as triangle type 2.
+        (
+            tri.replace("1 2 2 1 1 1 2 3", "1 4294967298 2 1 1 1 2 3"),
+            vec!["msh line", "element type 4294967298", "element types read"],
+        ),
+        // A second $Nodes section.
+        (
+            tri.replace(
+                "$EndNodes
+",
+                &format!(
+                    "$EndNodes
+$Nodes{nodes_section}$EndNodes
+"
+                ),
+            ),
+            vec!["msh line", "second $Nodes"],
+        ),
+        // The same node twice in an element.
+        (
+            tri.replace("2 2 2 1 1 1 3 4", "2 2 2 1 1 1 3 3"),
+            vec!["element 2", "node 3", "same node twice"],
+        ),
+        // Middle node 6 (of the edge 2-3) reused on the edge 3-4.
+        (
+            quad(&[1, 3, 4, 7, 6, 9]),
+            vec!["element 2", "middle node 6", "one edge"],
+        ),
+        // A middle node that is a corner.
+        (
+            quad(&[1, 3, 4, 7, 2, 9]),
+            vec!["element 2", "middle node 2", "one edge"],
+        ),
+    ];
+    for (text, expect) in cases {
+        let e = import_err(&text);
+        for x in expect {
+            assert!(e.contains(x), "expected {x:?} in: {e}");
+        }
+    }
+}
+
 /// The middle nodes of first-order edges: on a straight run exactly the chords' midpoints
 /// (also for uneven spacing); on a closed circle of m chords within O(h^4) of the circle
 /// (the four-point interpolation's order: the error falls 16-fold when m doubles), against
