@@ -8,11 +8,12 @@ mod examples;
 mod fatigue;
 mod output;
 mod run;
+mod term;
 mod units;
 mod validate;
 
 use clap::{Parser, Subcommand};
-use error::{CliError, CliResult, EXIT_OK, EXIT_VALIDATION_FAILED};
+use error::{CliError, CliResult, EXIT_OK, EXIT_OTHER, EXIT_VALIDATION_FAILED};
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -150,7 +151,33 @@ Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // Help, version and usage errors, printed fallibly (`Cli::parse` ignores a failed
+        // write): a closed stdout pipe ends quietly, any other write error exits 1.
+        Err(e) => {
+            use std::io::Write;
+            let printed = e.print().and_then(|()| {
+                if e.use_stderr() {
+                    std::io::stderr().flush()
+                } else {
+                    std::io::stdout().flush()
+                }
+            });
+            return match printed {
+                Ok(()) => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(EXIT_OTHER)),
+                Err(w) if w.kind() == std::io::ErrorKind::BrokenPipe && !e.use_stderr() => {
+                    ExitCode::from(EXIT_OK)
+                }
+                Err(w) => {
+                    if !e.use_stderr() {
+                        term::note(&format!("error: cannot write to standard output: {w}"));
+                    }
+                    ExitCode::from(EXIT_OTHER)
+                }
+            };
+        }
+    };
     let result = match cli.command {
         Command::Run {
             case,
@@ -165,10 +192,7 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(code) => ExitCode::from(code),
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(e.exit_code())
-        }
+        Err(e) => ExitCode::from(term::report(&e)),
     }
 }
 
@@ -228,14 +252,14 @@ fn cmd_run(
     if dry_run {
         let g = &prepared.grid;
         let (hx, hy) = g.half_widths();
-        println!(
+        term::outln(&format!(
             "{}: valid; {} x {} elements over |x| <= {hx:e} m, |y| <= {hy:e} m; E* = {:e} Pa; solver {}",
             case.title,
             g.nx(),
             g.ny(),
             prepared.composite_modulus,
             case.method.name()
-        );
+        ))?;
         return Ok(EXIT_OK);
     }
     let outcome = run::solve(&case, prepared, quiet)?;
@@ -250,9 +274,9 @@ fn print_summary(summary: &impl serde::Serialize, human: &str, json: bool) -> Cl
             what: "summary".into(),
             detail: e.to_string(),
         })?;
-        println!("{text}");
+        term::outln(&text)?;
     } else {
-        print!("{human}");
+        term::out(human)?;
     }
     Ok(EXIT_OK)
 }
@@ -265,10 +289,11 @@ fn cmd_example(name: Option<&str>) -> CliResult<u8> {
                 .map(|e| e.name.len())
                 .max()
                 .unwrap_or(0);
-            println!("Example cases (print one with `tribo example NAME`, run it with `tribo example NAME | tribo run -`):");
+            let mut text = String::from("Example cases (print one with `tribo example NAME`, run it with `tribo example NAME | tribo run -`):\n");
             for e in examples::EXAMPLES {
-                println!("  {:<width$}  {}", e.name, e.description);
+                text.push_str(&format!("  {:<width$}  {}\n", e.name, e.description));
             }
+            term::out(&text)?;
             Ok(EXIT_OK)
         }
         Some(n) => {
@@ -276,7 +301,7 @@ fn cmd_example(name: Option<&str>) -> CliResult<u8> {
                 name: n.into(),
                 known: examples::names(),
             })?;
-            print!("{}", ex.text);
+            term::out(ex.text)?;
             Ok(EXIT_OK)
         }
     }
@@ -289,9 +314,9 @@ fn cmd_validate(json: bool) -> CliResult<u8> {
             what: "validation rows".into(),
             detail: e.to_string(),
         })?;
-        println!("{text}");
+        term::outln(&text)?;
     } else {
-        print!("{}", validate::table(&rows));
+        term::out(&validate::table(&rows))?;
     }
     Ok(if rows.iter().all(|r| r.passed) {
         EXIT_OK
