@@ -69,6 +69,12 @@ pub enum CliError {
         /// Why.
         source: std::io::Error,
     },
+    /// Writing to standard output failed (a closed pipe ends quietly, see `term`).
+    #[error("cannot write to standard output: {source}")]
+    Stdout {
+        /// Why.
+        source: std::io::Error,
+    },
     /// An output would contain a non-finite number, or a plot failed.
     #[error("output {what}: {detail}")]
     Output {
@@ -116,7 +122,9 @@ impl CliError {
                 tribo::Error::NotConverged { .. } => EXIT_NOT_CONVERGED,
                 _ => EXIT_OTHER,
             },
-            CliError::Write { .. } | CliError::Output { .. } => EXIT_OTHER,
+            CliError::Write { .. } | CliError::Stdout { .. } | CliError::Output { .. } => {
+                EXIT_OTHER
+            }
         }
     }
 }

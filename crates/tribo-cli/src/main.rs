@@ -9,11 +9,12 @@ mod fatigue;
 mod memory;
 mod output;
 mod run;
+mod term;
 mod units;
 mod validate;
 
 use clap::{Parser, Subcommand};
-use error::{CliError, CliResult, EXIT_OK, EXIT_VALIDATION_FAILED};
+use error::{CliError, CliResult, EXIT_OK, EXIT_OTHER, EXIT_VALIDATION_FAILED};
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -165,7 +166,33 @@ Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // Help, version and usage errors, printed fallibly (`Cli::parse` ignores a failed
+        // write): a closed stdout pipe ends quietly, any other write error exits 1.
+        Err(e) => {
+            use std::io::Write;
+            let printed = e.print().and_then(|()| {
+                if e.use_stderr() {
+                    std::io::stderr().flush()
+                } else {
+                    std::io::stdout().flush()
+                }
+            });
+            return match printed {
+                Ok(()) => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(EXIT_OTHER)),
+                Err(w) if w.kind() == std::io::ErrorKind::BrokenPipe && !e.use_stderr() => {
+                    ExitCode::from(EXIT_OK)
+                }
+                Err(w) => {
+                    if !e.use_stderr() {
+                        term::note(&format!("error: cannot write to standard output: {w}"));
+                    }
+                    ExitCode::from(EXIT_OTHER)
+                }
+            };
+        }
+    };
     let result = match cli.command {
         Command::Run {
             case,
@@ -181,10 +208,7 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(code) => ExitCode::from(code),
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::from(e.exit_code())
-        }
+        Err(e) => ExitCode::from(term::report(&e)),
     }
 }
 
@@ -272,20 +296,20 @@ fn cmd_run(
     let prepared = run::prepare(&case)?;
     let estimate = memory::half_space(&case);
     if dry_run {
-        println!("memory: {}", estimate.describe());
+        term::outln(&format!("memory: {}", estimate.describe()))?;
     }
     memory::check(&estimate, max_memory)?;
     if dry_run {
         let g = &prepared.grid;
         let (hx, hy) = g.half_widths();
-        println!(
+        term::outln(&format!(
             "{}: valid; {} x {} elements over |x| <= {hx:e} m, |y| <= {hy:e} m; E* = {:e} Pa; solver {}",
             case.title,
             g.nx(),
             g.ny(),
             prepared.composite_modulus,
             case.method.name()
-        );
+        ))?;
         return Ok(EXIT_OK);
     }
     let outcome = run::solve(&case, prepared, quiet)?;
@@ -300,9 +324,9 @@ fn print_summary(summary: &impl serde::Serialize, human: &str, json: bool) -> Cl
             what: "summary".into(),
             detail: e.to_string(),
         })?;
-        println!("{text}");
+        term::outln(&text)?;
     } else {
-        print!("{human}");
+        term::out(human)?;
     }
     Ok(EXIT_OK)
 }
@@ -315,10 +339,11 @@ fn cmd_example(name: Option<&str>) -> CliResult<u8> {
                 .map(|e| e.name.len())
                 .max()
                 .unwrap_or(0);
-            println!("Example cases (print one with `tribo example NAME`, run it with `tribo example NAME | tribo run -`):");
+            let mut text = String::from("Example cases (print one with `tribo example NAME`, run it with `tribo example NAME | tribo run -`):\n");
             for e in examples::EXAMPLES {
-                println!("  {:<width$}  {}", e.name, e.description);
+                text.push_str(&format!("  {:<width$}  {}\n", e.name, e.description));
             }
+            term::out(&text)?;
             Ok(EXIT_OK)
         }
         Some(n) => {
@@ -326,7 +351,7 @@ fn cmd_example(name: Option<&str>) -> CliResult<u8> {
                 name: n.into(),
                 known: examples::names(),
             })?;
-            print!("{}", ex.text);
+            term::out(ex.text)?;
             Ok(EXIT_OK)
         }
     }
@@ -339,9 +364,9 @@ fn cmd_validate(json: bool) -> CliResult<u8> {
             what: "validation rows".into(),
             detail: e.to_string(),
         })?;
-        println!("{text}");
+        term::outln(&text)?;
     } else {
-        print!("{}", validate::table(&rows));
+        term::out(&validate::table(&rows))?;
     }
     Ok(if rows.iter().all(|r| r.passed) {
         EXIT_OK

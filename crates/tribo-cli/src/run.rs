@@ -536,10 +536,10 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
     let dundurs_beta = dissimilar.then(|| dundurs_beta(m1, m2));
     if let Some(beta) = dundurs_beta {
         if !quiet {
-            eprintln!(
+            crate::term::note(&format!(
                 "note: dissimilar materials (Dundurs beta = {beta:.4}): the normal and \
                  tangential problems are coupled and solved by alternation"
-            );
+            ));
         }
     }
     if let tribo::solvers::tangential::TangentialLoading::Force { magnitude, .. } = fr.loading {
@@ -809,7 +809,7 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
             _ => None,
         };
         if let (Some(note), false) = (&window_note, quiet) {
-            pb.suspend(|| eprintln!("note: {}: {note}", quantity.name()));
+            pb.suspend(|| crate::term::note(&format!("note: {}: {note}", quantity.name())));
         }
         let cycle = match &spec.cycle {
             None => None,

@@ -4,6 +4,10 @@
 
 #![allow(clippy::needless_range_loop)] // step and pair indices read like the summary
 mod common;
+#[path = "common/summary.rs"]
+mod summary;
+#[path = "common/vtk.rs"]
+mod vtk;
 use common::tribo;
 use std::path::{Path, PathBuf};
 use std::process::Output;
@@ -75,6 +79,7 @@ fn a_plate_in_uniform_tension_gives_the_applied_stress_everywhere() {
     let (o, out, _d) = run_case(&text, &[]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let s = read_json(&out.join("summary.json"));
+    summary::assert_layout(&s);
     let r = &s["steps"][0]["regions"][0];
     // Uniform stress: quadratic elements represent the linear displacement exactly, so the
     // interior values carry only quadrature and round-off error (1e-6 relative is 100x
@@ -102,8 +107,22 @@ fn a_plate_in_uniform_tension_gives_the_applied_stress_everywhere() {
     ] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
-    let vtu = std::fs::read_to_string(out.join("fields_step1.vtu")).unwrap();
-    assert!(vtu.contains("UnstructuredGrid") && vtu.contains("Name=\"sigma_int_Pa\""));
+    let vtu = vtk::read(&out.join("fields_step1.vtu"));
+    assert!(vtu.header.contains("type=\"UnstructuredGrid\""));
+    assert!(vtu.get("sigma_int_Pa").f64s().iter().all(|x| x.is_finite()));
+    // Connectivity indexes the points; offsets step by 3 (triangles, VTK type 5).
+    let npts = vtu.get("").tuples() as i64;
+    assert!(vtu
+        .get("connectivity")
+        .i64s()
+        .iter()
+        .all(|&k| (0..npts).contains(&k)));
+    let offsets = vtu.get("offsets").i64s();
+    assert!(offsets
+        .iter()
+        .enumerate()
+        .all(|(k, &o)| o == 3 * (k as i64 + 1)));
+    assert!(vtu.get("types").bytes.iter().all(|&t| t == 5));
 }
 
 #[test]
@@ -294,6 +313,7 @@ fn the_clamp_knife_base_example_balances_and_shows_the_papers_effects() {
     let (o, out, _d) = run_case(&text, &[]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let s = read_json(&out.join("summary.json"));
+    summary::assert_layout(&s);
     let steps = s["steps"].as_array().unwrap();
     assert_eq!(steps.len(), 2);
     let (bolt, cutting) = (48.4e6 * 12e-3, 16.475e3);
@@ -422,8 +442,8 @@ fn the_clamp_knife_base_example_balances_and_shows_the_papers_effects() {
     ] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
-    let vtu = std::fs::read_to_string(out.join("fields_clamping_cutting.vtu")).unwrap();
-    assert!(vtu.contains("Name=\"psi\""));
+    let vtu = vtk::read(&out.join("fields_clamping_cutting.vtu"));
+    assert!(vtu.get("psi").f64s().iter().all(|x| x.is_finite()));
 }
 
 /// A steel block resting under its own weight on a fixed base, held only by contact and

@@ -1,6 +1,8 @@
 //! End-to-end tests of the `tribo` binary: exit codes, error messages, files written.
 
 mod common;
+#[path = "common/vtk.rs"]
+mod vtk;
 use common::tribo;
 use std::path::{Path, PathBuf};
 use std::process::Output;
@@ -206,56 +208,6 @@ fn read_json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&text).unwrap()
 }
 
-/// A minimal XML well-formedness check: balanced, properly nested tags with quoted
-/// attributes; returns the text content of each `DataArray`, by its Name.
-fn check_xml(text: &str) -> Vec<(String, String)> {
-    let mut stack: Vec<String> = Vec::new();
-    let mut arrays = Vec::new();
-    let mut rest = text.trim_start();
-    assert!(rest.starts_with("<?xml"), "no XML declaration");
-    rest = &rest[rest.find("?>").unwrap() + 2..];
-    let mut current: Option<(String, usize)> = None;
-    let mut pos = text.len() - rest.len();
-    while let Some(open) = text[pos..].find('<') {
-        let start = pos + open;
-        let close = start + text[start..].find('>').expect("unclosed tag");
-        let tag = &text[start + 1..close];
-        if let Some(name) = tag.strip_prefix('/') {
-            let top = stack.pop().expect("closing tag without opening");
-            assert_eq!(top, name.trim(), "mismatched tags");
-            if name.trim() == "DataArray" {
-                let (n, from) = current.take().unwrap();
-                arrays.push((n, text[from..start].to_string()));
-            }
-        } else {
-            let self_closing = tag.ends_with('/');
-            let body = tag.trim_end_matches('/');
-            let name = body.split_whitespace().next().unwrap().to_string();
-            assert_eq!(
-                body.matches('"').count() % 2,
-                0,
-                "unbalanced quotes in <{body}>"
-            );
-            if name == "DataArray" {
-                let n = body
-                    .split("Name=\"")
-                    .nth(1)
-                    .unwrap()
-                    .split('"')
-                    .next()
-                    .unwrap();
-                current = Some((n.to_string(), close + 1));
-            }
-            if !self_closing {
-                stack.push(name);
-            }
-        }
-        pos = close + 1;
-    }
-    assert!(stack.is_empty(), "unclosed elements: {stack:?}");
-    arrays
-}
-
 #[test]
 fn the_default_run_writes_everything() {
     let dir = tempfile::tempdir().unwrap();
@@ -315,7 +267,7 @@ fn the_default_run_writes_everything() {
             "contact.error_vs_hertz.{key}"
         );
     }
-    assert!(s["tribo_version"].is_string() && s["title"].is_string());
+    assert!(s["version"].is_string() && s["title"].is_string());
     assert!(s["materials"]["composite_modulus"].is_number());
     assert_eq!(s["grid"]["nx"], 21);
     assert_eq!(s["solver"]["method"], "cg");
@@ -384,13 +336,12 @@ fn the_default_run_writes_everything() {
             .all(|r| r.len() == 3 && r.iter().all(|v| v.is_finite())));
     }
 
-    // VTK: well-formed, every cell array has nx * ny finite values.
-    let vti = std::fs::read_to_string(out.join("fields.vti")).unwrap();
-    assert!(vti.contains("WholeExtent=\"0 21 0 21 0 0\""));
-    let arrays = check_xml(&vti);
-    let names: Vec<&str> = arrays.iter().map(|a| a.0.as_str()).collect();
+    // VTK (binary, appended raw): well-formed, every cell array has nx * ny finite values,
+    // pressure_Pa bit-equal to pressure.csv's column (shortest round-trip decimal).
+    let vti = vtk::read(&out.join("fields.vti"));
+    assert!(vti.header.contains("WholeExtent=\"0 21 0 21 0 0\""));
     assert_eq!(
-        names,
+        vti.names("CellData"),
         [
             "pressure_Pa",
             "gap_m",
@@ -401,14 +352,22 @@ fn the_default_run_writes_everything() {
             "stick"
         ]
     );
-    for (name, body) in &arrays {
-        let v: Vec<f64> = body
-            .split_whitespace()
-            .map(|t| t.parse().unwrap())
-            .collect();
-        assert_eq!(v.len(), 441, "{name}");
-        assert!(v.iter().all(|x| x.is_finite()), "{name}");
+    for a in &vti.arrays {
+        let v = a.f64s();
+        assert_eq!(v.len(), 441, "{}", a.name);
+        assert!(v.iter().all(|x| x.is_finite()), "{}", a.name);
     }
+    let csv_p: Vec<f64> = std::fs::read_to_string(out.join("pressure.csv"))
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap().parse().unwrap())
+        .collect();
+    let vti_p = vti.get("pressure_Pa").f64s();
+    assert!(csv_p
+        .iter()
+        .zip(&vti_p)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
 
     for png in ["pressure_map.png", "pressure_profiles.png"] {
         let bytes = std::fs::read(out.join(png)).unwrap();
@@ -767,9 +726,9 @@ fn partial_slip_on_the_sphere_gives_the_cattaneo_mindlin_stick_radius() {
     let csv = std::fs::read_to_string(out.join("traction.csv")).unwrap();
     assert!(csv.starts_with("x_m,y_m,q_x_Pa,q_y_Pa,stick\n"));
     assert_eq!(csv.lines().count(), 64 * 64 + 1);
-    let vti = std::fs::read_to_string(out.join("fields.vti")).unwrap();
+    let vti = vtk::read(&out.join("fields.vti"));
     for name in ["traction_x_Pa", "traction_y_Pa", "stick"] {
-        assert!(vti.contains(&format!("Name=\"{name}\"")), "{name}");
+        assert_eq!(vti.get(name).f64s().len(), 64 * 64, "{name}");
     }
     assert!(t.get("coupling").is_none());
 }
@@ -885,25 +844,15 @@ fn the_stress_field_of_the_paper_case() {
     ] {
         assert!(s["stress"][key]["value"].is_f64(), "{key}");
     }
-    let vti = std::fs::read_to_string(out.join("stress.vti")).unwrap();
-    assert!(vti.contains("WholeExtent=\"0 38 0 38 0 19\""));
+    let vti = vtk::read(&out.join("stress.vti"));
+    assert!(vti.header.contains("WholeExtent=\"0 38 0 38 0 19\""));
     let n = 39 * 39 * 20;
-    let mut arrays = 0;
-    let mut lines = vti.lines();
-    while let Some(l) = lines.next() {
-        if l.contains("<DataArray") {
-            arrays += 1;
-            let mut count = 0;
-            for l in lines.by_ref() {
-                if l.contains("</DataArray>") {
-                    break;
-                }
-                count += l.split_whitespace().count();
-            }
-            assert_eq!(count, n, "{l}");
-        }
+    for a in &vti.arrays {
+        let v = a.f64s();
+        assert_eq!(v.len(), n, "{}", a.name);
+        assert!(v.iter().all(|x| x.is_finite()), "{}", a.name);
     }
-    assert_eq!(arrays, 22);
+    assert_eq!(vti.names("PointData").len(), 22);
     for f in ["sigma_xx_y0.png", "sigma_xx_z05a.png", "von_mises_y0.png"] {
         assert!(out.join(f).is_file(), "{f} missing");
     }

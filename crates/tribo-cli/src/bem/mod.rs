@@ -38,13 +38,12 @@ pub fn run_text(
         mesh.dof(),
         3200 * mesh.regions.len() * case.steps.len().max(1),
     );
-    if dry_run {
-        println!("memory: {}", estimate.describe());
-    }
     crate::memory::check(&estimate, max_memory)?;
     if dry_run {
-        println!(
-            "{}: valid; plane {}, {} regions, {} segments, {} boundary unknowns, {} contact pairs, {} steps",
+        let mut listing = String::new();
+        listing.push_str(&format!("memory: {}\n", estimate.describe()));
+        listing.push_str(&format!(
+            "{}: valid; plane {}, {} regions, {} segments, {} boundary unknowns, {} contact pairs, {} steps\n",
             case.title,
             run::plane_name(case.plane),
             mesh.regions.len(),
@@ -52,26 +51,27 @@ pub fn run_text(
             mesh.dof(),
             case.pairs.len(),
             case.steps.len()
-        );
+        ));
         for r in &mesh.regions {
-            println!(
-                "  region {}: {} elements, {} nodes",
+            listing.push_str(&format!(
+                "  region {}: {} elements, {} nodes\n",
                 r.name,
                 r.elements.len(),
                 r.nodes.len()
-            );
+            ));
         }
         let names: Vec<&str> = mesh.segments.iter().map(|s| s.name.as_str()).collect();
-        println!("  segments: {}", names.join(", "));
+        listing.push_str(&format!("  segments: {}\n", names.join(", ")));
         for m in &built.meshes {
-            println!(
-                "  gmsh {} (format {}, order {}): {} nodes, {} surface elements",
+            listing.push_str(&format!(
+                "  gmsh {} (format {}, order {}): {} nodes, {} surface elements\n",
                 m.file, m.version, m.order, m.nodes, m.surface_elements
-            );
+            ));
             for (name, parts) in m.curves.iter().filter(|(n, p)| p.len() > 1 || p[0] != **n) {
-                println!("    boundary {name}: {}", parts.join(", "));
+                listing.push_str(&format!("    boundary {name}: {}\n", parts.join(", ")));
             }
         }
+        crate::term::out(&listing)?;
         return Ok(None);
     }
     let outcome = run::solve(&case, quiet)?;

@@ -12,7 +12,8 @@ use super::case::{BcKind, BemCase, ComponentSpec};
 use super::plot::{self, Line, MapPart, Scale};
 use super::run::{extremes, plane_name, BemOutcome, RegionField, Variant};
 use crate::error::{CliError, CliResult};
-use crate::output::{plot_atomic, write_atomic};
+use crate::output::vtk::AppendedFile;
+use crate::output::{plot_atomic, prepare_dir, write_atomic};
 
 /// The paper's Sec. 7 statements, for the clamp-knife-base template.
 pub mod paper {
@@ -276,6 +277,8 @@ pub struct TimingSummary {
 pub struct BemSummary {
     /// Always "bem2d".
     pub kind: &'static str,
+    /// tribo's version.
+    pub version: &'static str,
     /// Title.
     pub title: String,
     /// Source.
@@ -304,7 +307,63 @@ pub struct BemSummary {
     pub outputs: Vec<String>,
     /// The case as written.
     pub case: serde_json::Value,
+    /// The unit of every number above, by its dotted key path (`[]` for array elements);
+    /// "1" for counts and dimensionless ratios. Keys ending in a unit (`_m`, `_pa`,
+    /// `_n_per_m`, `_rad`, `_s`) say it in their name too.
+    pub units: std::collections::BTreeMap<&'static str, &'static str>,
 }
+
+/// Units of the 2D summary's numbers, by key path (per unit thickness: forces N/m, areas
+/// m^2 of the section).
+pub const UNITS: &[(&str, &str)] = &[
+    ("materials[].young_modulus_pa", "Pa"),
+    ("materials[].poisson_ratio", "1"),
+    ("regions[].young_modulus_pa", "Pa"),
+    ("regions[].poisson_ratio", "1"),
+    ("regions[].elements", "1"),
+    ("regions[].nodes", "1"),
+    ("dof", "1"),
+    ("contact_unknowns", "1"),
+    ("steps[].iterations", "1"),
+    ("steps[].residual", "1"),
+    ("steps[].pairs[].friction", "1"),
+    ("steps[].pairs[].nodes_in_contact", "1"),
+    ("steps[].pairs[].stick_nodes", "1"),
+    ("steps[].pairs[].slip_nodes", "1"),
+    ("steps[].pairs[].contact_length_m", "m"),
+    ("steps[].pairs[].contact_x_range_m[]", "m"),
+    ("steps[].pairs[].max_pressure.value", "Pa"),
+    ("steps[].pairs[].max_abs_shear.value", "Pa"),
+    ("steps[].pairs[].*.at_m[]", "m"),
+    ("steps[].pairs[].slave_force_n_per_m[]", "N/m"),
+    ("steps[].regions[].sigma_xx_max_abs.value", "Pa"),
+    ("steps[].regions[].sigma_int_max.value", "Pa"),
+    ("steps[].regions[].eps_xx_max_abs.value", "1"),
+    ("steps[].regions[].eps_int_max.value", "1"),
+    ("steps[].regions[].*.at_m[]", "m"),
+    ("steps[].segment_forces[].force_n_per_m[]", "N/m"),
+    ("steps[].segment_forces[].moment_about_origin_n", "N m/m"),
+    ("steps[].free_bodies[].reference_point_m[]", "m"),
+    ("steps[].free_bodies[].translation_m[]", "m"),
+    ("steps[].free_bodies[].rotation_rad", "rad"),
+    ("damage.*.limit", "Pa"),
+    ("damage.*.psi_max", "1"),
+    ("damage.*.psi_max_at_m[]", "m"),
+    ("damage.*.dangerous_area_m2", "m^2"),
+    ("damage.*.damageability_m2", "m^2"),
+    ("damage.*.average", "1"),
+    ("damage.sweep_factors[]", "1"),
+    ("damage.paper_sweep_factors[]", "1"),
+    ("compare.rows[].young_modulus_pa", "Pa"),
+    ("compare.rows[].poisson_ratio", "1"),
+    (
+        "compare.rows[].values[]",
+        "compare.metrics (sigma: Pa, eps: 1, V_int, Psi_int: m^2, psi: 1)",
+    ),
+    ("compare.rows[].change_percent[]", "%"),
+    ("compare.paper_change_percent[]", "%"),
+    ("timings.*", "s"),
+];
 
 fn at(v: (f64, [f64; 2])) -> At {
     At {
@@ -478,58 +537,55 @@ fn interfaces_csv(v: &Variant) -> String {
     s
 }
 
-/// VTK XML unstructured grid of the sampled regions in one step (ParaView).
-fn vtu(v: &Variant, step: usize, psi: Option<(&str, &[f64])>) -> String {
+/// VTK XML unstructured grid of the sampled regions in one step (ParaView; binary, raw
+/// appended data, see [`crate::output::vtk`]): points (z = 0), triangles (VTK type 5), cell
+/// data `region`, point data displacement, stresses, strains, intensities and psi.
+fn vtu(v: &Variant, step: usize, psi: Option<(&str, &[f64])>) -> Vec<u8> {
     let fields = &v.fields;
     let npts: usize = fields.iter().map(|f| f.nodes.len()).sum();
     let ncells: usize = fields.iter().map(|f| f.triangles.len()).sum();
-    let mut s = String::new();
-    let _ = writeln!(s, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"{npts}\" NumberOfCells=\"{ncells}\">");
-    s.push_str(
-        "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
-    );
-    for f in fields {
-        for p in &f.nodes {
-            let _ = writeln!(s, "{:e} {:e} 0", p[0], p[1]);
-        }
-    }
-    s.push_str("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    let mut s = AppendedFile::new("UnstructuredGrid");
+    s.xml(&format!(
+        "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"{npts}\" NumberOfCells=\"{ncells}\">\n      <Points>\n"
+    ));
+    let points: Vec<f64> = fields
+        .iter()
+        .flat_map(|f| f.nodes.iter().flat_map(|p| [p[0], p[1], 0.0]))
+        .collect();
+    s.array("        ", "", 3, points.into_iter());
+    s.xml("      </Points>\n      <Cells>\n");
+    let mut connectivity: Vec<i64> = Vec::with_capacity(3 * ncells);
     let mut offset = 0;
     for f in fields {
         for t in &f.triangles {
-            let _ = writeln!(s, "{} {} {}", t[0] + offset, t[1] + offset, t[2] + offset);
+            connectivity.extend(t.iter().map(|&k| (k + offset) as i64));
         }
         offset += f.nodes.len();
     }
-    s.push_str("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-    for k in 1..=ncells {
-        let _ = write!(s, "{} ", 3 * k);
-    }
-    s.push_str("\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    for _ in 0..ncells {
-        s.push_str("5 ");
-    }
-    s.push_str("\n</DataArray>\n</Cells>\n<CellData Scalars=\"region\">\n<DataArray type=\"Int32\" Name=\"region\" format=\"ascii\">\n");
-    for f in fields {
-        for _ in &f.triangles {
-            let _ = write!(s, "{} ", f.index);
-        }
-    }
-    s.push_str("\n</DataArray>\n</CellData>\n<PointData Scalars=\"sigma_int_Pa\" Vectors=\"displacement_m\">\n");
-    let vector =
-        |s: &mut String,
-         name: &str,
-         get: &dyn Fn(&tribo::analysis::bem_field::FieldSample) -> [f64; 2]| {
-            let _ = writeln!(s, "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"3\" format=\"ascii\">");
-            for f in fields {
-                for x in &f.samples[step] {
-                    let u = get(x);
-                    let _ = writeln!(s, "{:e} {:e} 0", u[0], u[1]);
-                }
-            }
-            s.push_str("</DataArray>\n");
-        };
-    vector(&mut s, "displacement_m", &|x| x.displacement);
+    s.array("        ", "connectivity", 1, connectivity.into_iter());
+    s.array(
+        "        ",
+        "offsets",
+        1,
+        (1..ncells + 1).map(|k| 3 * k as i64),
+    );
+    s.array("        ", "types", 1, std::iter::repeat_n(5u8, ncells));
+    s.xml("      </Cells>\n      <CellData Scalars=\"region\">\n");
+    let region: Vec<i32> = fields
+        .iter()
+        .flat_map(|f| std::iter::repeat_n(f.index as i32, f.triangles.len()))
+        .collect();
+    s.array("        ", "region", 1, region.into_iter());
+    s.xml("      </CellData>\n      <PointData Scalars=\"sigma_int_Pa\" Vectors=\"displacement_m\">\n");
+    let displacement: Vec<f64> = fields
+        .iter()
+        .flat_map(|f| {
+            f.samples[step]
+                .iter()
+                .flat_map(|x| [x.displacement[0], x.displacement[1], 0.0])
+        })
+        .collect();
+    s.array("        ", "displacement_m", 3, displacement.into_iter());
     let int_stress = tribo::analysis::damage::DamageQuantity::Intensity {
         tensor: tribo::analysis::damage::TensorKind::Stress,
     };
@@ -556,39 +612,25 @@ fn vtu(v: &Variant, step: usize, psi: Option<(&str, &[f64])>) -> String {
         ),
     ];
     for (name, get) in &scalars {
-        let _ = writeln!(
-            s,
-            "<DataArray type=\"Float64\" Name=\"{name}\" format=\"ascii\">"
-        );
-        for f in fields {
-            for x in &f.samples[step] {
-                let _ = write!(s, "{:e} ", get(f, x));
-            }
-            s.push('\n');
-        }
-        s.push_str("</DataArray>\n");
+        let values: Vec<f64> = fields
+            .iter()
+            .flat_map(|f| f.samples[step].iter().map(move |x| get(f, x)))
+            .collect();
+        s.array("        ", name, 1, values.into_iter());
     }
     if let Some((region, values)) = psi {
-        let _ = writeln!(
-            s,
-            "<DataArray type=\"Float64\" Name=\"psi\" format=\"ascii\">"
-        );
+        let mut all: Vec<f64> = Vec::with_capacity(npts);
         for f in fields {
             if f.region == region {
-                for p in values {
-                    let _ = write!(s, "{p:e} ");
-                }
+                all.extend_from_slice(values);
             } else {
-                for _ in &f.nodes {
-                    s.push_str("0 ");
-                }
+                all.extend(std::iter::repeat_n(0.0, f.nodes.len()));
             }
-            s.push('\n');
         }
-        s.push_str("</DataArray>\n");
+        s.array("        ", "psi", 1, all.into_iter());
     }
-    s.push_str("</PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
-    s
+    s.xml("      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n");
+    s.finish()
 }
 
 fn finite_check(what: &str, values: impl IntoIterator<Item = f64>) -> CliResult<()> {
@@ -680,10 +722,7 @@ fn compare_summary(case: &BemCase, out: &BemOutcome) -> Option<CompareSummary> {
 
 /// Writes every output into `dir` and returns the summary.
 pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemSummary> {
-    std::fs::create_dir_all(dir).map_err(|source| CliError::Write {
-        path: dir.to_path_buf(),
-        source,
-    })?;
+    prepare_dir(dir, "summary.json")?;
     let v = &out.main;
     let mut outputs = Vec::new();
     // Segments with a prescribed displacement (a gmsh boundary name stands for its parts).
@@ -832,7 +871,7 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
             let name = file_name(&st.name);
             let psi = if damage_step == Some(k) { psi_of } else { None };
             let file = format!("fields_{name}.vtu");
-            write_atomic(dir, &file, vtu(v, k, psi).as_bytes())?;
+            write_atomic(dir, &file, &vtu(v, k, psi))?;
             outputs.push(file);
             let int_stress = tribo::analysis::damage::DamageQuantity::Intensity {
                 tensor: tribo::analysis::damage::TensorKind::Stress,
@@ -1084,8 +1123,18 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
         // A fold from +0 (an empty f64 sum is -0, printed "-0.00").
         .fold(0.0, |a, b| a + b);
     outputs.push("summary.json".into());
+    let units = UNITS
+        .iter()
+        .copied()
+        .filter(|(p, _)| match p.split(['.', '[']).next() {
+            Some("damage") => damage.is_some(),
+            Some("compare") => compare.is_some(),
+            _ => true,
+        })
+        .collect();
     let summary = BemSummary {
         kind: "bem2d",
+        version: env!("CARGO_PKG_VERSION"),
         title: case.title.clone(),
         source: case.source.clone(),
         plane: plane_name(case.plane),
@@ -1126,6 +1175,7 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
         },
         outputs,
         case: case.echo.clone(),
+        units,
     };
     let text = serde_json::to_string_pretty(&summary).map_err(|e| CliError::Output {
         what: "summary".into(),

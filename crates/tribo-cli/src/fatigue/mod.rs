@@ -4,7 +4,7 @@
 pub mod plot;
 
 use crate::error::{CliError, CliResult, EXIT_OK};
-use crate::output::{plot_atomic, write_atomic};
+use crate::output::{plot_atomic, prepare_dir, write_atomic};
 use crate::units::{self, Dim};
 use clap::{Subcommand, ValueEnum};
 use serde::Serialize;
@@ -181,9 +181,9 @@ pub fn run(cmd: FatigueCommand) -> CliResult<u8> {
 
 fn emit<T: Serialize>(json: bool, value: &T, human: impl FnOnce() -> String) -> CliResult<u8> {
     if json {
-        println!("{}", to_json(value, "fatigue JSON")?);
+        crate::term::outln(&to_json(value, "fatigue JSON")?)?;
     } else {
-        print!("{}", human());
+        crate::term::out(&human())?;
     }
     Ok(EXIT_OK)
 }
@@ -335,7 +335,9 @@ pub fn parse_csv(text: &str, path: &Path) -> CliResult<Vec<FatigueTest>> {
 #[derive(Debug, Clone, Serialize)]
 pub struct FitReport {
     /// The tribo version.
-    pub tribo_version: &'static str,
+    pub version: &'static str,
+    /// Files written (names within the output directory).
+    pub outputs: [&'static str; 2],
     /// The data file.
     pub data: String,
     /// The test kind (sigma, p, sigma_p, p_sigma).
@@ -405,7 +407,8 @@ pub fn fit(
         }
     }
     Ok(FitReport {
-        tribo_version: env!("CARGO_PKG_VERSION"),
+        version: env!("CARGO_PKG_VERSION"),
+        outputs: FIT_FILES,
         data: source.to_string(),
         kind,
         limit_symbol: kind.limit_symbol(),
@@ -524,17 +527,10 @@ fn check_finite(what: &str, values: &[f64]) -> CliResult<()> {
     }
 }
 
-fn create_dir(dir: &Path) -> CliResult<()> {
-    std::fs::create_dir_all(dir).map_err(|source| CliError::Write {
-        path: dir.to_path_buf(),
-        source,
-    })
-}
-
 fn write_fit(dir: &Path, report: &FitReport) -> CliResult<()> {
     check_finite(FIT_FILES[0], &report.scalars())?;
     let json = to_json(report, FIT_FILES[0])?;
-    create_dir(dir)?;
+    prepare_dir(dir, FIT_FILES[0])?;
     plot_atomic(dir, FIT_FILES[1], |p| plot::woehler(p, report))?;
     write_atomic(dir, FIT_FILES[0], json.as_bytes())
 }
@@ -738,7 +734,9 @@ pub fn parse_limits(text: &str, name: &str, base: &Path) -> CliResult<DiagramInp
 #[derive(Debug, Clone, Serialize)]
 pub struct DiagramReport {
     /// The tribo version.
-    pub tribo_version: &'static str,
+    pub version: &'static str,
+    /// Files written (names within the output directory).
+    pub outputs: [&'static str; 2],
     /// Title.
     pub title: String,
     /// Coordinates: x = p0 / p_f, y = sigma_a / sigma_-1.
@@ -761,7 +759,8 @@ pub fn diagram(input: DiagramInput) -> CliResult<DiagramReport> {
         None => None,
     };
     Ok(DiagramReport {
-        tribo_version: env!("CARGO_PKG_VERSION"),
+        version: env!("CARGO_PKG_VERSION"),
+        outputs: DIAGRAM_FILES,
         title: input.title,
         axes: "x = p0 / p_f (contact pressure), y = sigma_a / sigma_-1 (bending stress amplitude)",
         diagram: d,
@@ -820,7 +819,7 @@ fn write_diagram(dir: &Path, report: &DiagramReport) -> CliResult<()> {
     }
     check_finite(DIAGRAM_FILES[0], &v)?;
     let json = to_json(report, DIAGRAM_FILES[0])?;
-    create_dir(dir)?;
+    prepare_dir(dir, DIAGRAM_FILES[0])?;
     plot_atomic(dir, DIAGRAM_FILES[1], |p| plot::limit_diagram(p, report))?;
     write_atomic(dir, DIAGRAM_FILES[0], json.as_bytes())
 }

@@ -1,5 +1,6 @@
 //! Surface fields as CSV (long format) and as VTK XML image data (ParaView).
 
+use super::vtk::AppendedFile;
 use tribo::SurfaceGrid;
 
 /// A field in long format: a header line `x_m,y_m,{name}` and one line per element centre,
@@ -18,42 +19,29 @@ pub fn csv(grid: &SurfaceGrid, name: &str, values: &[f64]) -> String {
     s
 }
 
-/// VTK XML ImageData (`.vti`, ASCII) with one cell per element: the image's points are the
-/// element corners, `WholeExtent = 0 nx 0 ny 0 0`, `Origin` the window's lower-left corner,
+/// VTK XML ImageData (`.vti`, binary: raw appended little-endian data, see
+/// [`super::vtk`]) with one cell per element: the image's points are the element corners,
+/// `WholeExtent = 0 nx 0 ny 0 0`, `Origin` the window's lower-left corner,
 /// `Spacing = dx dy dx`; each named array becomes a `CellData` array (x varying fastest, the
 /// grid's layout, which is VTK's cell order).
-pub fn vti(grid: &SurfaceGrid, arrays: &[(&str, &[f64])]) -> String {
+pub fn vti(grid: &SurfaceGrid, arrays: &[(&str, &[f64])]) -> Vec<u8> {
     let (x0, y0) = grid.origin();
     let (nx, ny) = (grid.nx(), grid.ny());
-    let mut s = String::new();
-    s.push_str("<?xml version=\"1.0\"?>\n");
-    s.push_str("<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\">\n");
-    s.push_str(&format!(
+    let mut f = AppendedFile::new("ImageData");
+    f.xml(&format!(
         "  <ImageData WholeExtent=\"0 {nx} 0 {ny} 0 0\" Origin=\"{x0:e} {y0:e} 0\" Spacing=\"{:e} {:e} {:e}\">\n",
         grid.dx(),
         grid.dy(),
         grid.dx()
     ));
-    s.push_str(&format!("    <Piece Extent=\"0 {nx} 0 {ny} 0 0\">\n"));
+    f.xml(&format!("    <Piece Extent=\"0 {nx} 0 {ny} 0 0\">\n"));
     let first = arrays.first().map_or("", |a| a.0);
-    s.push_str(&format!("      <CellData Scalars=\"{first}\">\n"));
+    f.xml(&format!("      <CellData Scalars=\"{first}\">\n"));
     for (name, values) in arrays {
-        s.push_str(&format!(
-            "        <DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"1\" format=\"ascii\">\n"
-        ));
-        for row in values.chunks(nx.max(1)) {
-            s.push_str("          ");
-            let line: Vec<String> = row.iter().map(|v| format!("{v:e}")).collect();
-            s.push_str(&line.join(" "));
-            s.push('\n');
-        }
-        s.push_str("        </DataArray>\n");
+        f.array("        ", name, 1, values.iter().copied());
     }
-    s.push_str("      </CellData>\n");
-    s.push_str("    </Piece>\n");
-    s.push_str("  </ImageData>\n");
-    s.push_str("</VTKFile>\n");
-    s
+    f.xml("      </CellData>\n    </Piece>\n  </ImageData>\n");
+    f.finish()
 }
 
 #[cfg(test)]
@@ -78,10 +66,19 @@ mod tests {
     fn vti_counts() {
         let g = SurfaceGrid::centred(4, 5, 2.0, 2.5).unwrap();
         let v = vec![1.0; 20];
-        let text = vti(&g, &[("a", &v), ("b", &v)]);
+        let w: Vec<f64> = (0..20).map(|k| (k as f64).sqrt() - 1.7).collect();
+        let (text, arrays) = super::super::vtk::read::parse(&vti(&g, &[("a", &v), ("b", &w)]));
         assert!(text.contains("WholeExtent=\"0 4 0 5 0 0\""));
         assert!(text.contains("Origin=\"-2e0 -2.5e0 0\""));
         assert!(text.contains("Spacing=\"1e0 1e0 1e0\""));
+        assert!(text.contains("<CellData Scalars=\"a\">"));
         assert_eq!(text.matches("<DataArray").count(), 2);
+        // Read back bit-equal, one value per cell (nx * ny).
+        assert_eq!(arrays[0].name, "a");
+        assert_eq!(arrays[0].f64s(), v);
+        assert_eq!(arrays[1].name, "b");
+        let back = arrays[1].f64s();
+        assert_eq!(back.len(), 20);
+        assert!(back.iter().zip(&w).all(|(x, y)| x.to_bits() == y.to_bits()));
     }
 }

@@ -75,41 +75,36 @@ fn spacing(v: &[f64]) -> f64 {
     }
 }
 
-/// VTK XML ImageData over the field points (uniform spacing): `Origin = (-hx, -hy, 0)`, z
-/// the depth into the body; every array as `PointData`.
-pub fn vti(st: &Stress, arrays: &[(String, Vec<f64>)]) -> String {
+/// VTK XML ImageData over the field points (uniform spacing; binary, raw appended data, see
+/// [`super::vtk`]): `Origin = (-hx, -hy, 0)`, z the depth into the body; every array as
+/// `PointData`.
+pub fn vti(st: &Stress, arrays: &[(String, Vec<f64>)]) -> Vec<u8> {
     let g = &st.field.grid;
     let (nx, ny, nz) = (g.x.len(), g.y.len(), g.z.len());
-    let mut s = String::new();
-    s.push_str("<?xml version=\"1.0\"?>\n");
-    s.push_str("<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\">\n");
+    let mut f = super::vtk::AppendedFile::new("ImageData");
     let (x0, y0) = (
         g.x.first().copied().unwrap_or(0.0),
         g.y.first().copied().unwrap_or(0.0),
     );
-    let ext = format!("0 {} 0 {} 0 {}", nx - 1, ny - 1, nz - 1);
-    s.push_str(&format!(
+    let ext = format!(
+        "0 {} 0 {} 0 {}",
+        nx.saturating_sub(1),
+        ny.saturating_sub(1),
+        nz.saturating_sub(1)
+    );
+    f.xml(&format!(
         "  <ImageData WholeExtent=\"{ext}\" Origin=\"{x0:e} {y0:e} 0\" Spacing=\"{:e} {:e} {:e}\">\n",
         spacing(&g.x),
         spacing(&g.y),
         spacing(&g.z)
     ));
-    s.push_str(&format!("    <Piece Extent=\"{ext}\">\n"));
-    s.push_str("      <PointData Scalars=\"von_mises\">\n");
+    f.xml(&format!("    <Piece Extent=\"{ext}\">\n"));
+    f.xml("      <PointData Scalars=\"von_mises\">\n");
     for (name, values) in arrays {
-        s.push_str(&format!(
-            "        <DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"1\" format=\"ascii\">\n"
-        ));
-        for row in values.chunks(nx.max(1)) {
-            s.push_str("          ");
-            let line: Vec<String> = row.iter().map(|v| format!("{:e}", v + 0.0)).collect();
-            s.push_str(&line.join(" "));
-            s.push('\n');
-        }
-        s.push_str("        </DataArray>\n");
+        f.array("        ", name, 1, values.iter().map(|v| v + 0.0));
     }
-    s.push_str("      </PointData>\n    </Piece>\n  </ImageData>\n</VTKFile>\n");
-    s
+    f.xml("      </PointData>\n    </Piece>\n  </ImageData>\n");
+    f.finish()
 }
 
 /// Index of the value of `v` nearest `t`.

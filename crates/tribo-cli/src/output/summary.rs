@@ -3,6 +3,7 @@
 use crate::case::{Case, LoadKind, Window};
 use crate::run::{BackEffect, Outcome};
 use serde::Serialize;
+use std::collections::BTreeMap;
 use tribo::analysis::damage::{CycleDamage, CyclesDamage};
 use tribo::analysis::hertz_error::PressureErrors;
 use tribo::solvers::back_effect::BackEffectPoint;
@@ -11,8 +12,10 @@ use tribo::solvers::NormalLoading;
 /// The summary written to `summary.json` and printed by `--json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Summary {
+    /// Always "halfspace" (a 2D boundary element summary says "bem2d").
+    pub kind: &'static str,
     /// tribo's version.
-    pub tribo_version: &'static str,
+    pub version: &'static str,
     /// The case title.
     pub title: String,
     /// Where the case came from.
@@ -43,7 +46,135 @@ pub struct Summary {
     pub damage: Option<DamageSummary>,
     /// Files written (names within the output directory).
     pub outputs: Vec<String>,
+    /// Wall time per stage, s.
+    pub timings: Timings,
+    /// The unit of every number above, by its dotted key path (`[]` for array elements);
+    /// "1" for counts and dimensionless ratios.
+    pub units: BTreeMap<&'static str, &'static str>,
 }
+
+/// Wall time per stage of a half-space run, s.
+#[derive(Debug, Clone, Serialize)]
+pub struct Timings {
+    /// The normal contact solve.
+    pub solve_s: f64,
+    /// The tangential solve (with friction).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tangential_s: Option<f64>,
+    /// The back-effect curves (with `[bulk]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub back_effect_s: Option<f64>,
+    /// The subsurface stress field (with `[field]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stress_s: Option<f64>,
+    /// Volume damageability (with `[damage]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damage_s: Option<f64>,
+    /// Writing the fields and plots (every output but summary.json itself).
+    pub write_s: f64,
+}
+
+/// Units of the half-space summary's numbers, by key path; a section's entries apply when
+/// the section is present. Angles in degrees, as the case gives them (`angle_deg`).
+pub const UNITS: &[(&str, &str)] = &[
+    ("materials.body1.E", "Pa"),
+    ("materials.body1.nu", "1"),
+    ("materials.body2.E", "Pa"),
+    ("materials.body2.nu", "1"),
+    ("materials.composite_modulus", "Pa"),
+    ("gap.coefficients[]", "1/m"),
+    ("gap.angle", "deg"),
+    ("grid.nx", "1"),
+    ("grid.ny", "1"),
+    ("grid.dx", "m"),
+    ("grid.dy", "m"),
+    ("grid.half_width[]", "m"),
+    ("grid.extent", "1"),
+    ("solver.tolerance", "1"),
+    ("solver.max_iterations", "1"),
+    ("solver.time_s", "s"),
+    ("contact.normal_load", "N"),
+    ("contact.approach", "m"),
+    ("contact.max_pressure", "Pa"),
+    ("contact.contact_area", "m^2"),
+    ("contact.contact_elements", "1"),
+    ("contact.iterations", "1"),
+    ("contact.residual", "1"),
+    ("contact.hertz.a", "m"),
+    ("contact.hertz.b", "m"),
+    ("contact.hertz.p0", "Pa"),
+    ("contact.hertz.approach", "m"),
+    ("contact.hertz.normal_load", "N"),
+    ("contact.hertz.contact_area", "m^2"),
+    ("contact.hertz.angle", "deg"),
+    ("contact.error_vs_hertz.eps_max", "1"),
+    ("contact.error_vs_hertz.eps_avg", "1"),
+    ("contact.error_vs_hertz.eps_max_inside", "1"),
+    ("contact.error_vs_hertz.eps_max_element_averaged", "1"),
+    ("contact.error_vs_hertz.eps_max_location[]", "m"),
+    ("back_effect.shaft_radius", "m"),
+    ("back_effect.shaft_e", "Pa"),
+    ("back_effect.shaft_nu", "1"),
+    ("back_effect.stress_max", "Pa"),
+    ("back_effect.points", "1"),
+    ("back_effect.reference_approach", "m"),
+    ("back_effect.reference_load", "N"),
+    ("back_effect.iterations", "1"),
+    ("back_effect.time_s", "s"),
+    ("back_effect.*.kappa", "1"),
+    ("back_effect.*.max_deviation_from_hertz_points", "%"),
+    ("back_effect.*.paper_fig2a_percent[]", "%"),
+    ("back_effect.*.stress", "Pa"),
+    ("back_effect.*.approach_change", "m"),
+    ("back_effect.*.normal_load", "N"),
+    ("back_effect.*.force_ratio", "1"),
+    ("back_effect.*.change_percent", "%"),
+    ("back_effect.*.hertz_force_ratio", "1"),
+    ("back_effect.*.hertz_change_percent", "%"),
+    ("tangential.friction", "1"),
+    ("tangential.tangential_force[]", "N"),
+    ("tangential.stick_area", "m^2"),
+    ("tangential.slip_area", "m^2"),
+    ("tangential.max_traction", "Pa"),
+    ("tangential.shift", "m"),
+    ("tangential.iterations", "1"),
+    ("tangential.residual", "1"),
+    ("tangential.stick_semi_major", "m"),
+    ("tangential.stick_semi_major_cattaneo_mindlin", "m"),
+    ("tangential.time_s", "s"),
+    ("stress.points[]", "1"),
+    ("stress.half_width", "m"),
+    ("stress.depth", "m"),
+    ("stress.bulk[]", "Pa"),
+    ("stress.max_von_mises.value", "Pa"),
+    ("stress.max_shear.value", "Pa"),
+    ("stress.max_principal.value", "Pa"),
+    ("stress.max_hydrostatic.value", "Pa"),
+    ("stress.max_energy_density.value", "J/m^3"),
+    ("stress.*.location[]", "m"),
+    ("stress.time_s", "s"),
+    ("damage.criteria[].limit", "damage.criteria[].unit"),
+    ("damage.criteria[].psi_max", "1"),
+    ("damage.criteria[].psi_max_location[]", "m"),
+    ("damage.criteria[].volume", "m^3"),
+    ("damage.criteria[].volume_fraction", "1"),
+    ("damage.criteria[].damageability", "m^3"),
+    ("damage.criteria[].average", "1"),
+    ("damage.field_volume", "m^3"),
+    ("damage.p0", "Pa"),
+    ("damage.limit_load", "N"),
+    ("damage.study.limit_over_p0", "1"),
+    ("damage.study.p0", "Pa"),
+    ("damage.study.rows[].bending_over_p0", "1"),
+    ("damage.study.rows[].normal[]", "m^3"),
+    ("damage.study.rows[].friction[]", "%"),
+    ("damage.study.rows[].tension[]", "%"),
+    ("damage.study.rows[].compression[]", "%"),
+    ("damage.study.rows[].bending_vs_friction[]", "%"),
+    ("damage.study.paper[]", "%"),
+    ("damage.time_s", "s"),
+    ("timings.*", "s"),
+];
 
 /// One body's elastic constants.
 #[derive(Debug, Clone, Copy, Serialize)]
@@ -377,11 +508,13 @@ impl Summary {
             approach: h.contact.approach,
             normal_load: h.contact.normal_load,
             contact_area: h.contact.contact_area(),
-            angle: h.contact.angle + 0.0, // no -0 in the JSON
+            // Degrees, as the case gives angles (angle_deg); no -0 in the JSON.
+            angle: h.contact.angle.to_degrees() + 0.0,
         });
         let (hx, hy) = p.grid.half_widths();
-        Summary {
-            tribo_version: env!("CARGO_PKG_VERSION"),
+        let mut summary = Summary {
+            kind: "halfspace",
+            version: env!("CARGO_PKG_VERSION"),
             title: case.title.clone(),
             case_source: case.source.clone(),
             case: case.echo.clone(),
@@ -399,7 +532,7 @@ impl Summary {
                 coefficients: p
                     .hertz
                     .map(|h| [h.curvature.a_coefficient, h.curvature.b_coefficient]),
-                angle: p.hertz.map(|h| h.curvature.angle + 0.0),
+                angle: p.hertz.map(|h| h.curvature.angle.to_degrees() + 0.0),
             },
             grid: GridInfo {
                 nx: p.grid.nx(),
@@ -444,7 +577,41 @@ impl Summary {
             stress: out.stress.as_ref().map(StressSummary::new),
             damage: out.damage.as_ref().map(DamageSummary::new),
             outputs,
-        }
+            timings: Timings {
+                solve_s: out.solve_time.as_secs_f64(),
+                tangential_s: None,
+                back_effect_s: None,
+                stress_s: None,
+                damage_s: None,
+                write_s: 0.0,
+            },
+            units: BTreeMap::new(),
+        };
+        summary.timings.tangential_s = summary.tangential.as_ref().map(|t| t.time_s);
+        summary.timings.back_effect_s = summary.back_effect.as_ref().map(|b| b.time_s);
+        summary.timings.stress_s = summary.stress.as_ref().map(|t| t.time_s);
+        summary.timings.damage_s = summary.damage.as_ref().map(|d| d.time_s);
+        summary.units = summary.units_table();
+        summary
+    }
+
+    /// The entries of [`UNITS`] whose section is present.
+    fn units_table(&self) -> BTreeMap<&'static str, &'static str> {
+        let present = |path: &str| match path.split('.').next().unwrap_or("") {
+            "back_effect" => self.back_effect.is_some(),
+            "tangential" => self.tangential.is_some(),
+            "stress" => self.stress.is_some(),
+            "damage" if path.starts_with("damage.study") => {
+                self.damage.as_ref().is_some_and(|d| d.study.is_some())
+            }
+            "damage" => self.damage.is_some(),
+            "contact" if path.starts_with("contact.hertz") => self.contact.hertz.is_some(),
+            "contact" if path.starts_with("contact.error_vs_hertz") => {
+                self.contact.error_vs_hertz.is_some()
+            }
+            _ => true,
+        };
+        UNITS.iter().copied().filter(|(p, _)| present(p)).collect()
     }
 
     /// The human summary printed on stdout.
@@ -452,7 +619,7 @@ impl Summary {
         use std::fmt::Write;
         let c = &self.contact;
         let mut o = String::new();
-        let _ = writeln!(o, "tribo {}: {}", self.tribo_version, self.title);
+        let _ = writeln!(o, "tribo {}: {}", self.version, self.title);
         let _ = writeln!(
             o,
             "  grid          {} x {} elements over {:.4} x {:.4} mm, E* = {:.2} GPa, solver {}",
