@@ -22,8 +22,10 @@ fn text_files(dir: &Path, out: &mut Vec<PathBuf>) {
         let path = entry.path();
         let name = entry.file_name().to_string_lossy().into_owned();
         if path.is_dir() {
-            if matches!(name.as_str(), "target" | ".git" | ".venv" | "tribo-out" | "out")
-                || name.starts_with('.')
+            if matches!(
+                name.as_str(),
+                "target" | ".git" | ".venv" | "tribo-out" | "out"
+            ) || name.starts_with('.')
             {
                 continue;
             }
@@ -58,7 +60,9 @@ fn cited_documents(text: &str) -> Vec<String> {
         // An upper-case document name (the project's own notes), not a word ending in ".md".
         let base = name.rsplit('/').next().unwrap_or(name);
         if !base.is_empty()
-            && base.chars().all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
+            && base
+                .chars()
+                .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
             && !after.is_ascii_alphanumeric()
         {
             found.push(format!("{name}.md"));
@@ -82,7 +86,11 @@ fn every_cited_document_is_in_the_repository() {
         };
         for doc in cited_documents(&text) {
             cited += 1;
-            let rel = file.strip_prefix(&root).unwrap_or(file).display().to_string();
+            let rel = file
+                .strip_prefix(&root)
+                .unwrap_or(file)
+                .display()
+                .to_string();
             // A citation must be a path from the repository root (or the file's folder).
             let here = file.parent().map(|p| p.join(&doc));
             if !root.join(&doc).is_file() && !here.is_some_and(|p| p.is_file()) {
@@ -92,7 +100,10 @@ fn every_cited_document_is_in_the_repository() {
     }
     // The theory notes are cited about 150 times; a walk that finds none is broken.
     assert!(cited > 100, "found only {cited} citations");
-    assert!(missing.is_empty(), "cited but not in the repository:\n{missing:#?}");
+    assert!(
+        missing.is_empty(),
+        "cited but not in the repository:\n{missing:#?}"
+    );
 }
 
 #[test]

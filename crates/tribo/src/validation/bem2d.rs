@@ -202,7 +202,8 @@ fn hertz_rows() -> Result<Vec<ValidationRow>> {
                 48/40 elements over |x| <= 2b";
     // Measured 9.1e-4 on b and 2.1e-4 on p0 at this mesh; on the neighbouring meshes (40/32
     // .. 56/46) up to 5.1e-3 and 9.9e-4. Tolerances 1e-2 (the unit test's) and 2e-3.
-    let src = "docs/theory/BEM2D.md A4 (b = sqrt(4PR/(pi E*)) = 0.10505 mm, p0 = 2P/(pi b) = 606.04 MPa)";
+    let src =
+        "docs/theory/BEM2D.md A4 (b = sqrt(4PR/(pi E*)) = 0.10505 mm, p0 = 2P/(pi b) = 606.04 MPa)";
     Ok(vec![
         ValidationRow::new(
             case,
