@@ -457,6 +457,119 @@ pub fn stress_field_on_centres(
     stress_field_on_centres_observed(tractions, poisson_ratio, depths, |_| {})
 }
 
+/// Stresses at the points of `field` (any points; uniform spacing is not required) by FFT on
+/// the element centres of the contact grid extended with zero tractions over the field box
+/// (the same element size and alignment, [`stress_field_on_centres_with`]) at the field's
+/// depths, then cubic Lagrange interpolation (4 x 4 centres) in x and y to the points; the
+/// depths are exact. Cost O(depths x N' log N') for the extended grid's N' elements instead
+/// of O(points x loaded elements). Error against the direct sum ([`stress_field_direct`],
+/// the oracle): that of cubic interpolation over one element h, O(h^4) where the field is
+/// smooth on the scale h (below the surface, z >~ h), and O(h) near kinks of the surface
+/// field (the bilinear tractions' nodal lines, the contact edge); measured in the tests.
+/// Where the extended grid would exceed [`crate::grid::MAX_ELEMENTS_PER_SIDE`] per side the
+/// direct sum is used. `progress` is called after each depth with the number done.
+pub fn stress_field_interpolated(
+    tractions: &SurfaceTractions<'_>,
+    poisson_ratio: f64,
+    field: &FieldGrid,
+    mut progress: impl FnMut(usize),
+) -> Result<StressField> {
+    tractions.validate()?;
+    let grid = tractions.grid;
+    let (dx, dy) = (grid.dx(), grid.dy());
+    let (hx, hy) = grid.half_widths();
+    let finite = |v: &[f64]| v.iter().all(|c| c.is_finite());
+    if field.is_empty() || !(finite(&field.x) && finite(&field.y) && finite(&field.z)) {
+        return Err(Error::invalid(
+            "field",
+            "empty or non-finite coordinates",
+            "field points must be finite (m)",
+        ));
+    }
+    // Elements added on each side so that every point has two centres beyond it.
+    let extension = |coords: &[f64], half: f64, step: f64| -> f64 {
+        let reach = coords.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+        ((reach - half) / step + 2.5).ceil().max(0.0)
+    };
+    let (kx, ky) = (extension(&field.x, hx, dx), extension(&field.y, hy, dy));
+    let (nx, ny) = (grid.nx() as f64 + 2.0 * kx, grid.ny() as f64 + 2.0 * ky);
+    let limit = crate::grid::MAX_ELEMENTS_PER_SIDE as f64;
+    if nx > limit || ny > limit {
+        return stress_field_direct(tractions, poisson_ratio, field);
+    }
+    let (kx, ky, nx, ny) = (kx as usize, ky as usize, nx as usize, ny as usize);
+    let extended = SurfaceGrid::centred(nx, ny, hx + kx as f64 * dx, hy + ky as f64 * dy)?;
+    let widen = |values: &[f64]| -> Vec<f64> {
+        let mut out = vec![0.0; nx * ny];
+        for j in 0..grid.ny() {
+            let row = &values[j * grid.nx()..(j + 1) * grid.nx()];
+            out[(j + ky) * nx + kx..(j + ky) * nx + kx + grid.nx()].copy_from_slice(row);
+        }
+        out
+    };
+    let pressure = widen(tractions.pressure);
+    let shear_x = tractions.shear_x.map(widen);
+    let shear_y = tractions.shear_y.map(widen);
+    let wide = SurfaceTractions {
+        grid: &extended,
+        pressure: &pressure,
+        shear_x: shear_x.as_deref(),
+        shear_y: shear_y.as_deref(),
+    };
+    let centres = stress_field_on_centres_with(
+        &wide,
+        poisson_ratio,
+        &field.z,
+        TractionInterpolation::Bilinear,
+        &mut progress,
+    )?;
+    // Cubic Lagrange weights on the centres i0 .. i0 + 3 for coordinate c.
+    let stencil = |c: f64, first: f64, step: f64, n: usize| -> (usize, [f64; 4]) {
+        let u = (c - first) / step;
+        let base = (u.floor() as isize - 1).clamp(0, n as isize - 4) as usize;
+        let t = u - (base + 1) as f64;
+        (
+            base,
+            [
+                -t * (t - 1.0) * (t - 2.0) / 6.0,
+                (t + 1.0) * (t - 1.0) * (t - 2.0) / 2.0,
+                -(t + 1.0) * t * (t - 2.0) / 2.0,
+                (t + 1.0) * t * (t - 1.0) / 6.0,
+            ],
+        )
+    };
+    let xs: Vec<_> = field
+        .x
+        .iter()
+        .map(|&x| stencil(x, extended.x(0), dx, nx))
+        .collect();
+    let ys: Vec<_> = field
+        .y
+        .iter()
+        .map(|&y| stencil(y, extended.y(0), dy, ny))
+        .collect();
+    let (fx, fy) = (field.x.len(), field.y.len());
+    let stress: Vec<StressTensor> = (0..field.len())
+        .into_par_iter()
+        .map(|i| {
+            let (ix, iy, iz) = (i % fx, (i / fx) % fy, i / (fx * fy));
+            let ((bx, wx), (by, wy)) = (xs[ix], ys[iy]);
+            let mut acc = StressTensor::ZERO;
+            for (b, wyb) in wy.iter().enumerate() {
+                for (a, wxa) in wx.iter().enumerate() {
+                    let s = centres.stress[centres.grid.index(bx + a, by + b, iz)];
+                    acc = acc + s.scale(wxa * wyb);
+                }
+            }
+            acc
+        })
+        .collect();
+    Ok(StressField {
+        grid: field.clone(),
+        stress,
+    })
+}
+
 /// Small strain tensor by Hooke's law, eps = [(1 + nu) sigma - nu tr(sigma) I] / E
 /// (tensor shear components eps_xy = sigma_xy / (2G)); the paper's strain tensor in (26).
 pub fn strain(stress: &StressTensor, material: &ElasticMaterial) -> StressTensor {
@@ -671,6 +784,57 @@ mod tests {
             assert!((0.65..0.75).contains(&ratio), "{errors:?}");
         }
         assert!(errors[2] < 0.13, "{errors:?}");
+    }
+
+    /// Issue 11 item 4: the interpolated FFT path against the direct sum (the oracle), for a
+    /// sliding sphere (f = 0.4, 64 x 64 elements over 2.4a) on a 41 x 11 x 6 field over
+    /// |x|, |y| <= 1.5a (beyond the contact grid), z in [0, 0.75a], points off the centres.
+    /// Below the surface (z >= 0.15a) cubic interpolation over h = 0.0375a is O((h/z)^4):
+    /// measured 1.4e-4 p0, asserted 5e-4 p0; on the surface, where the field has kinks
+    /// along the nodal lines and the square-root cusp at the contact edge, measured
+    /// 2.0e-2 p0, asserted 3e-2 p0; the largest von Mises (at the surface, trailing edge)
+    /// measured 8.2e-3 p0 apart, asserted 1e-2 p0. A wrong kernel, a shifted stencil or a
+    /// wrong extension is off by O(0.1 - 1) p0.
+    #[test]
+    fn interpolated_path_matches_the_direct_sum() {
+        let hertz = HertzContact::circle(0.01, 1.1e11, 1000.0).unwrap();
+        let a = hertz.semi_major;
+        let grid = SurfaceGrid::centred(64, 64, 1.2 * a, 1.2 * a).unwrap();
+        let half = (0.5 * grid.dx(), 0.5 * grid.dy());
+        let p = grid.sample(|x, y| hertz.mean_pressure_over_rectangle(x, y, half.0, half.1));
+        let q: Vec<f64> = p.iter().map(|v| 0.4 * v).collect();
+        let tractions = SurfaceTractions {
+            grid: &grid,
+            pressure: &p,
+            shear_x: Some(&q),
+            shear_y: None,
+        };
+        let field = FieldGrid::uniform(41, 11, 6, 1.5 * a, 1.5 * a, 0.75 * a).unwrap();
+        let fast = stress_field_interpolated(&tractions, 0.3, &field, |_| {}).unwrap();
+        let exact = stress_field_direct(&tractions, 0.3, &field).unwrap();
+        let p0 = hertz.max_pressure;
+        let (mut surface, mut below) = (0.0f64, 0.0f64);
+        for (i, (u, v)) in fast.stress.iter().zip(&exact.stress).enumerate() {
+            let err = (*u - *v)
+                .to_array()
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()))
+                / p0;
+            if i < 41 * 11 {
+                surface = surface.max(err);
+            } else {
+                below = below.max(err);
+            }
+        }
+        let vm = |f: &StressField| f.max_of(|s| s.von_mises()).0 / p0;
+        eprintln!(
+            "interpolated vs direct: surface {surface:e}, below {below:e}, vm {} vs {}",
+            vm(&fast),
+            vm(&exact)
+        );
+        assert!(below < 5e-4, "below {below:e} p0");
+        assert!(surface < 3e-2, "surface {surface:e} p0");
+        assert!((vm(&fast) - vm(&exact)).abs() < 1e-2);
     }
 
     #[test]
