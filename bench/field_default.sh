@@ -14,7 +14,7 @@ root="$(dirname "$here")"
 repeat="${REPEAT:-3}"
 method="${METHOD:-fft}"
 if [ "$#" -gt 0 ]; then cases=("$@"); else cases=(64:41:41 128:41:41 128:46:48); fi
-(cd "$root" && cargo build --release --quiet -p tribo-cli)
+if [ ! -x "${CARGO_TARGET_DIR:-$root/target}/release/tribo" ] || [ "${BUILD:-1}" = 1 ]; then (cd "$root" && cargo build --release --quiet -p tribo-cli); fi
 bin="${CARGO_TARGET_DIR:-$root/target}/release/tribo"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
