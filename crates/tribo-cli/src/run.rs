@@ -720,6 +720,12 @@ pub fn stage_costs(case: &Case, prepared: &Prepared) -> Option<(StageCost, Optio
         (FieldPoints::Uniform, FieldMethod::Direct) => {
             points * loaded * directions * KERNEL_SECONDS / cores
         }
+        // stress_field_interpolated takes the direct sum for a box far beyond the grid.
+        (FieldPoints::Uniform, FieldMethod::Fft)
+            if wide > (4.0 * grid.len() as f64).max(512.0 * 512.0) =>
+        {
+            points * loaded * directions * KERNEL_SECONDS / cores
+        }
         (FieldPoints::Uniform, FieldMethod::Fft) => fft(wide),
         (FieldPoints::Centres, _) => fft(grid.len() as f64),
     };

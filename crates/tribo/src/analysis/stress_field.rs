@@ -466,8 +466,10 @@ pub fn stress_field_on_centres(
 /// the oracle): that of cubic interpolation over one element h, O(h^4) where the field is
 /// smooth on the scale h (below the surface, z >~ h), and O(h) near kinks of the surface
 /// field (the bilinear tractions' nodal lines, the contact edge); measured in the tests.
-/// Where the extended grid would exceed [`crate::grid::MAX_ELEMENTS_PER_SIDE`] per side the
-/// direct sum is used. `progress` is called after each depth with the number done.
+/// Where the extended grid would exceed [`crate::grid::MAX_ELEMENTS_PER_SIDE`] per side, or
+/// both 4 times the contact grid and 512 x 512 elements (a field box much larger than the
+/// contact window), the direct sum is used. `progress` is called after each depth with the
+/// number done.
 pub fn stress_field_interpolated(
     tractions: &SurfaceTractions<'_>,
     poisson_ratio: f64,
@@ -493,8 +495,13 @@ pub fn stress_field_interpolated(
     };
     let (kx, ky) = (extension(&field.x, hx, dx), extension(&field.y, hy, dy));
     let (nx, ny) = (grid.nx() as f64 + 2.0 * kx, grid.ny() as f64 + 2.0 * ky);
+    // A field box far larger than the contact grid would make the FFT grid (and its memory,
+    // about 200 bytes per element) huge while the direct sum stays cheap there (few loaded
+    // elements for the points): beyond 4 times the contact grid and 512 x 512 elements, or
+    // the grid's size limit, the direct sum is used.
     let limit = crate::grid::MAX_ELEMENTS_PER_SIDE as f64;
-    if nx > limit || ny > limit {
+    let budget = (4.0 * grid.len() as f64).max(512.0 * 512.0);
+    if nx > limit || ny > limit || nx * ny > budget {
         return stress_field_direct(tractions, poisson_ratio, field);
     }
     let (kx, ky, nx, ny) = (kx as usize, ky as usize, nx as usize, ny as usize);
