@@ -314,13 +314,14 @@ const KERNEL_PARITY: [[(Parity, Parity); 6]; 3] = {
 };
 
 /// Stresses at the element centres of the traction grid, at each depth of `depths` (m), of
-/// the bilinearly interpolated tractions (module docs), by non-periodic FFT convolution (DC-FFT, [`SpectralConvolution`]). The tractions are
-/// transformed once; at each depth the kernels of the present traction directions (pressure,
-/// q_x, q_y) are evaluated once per offset on one quadrant (each component has a parity in x
-/// and in y, `KERNEL_PARITY`) and transformed, the products are summed over the directions
-/// in the spectral domain, and each of the six components is transformed back once. The
-/// kernels are the tent kernels of [`stress_field_direct`], the same function, so both paths
-/// agree to round-off on any window (tested).
+/// the bilinearly interpolated tractions (module docs), by non-periodic FFT convolution
+/// (DC-FFT, [`SpectralConvolution`]). The tractions are transformed once; at each depth the
+/// kernels of the present traction directions (pressure, q_x, q_y) are evaluated once per
+/// offset on one quadrant (each component has a parity in x and in y, `KERNEL_PARITY`) and
+/// transformed, the products are summed over the directions in the spectral domain, and each
+/// of the six components is transformed back once. The kernels are the tent kernels of
+/// [`stress_field_direct`], the same function, so both paths agree to round-off on any
+/// window (tested).
 /// `progress` is called after each depth with the number of
 /// depths done.
 pub fn stress_field_on_centres_observed(
