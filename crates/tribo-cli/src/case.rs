@@ -43,6 +43,8 @@
 //! extent = 1.5                     # x, y half width / Hertz a (or half_width, m)
 //! depth = 1.5                      # depth / Hertz a (or depth_m, m); z down into the body
 //! body = "body2"                   # the body the field is in (default body2)
+//! # method = "direct"              # uniform points: "fft" (default, FFT + cubic interpolation)
+//!                                  #   or "direct" (the exact direct sum, slow)
 //! # points = "centres"             # instead of n and extent: x, y at the contact grid's
 //! # layers = 20                    # element centres (FFT, for large grids), `layers` depths
 //! ```
@@ -177,6 +179,7 @@ struct RawContact {
 #[serde(deny_unknown_fields)]
 struct RawField {
     points: Option<Value>,
+    method: Option<Value>,
     layers: Option<Value>,
     n: Option<Value>,
     extent: Option<Value>,
@@ -396,11 +399,25 @@ pub enum FieldPoints {
     Centres,
 }
 
+/// How the stresses at uniform field points are computed (`[field] method`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FieldMethod {
+    /// "fft" (default): FFT on the contact grid's element centres, extended with zero
+    /// tractions over the field box, at the field depths, then cubic interpolation in x and y
+    /// (`tribo::analysis::stress_field::stress_field_interpolated`).
+    Fft,
+    /// "direct": the direct sum over the loaded elements, exact at any point (slow: points x
+    /// loaded elements).
+    Direct,
+}
+
 /// The validated `[field]` section: the subsurface stress field.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FieldSpec {
     /// Where the points lie in x and y.
     pub points: FieldPoints,
+    /// How uniform points are computed.
+    pub method: FieldMethod,
     /// Points along x, y, z (for [`FieldPoints::Centres`], the contact grid's nx, ny).
     pub n: [usize; 3],
     /// Half width of the field in x and y (unused, zero, for [`FieldPoints::Centres`]).
@@ -1573,6 +1590,19 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
             ))
         }
     };
+    let method = match &f.method {
+        None => FieldMethod::Fft,
+        Some(Value::String(s)) if s == "fft" => FieldMethod::Fft,
+        Some(Value::String(s)) if s == "direct" => FieldMethod::Direct,
+        Some(v) => {
+            return Err(CliError::field(
+                "field.method",
+                show(v),
+                "must be \"fft\" (FFT on the extended contact grid + cubic interpolation, \
+                 the default) or \"direct\" (the exact direct sum, slow)",
+            ))
+        }
+    };
     if points == FieldPoints::Centres {
         for (name, given) in [
             ("field.n", f.n.is_some()),
@@ -1678,6 +1708,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
     };
     Ok(FieldSpec {
         points,
+        method,
         n,
         half_width,
         depth,

@@ -310,6 +310,21 @@ fn cmd_run(
             prepared.composite_modulus,
             case.method.name()
         ))?;
+        if let Some((field, damage)) = run::stage_costs(&case, &prepared) {
+            let mib = |b: f64| b / f64::from(1u32 << 20);
+            term::outln(&format!(
+                "field stage: about {:.1} s, {:.0} MiB (rough estimate, within a factor of ~3)",
+                field.seconds,
+                mib(field.bytes)
+            ))?;
+            if let Some(d) = damage {
+                term::outln(&format!(
+                    "damage stage: about {:.1} s, {:.0} MiB (rough estimate)",
+                    d.seconds,
+                    mib(d.bytes)
+                ))?;
+            }
+        }
         return Ok(EXIT_OK);
     }
     let outcome = run::solve(&case, prepared, quiet)?;

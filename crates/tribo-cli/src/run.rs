@@ -4,8 +4,8 @@
 //! field (`[field]`) -> volume damageability (`[damage]`).
 
 use crate::case::{
-    Case, CycleAmplitude, CycleKind, FieldPoints, Length, LimitSource, LoadKind, Method, Shape,
-    Window,
+    Case, CycleAmplitude, CycleKind, FieldMethod, FieldPoints, Length, LimitSource, LoadKind,
+    Method, Shape, Window,
 };
 use crate::error::CliResult;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -17,7 +17,8 @@ use tribo::analysis::damage::{
 };
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
 use tribo::analysis::stress_field::{
-    stress_field_direct, stress_field_on_centres_observed, FieldGrid, StressField, SurfaceTractions,
+    stress_field_direct, stress_field_interpolated, stress_field_on_centres_observed, FieldGrid,
+    StressField, SurfaceTractions,
 };
 use tribo::geometry::initial_gap;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
@@ -670,9 +671,12 @@ pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stres
     {
         pb.set_style(style.progress_chars("=> "));
     }
-    let method = match spec.points {
-        FieldPoints::Uniform => "direct sum",
-        FieldPoints::Centres => "FFT on the element centres",
+    let method = match (spec.points, spec.method) {
+        (FieldPoints::Uniform, FieldMethod::Direct) => "direct sum",
+        (FieldPoints::Uniform, FieldMethod::Fft) => {
+            "FFT on the extended grid + cubic interpolation"
+        }
+        (FieldPoints::Centres, _) => "FFT on the element centres",
     };
     pb.set_message(format!(
         "stress field ({nx} x {ny} x {nz} points, {method})"
@@ -684,6 +688,11 @@ pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stres
         FieldPoints::Uniform => {
             let half = resolve(spec.half_width, a);
             FieldGrid::uniform(nx, ny, nz, half, half, depth).and_then(|grid| {
+                if spec.method == FieldMethod::Fft {
+                    return stress_field_interpolated(&tractions, nu, &grid, |done| {
+                        pb.set_position(done as u64)
+                    });
+                }
                 let mut stress = Vec::with_capacity(grid.len());
                 for &z in &grid.z {
                     let layer = FieldGrid {
@@ -725,6 +734,87 @@ pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stres
         method,
         time: start.elapsed(),
     }))
+}
+
+/// A rough cost of a stage: wall time on the machine's cores and peak memory.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StageCost {
+    /// Seconds (within a factor of about 3: calibrated on `bench/stress_field.sh`).
+    pub seconds: f64,
+    /// Bytes held by the stage's arrays.
+    pub bytes: f64,
+}
+
+/// Seconds per tent-kernel evaluation (one offset, one traction direction) on one core:
+/// about four uniform-rectangle closed forms plus the rule (measured 1-3 us on the bench
+/// machine).
+const KERNEL_SECONDS: f64 = 2e-6;
+/// Seconds per complex point per log2 of the FFT size, one core.
+const FFT_SECONDS: f64 = 4e-9;
+/// Seconds per field point and damage criterion, one core.
+const DAMAGE_SECONDS: f64 = 3e-7;
+
+/// The estimated cost of the `[field]` and `[damage]` stages of `case` on `prepared`'s grid
+/// (for `tribo run --dry-run`): (field, damage). The loaded elements are the Hertz contact's
+/// where the gap is Hertzian, else half the grid.
+pub fn stage_costs(case: &Case, prepared: &Prepared) -> Option<(StageCost, Option<StageCost>)> {
+    let spec = case.field.as_ref()?;
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get()) as f64;
+    let grid = &prepared.grid;
+    let a = prepared.hertz.as_ref().map(|h| h.contact.semi_major);
+    let loaded = match &prepared.hertz {
+        Some(h) => (std::f64::consts::PI * h.contact.semi_major * h.contact.semi_minor
+            / grid.element_area())
+        .min(grid.len() as f64),
+        None => 0.5 * grid.len() as f64,
+    };
+    let directions = if case.friction.is_some() { 3.0 } else { 1.0 };
+    let [nx, ny, nz] = spec.n.map(|n| n as f64);
+    let points = nx * ny * nz;
+    // The extended grid of the FFT paths: the contact grid, widened to the field box.
+    let (hx, hy) = grid.half_widths();
+    let half = resolve(spec.half_width, a);
+    let widen =
+        |h: f64, step: f64, n: usize| n as f64 + 2.0 * ((half - h) / step + 2.5).ceil().max(0.0);
+    let wide = match spec.points {
+        FieldPoints::Centres => grid.len() as f64,
+        FieldPoints::Uniform => widen(hx, grid.dx(), grid.nx()) * widen(hy, grid.dy(), grid.ny()),
+    };
+    let fft = |n: f64| {
+        let size = 4.0 * n;
+        nz * (n * directions * KERNEL_SECONDS
+            + (6.0 + 2.0 * directions) * size * size.log2() * FFT_SECONDS)
+            / cores
+    };
+    let seconds = match (spec.points, spec.method) {
+        (FieldPoints::Uniform, FieldMethod::Direct) => {
+            points * loaded * directions * KERNEL_SECONDS / cores
+        }
+        // stress_field_interpolated takes the direct sum for a box far beyond the grid.
+        (FieldPoints::Uniform, FieldMethod::Fft)
+            if wide > (4.0 * grid.len() as f64).max(512.0 * 512.0) =>
+        {
+            points * loaded * directions * KERNEL_SECONDS / cores
+        }
+        (FieldPoints::Uniform, FieldMethod::Fft) => fft(wide),
+        (FieldPoints::Centres, _) => fft(grid.len() as f64),
+    };
+    // The stress tensors, the 22 output arrays, and the FFT buffers of one depth.
+    let bytes = points * (48.0 + 22.0 * 8.0) + (10.0 + directions) * 4.0 * wide * 16.0;
+    let field = StageCost { seconds, bytes };
+    let damage = case.damage.as_ref().map(|d| {
+        let criteria = d.criteria.len().max(1) as f64;
+        let mut seconds = points * criteria * DAMAGE_SECONDS / cores;
+        // The limiting state is a second run of the contact and the field.
+        if d.limit_load.is_some() {
+            seconds += field.seconds;
+        }
+        StageCost {
+            seconds,
+            bytes: points * 8.0 * (criteria + 4.0),
+        }
+    });
+    Some((field, damage))
 }
 
 /// The tractions on the body the field is in: p and, with friction, the shear (q on body 1,

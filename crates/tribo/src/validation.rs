@@ -10,7 +10,9 @@
 use serde::{Deserialize, Serialize};
 
 use crate::analysis::hertz_error::pressure_errors;
-use crate::analysis::stress_field::{stress_field_direct, FieldGrid, SurfaceTractions};
+use crate::analysis::stress_field::{
+    stress_field_direct, FieldGrid, StressField, SurfaceTractions,
+};
 use crate::error::Result;
 use crate::grid::SurfaceGrid;
 use crate::kernels::bulk::BulkLoad;
@@ -969,6 +971,222 @@ pub fn sliding_sphere_rows() -> Result<Vec<ValidationRow>> {
     Ok(rows)
 }
 
+/// The stress field of a sliding sphere on the plane y = 0, per unit friction coefficient:
+/// the element-averaged Hertz pressure (R = 10 mm, E* = 1.1e11 Pa, 1000 N, nu = 0.3) on
+/// 64 x 64 elements over 2.4a, and q_x = p; field points x = element edges + `shift` (m)
+/// over [-1.425a, 1.425a] (76 elements), z = 0, 0.1a, ..., 0.7a.
+/// The field of friction f is `normal + f shear` (linearity).
+pub(crate) struct SlidingSpherePlane {
+    /// Contact radius a (m) and peak pressure p0 (Pa).
+    pub a: f64,
+    pub p0: f64,
+    /// Poisson's ratio.
+    pub nu: f64,
+    /// Field of the pressure alone, and of q_x = p alone.
+    pub normal: StressField,
+    pub shear: StressField,
+}
+
+impl SlidingSpherePlane {
+    pub(crate) fn new(shift_elements: f64, shift_metres: f64) -> Result<Self> {
+        let nu = 0.3;
+        let hertz = HertzContact::circle(0.01, 1.1e11, 1000.0)?;
+        let (a, p0) = (hertz.semi_major, hertz.max_pressure);
+        let grid = SurfaceGrid::centred(64, 64, 1.2 * a, 1.2 * a)?;
+        let (hx, hy) = (0.5 * grid.dx(), 0.5 * grid.dy());
+        let pressure = grid.sample(|x, y| hertz.mean_pressure_over_rectangle(x, y, hx, hy));
+        let dx = grid.dx();
+        // Element edges of the grid, continued beyond it, over [-1.5a, 1.5a].
+        let first = -1.2 * a - 6.0 * dx;
+        let plane = FieldGrid {
+            x: (0..=76)
+                .map(|i| first + dx * (i as f64 + shift_elements) + shift_metres)
+                .collect(),
+            y: vec![0.0],
+            z: (0..8).map(|k| 0.1 * a * k as f64).collect(),
+        };
+        let normal = SurfaceTractions {
+            grid: &grid,
+            pressure: &pressure,
+            shear_x: None,
+            shear_y: None,
+        };
+        let zero = vec![0.0; grid.len()];
+        let shear = SurfaceTractions {
+            grid: &grid,
+            pressure: &zero,
+            shear_x: Some(&pressure),
+            shear_y: None,
+        };
+        Ok(Self {
+            a,
+            p0,
+            nu,
+            normal: stress_field_direct(&normal, nu, &plane)?,
+            shear: stress_field_direct(&shear, nu, &plane)?,
+        })
+    }
+
+    /// The field points (x, z) and the computed stress at friction `f`.
+    pub(crate) fn points(&self, f: f64) -> impl Iterator<Item = (f64, f64, StressTensor)> + '_ {
+        let g = &self.normal.grid;
+        (0..g.z.len()).flat_map(move |iz| {
+            (0..g.x.len()).map(move |ix| {
+                let i = g.index(ix, 0, iz);
+                (
+                    g.x[ix],
+                    g.z[iz],
+                    self.normal.stress[i] + self.shear.stress[i].scale(f),
+                )
+            })
+        })
+    }
+
+    /// Against Hamilton at friction `f`.
+    pub(crate) fn compare(&self, f: f64) -> SlidingSphereComparison {
+        let g = &self.normal.grid;
+        let dx = g.x[1] - g.x[0];
+        let mut c = SlidingSphereComparison {
+            surface: 0.0,
+            surface_off_edge: 0.0,
+            below: 0.0,
+            max_von_mises: f64::MIN,
+            max_von_mises_reference: f64::MIN,
+            reference_at_max: 0.0,
+        };
+        let mut at = (0.0, 0.0);
+        for (x, z, s) in self.points(f) {
+            let reference = sliding_sphere_stress(x, 0.0, z, self.a, self.p0, f, self.nu);
+            let err = (s - reference)
+                .to_array()
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()))
+                / self.p0;
+            if z == 0.0 {
+                c.surface = c.surface.max(err);
+                if (x.abs() - self.a).abs() > 2.0 * dx {
+                    c.surface_off_edge = c.surface_off_edge.max(err);
+                }
+            } else if z >= 0.1 * self.a - 1e-9 * self.a {
+                c.below = c.below.max(err);
+            }
+            let vm = s.von_mises() / self.p0;
+            if vm > c.max_von_mises {
+                c.max_von_mises = vm;
+                at = (x, z);
+            }
+            c.max_von_mises_reference = c
+                .max_von_mises_reference
+                .max(reference.von_mises() / self.p0);
+        }
+        c.reference_at_max = sliding_sphere_stress(at.0, 0.0, at.1, self.a, self.p0, f, self.nu)
+            .von_mises()
+            / self.p0;
+        c
+    }
+}
+
+/// [`SlidingSpherePlane::compare`]: errors in units of p0.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SlidingSphereComparison {
+    /// Largest |sigma_ij - Hamilton| on the surface line.
+    pub surface: f64,
+    /// The same, more than two elements from the contact edge |x| = a.
+    pub surface_off_edge: f64,
+    /// The same at z >= 0.1a.
+    pub below: f64,
+    /// Largest computed von Mises stress, and Hamilton's on the same points.
+    pub max_von_mises: f64,
+    pub max_von_mises_reference: f64,
+    /// Hamilton's von Mises at the point of the computed maximum.
+    pub reference_at_max: f64,
+}
+
+/// Rows of the sliding sphere at the surface and below (issue 11 item 1): for field points on
+/// the element edges, shifted from them by 1e-12 m and by 0.3 element, and f = 0 ... 0.5,
+/// the surface stresses on the line y = 0, the stresses below, and the largest von Mises
+/// stress of the plane y = 0 (z in [0, 0.7a]) and its place, against Hamilton's equations
+/// ([`SlidingSpherePlane`]).
+pub fn sliding_sphere_surface_rows() -> Result<Vec<ValidationRow>> {
+    let mut rows = Vec::new();
+    let source = "Hamilton 1983, Proc. IMechE 197C:53 (explicit equations)";
+    for (label, elements, metres) in [
+        ("points on element edges", 0.0, 0.0),
+        ("edges + 1e-12 m", 0.0, 1e-12),
+        ("edges + 0.3 element", 0.3, 0.0),
+    ] {
+        let plane = SlidingSpherePlane::new(elements, metres)?;
+        let (mut location, mut edge, mut below) = (0.0f64, 0.0f64, 0.0f64);
+        for f in [0.0, 0.1, 0.2, 0.3, 0.4, 0.5] {
+            let c = plane.compare(f);
+            // Bilinear tractions between centres 0.0375a apart, O(h^2) error away from the
+            // contact edge: measured 2.9e-3 - 3.5e-3 p0 (piecewise-constant shear: O(1) p0 on
+            // the element edges). Tolerance 1e-2 p0.
+            rows.push(ValidationRow::new(
+                &format!("sliding sphere surface, f = {f}, {label}, 64x64"),
+                "max |sigma_ij - Hamilton| / p0, z = 0, y = 0, ||x| - a| > 2 elements",
+                0.0,
+                c.surface_off_edge,
+                ErrorMeasure::Bound,
+                1e-2,
+                source,
+            ));
+            // Measured within 8.7e-3 p0 (f = 0.5, the maximum at the trailing edge, where the
+            // square-root edge of the traction is rounded off over one element); issue 11
+            // asks for 2e-2 p0.
+            rows.push(ValidationRow::new(
+                &format!("sliding sphere max von Mises, f = {f}, {label}, 64x64"),
+                "max sigma_vM / p0 over y = 0, z in [0, 0.7a]",
+                c.max_von_mises_reference,
+                c.max_von_mises,
+                ErrorMeasure::Absolute,
+                2e-2,
+                "Hamilton 1983; Johnson 1985 sec. 7.2",
+            ));
+            location = location.max(c.max_von_mises_reference - c.reference_at_max);
+            edge = edge.max(c.surface);
+            below = below.max(c.below);
+        }
+        // The location: Hamilton's own von Mises at the computed maximum's point is within
+        // 2e-2 p0 of Hamilton's maximum (a maximum in the wrong place, e.g. on an element edge
+        // instead of the trailing edge, fails). Measured 2.5e-3 at most.
+        rows.push(ValidationRow::new(
+            &format!("sliding sphere max von Mises location, f = 0 ... 0.5, {label}"),
+            "max over f of (Hamilton max - Hamilton at the computed max) / p0",
+            0.0,
+            location,
+            ErrorMeasure::Bound,
+            2e-2,
+            "Hamilton 1983; Johnson 1985 sec. 7.2",
+        ));
+        // Within two elements of the contact edge the traction itself has a square-root edge
+        // that no one-element-resolution representation follows: the error falls like
+        // sqrt(h) (stress_field tests: trailing edge), measured 4.9e-2 - 1.3e-1 p0 here
+        // (largest at f = 0.5, points 0.3 element off the edges). Bound 0.15 p0 (the
+        // piecewise-constant field is off by O(1) p0 on the element edges).
+        rows.push(ValidationRow::new(
+            &format!("sliding sphere surface incl. contact edge, f = 0 ... 0.5, {label}"),
+            "max |sigma_ij - Hamilton| / p0, z = 0, y = 0, all x",
+            0.0,
+            edge,
+            ErrorMeasure::Bound,
+            0.15,
+            source,
+        ));
+        // Below the surface (z >= 0.1a): measured 3.7e-3 - 4.6e-3 p0; bound 1e-2 p0.
+        rows.push(ValidationRow::new(
+            &format!("sliding sphere below the surface, f = 0 ... 0.5, {label}"),
+            "max |sigma_ij - Hamilton| / p0, y = 0, z in [0.1a, 0.7a]",
+            0.0,
+            below,
+            ErrorMeasure::Bound,
+            1e-2,
+            source,
+        ));
+    }
+    Ok(rows)
+}
+
 /// The result of [`coupled_dense_check`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct CoupledDenseCheck {
@@ -1339,6 +1557,7 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(back_effect_rows()?);
     rows.extend(stress_rows()?);
     rows.extend(sliding_sphere_rows()?);
+    rows.extend(sliding_sphere_surface_rows()?);
     rows.extend(tangential_rows()?);
     rows.extend(coupled_rows()?);
     rows.extend(damage_rows()?);

@@ -9,3 +9,4 @@ pub mod kelvin2d;
 pub mod love;
 pub(crate) mod quadrature;
 pub mod subsurface;
+pub mod tent;
