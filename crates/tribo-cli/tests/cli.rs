@@ -284,6 +284,10 @@ fn the_default_run_writes_everything() {
         "sigma_xx_z05a.png",
         "von_mises_y0.png",
         "psi_sigma_int_y0.png",
+        // The default case slides along y: the sections in the plane x = 0 too.
+        "sigma_yy_x0.png",
+        "von_mises_x0.png",
+        "psi_sigma_int_x0.png",
     ] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
@@ -292,7 +296,7 @@ fn the_default_run_writes_everything() {
         .unwrap()
         .map(|e| e.unwrap().file_name())
         .collect();
-    assert_eq!(names.len(), 16, "{names:?}");
+    assert_eq!(names.len(), 19, "{names:?}");
 
     let s = read_json(&out.join("summary.json"));
     let c = &s["contact"];

@@ -805,15 +805,20 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
                     dashed: false,
                 });
             }
+            // Both panels of a pair show its contact zone (with context) where that is a
+            // small part of the interface (the gmsh Hertz example: 0.2 mm of 20 mm).
+            let view = plot::contact_view(&pl);
             panels.push((
                 format!("contact pressure, {} on {}", pair.slave, pair.master),
                 "p, MPa".to_string(),
                 pl,
+                view,
             ));
             panels.push((
                 format!("tangential traction, {} on {}", pair.slave, pair.master),
                 "q, MPa".to_string(),
                 ql,
+                view,
             ));
         }
         plot_atomic(dir, "interfaces.png", |p| {
@@ -970,6 +975,7 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
                             colour: plot::palette(0),
                             dashed: false,
                         }],
+                        None,
                     ),
                     (
                         format!("damageability Psi ({}), {}", d.quantity, d.region),
@@ -980,6 +986,7 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
                             colour: plot::palette(1),
                             dashed: false,
                         }],
+                        None,
                     ),
                     (
                         "largest damage psi_max".to_string(),
@@ -990,6 +997,7 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
                             colour: plot::palette(2),
                             dashed: false,
                         }],
+                        None,
                     ),
                 ];
                 plot_atomic(dir, "damage_sweep.png", |p| {
