@@ -108,7 +108,9 @@ With a [field] section (the subsurface stress field, direct sum; z the depth, do
   stress.vti             VTK image data, point arrays: stress components, von Mises,
                          max shear, principal stresses, hydrostatic, octahedral shear,
                          strain energy density (and parts), strains
-  sigma_xx_y0.png, sigma_xx_z05a.png, von_mises_y0.png   sections
+  sigma_xx_y0.png, sigma_xx_z05a.png, von_mises_y0.png   sections (equal scale; signed
+                         components blue-white-red about 0)
+  sigma_yy_x0.png, von_mises_x0.png   with friction mainly along y: the plane x = 0
 
 A 2D boundary element case (kind = \"bem2d\") writes instead: summary.json, interfaces.csv
 and interfaces.png (contact pressure and shear along every pair, each step),

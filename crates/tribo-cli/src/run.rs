@@ -11,8 +11,8 @@ use crate::error::CliResult;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::time::{Duration, Instant};
 use tribo::analysis::damage::{
-    accumulate, dangerous_region, relative_damage, roller_shaft_sweep, CycleDamage, CyclesDamage,
-    DamageAssessment, DamageMesh, Execution, Limit, RollerShaftStudy, RollingContact,
+    accumulate, dangerous_region, faces_reached, relative_damage, roller_shaft_sweep, CycleDamage,
+    CyclesDamage, DamageAssessment, DamageMesh, Execution, Limit, RollerShaftStudy, RollingContact,
     RotatingBentShaft, StudyResult,
 };
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
@@ -139,6 +139,39 @@ pub struct DamageCriterion {
     /// rolling direction (y): the stress that enters the window is taken as zero there, so
     /// the accumulation depends on the window. The text says so.
     pub window_note: Option<String>,
+    /// The faces of the field box that the static dangerous region (psi >= 1) reaches
+    /// ("x-", "x+", "y-", "y+", "top", "bottom"; the surface z = 0 is not a face): V and
+    /// Psi then depend on the box.
+    pub box_faces: Vec<&'static str>,
+    /// The note on stderr and in the summary when `box_faces` is not empty.
+    pub box_note: Option<String>,
+}
+
+/// The note of a dangerous region (psi >= 1) that reaches the faces `faces` of the field box:
+/// part of it lies outside the box, so V and Psi depend on the box.
+fn box_face_note(faces: &[&str]) -> Option<String> {
+    if faces.is_empty() {
+        return None;
+    }
+    let mut fixes = Vec::new();
+    if faces
+        .iter()
+        .any(|f| f.starts_with('x') || f.starts_with('y'))
+    {
+        fixes.push("widen [field] (extent or half_width)");
+    }
+    if faces.contains(&"bottom") {
+        fixes.push("deepen it (depth)");
+    }
+    if faces.contains(&"top") {
+        fixes.push("start it at the surface");
+    }
+    Some(format!(
+        "the dangerous region (psi >= 1) reaches the field box at {}: part of it lies outside \
+         the box, so V and Psi depend on the box; {} until psi < 1 on its faces",
+        faces.join(", "),
+        fixes.join(", ")
+    ))
 }
 
 /// Volume damageability of a case with `[damage]`.
@@ -901,6 +934,14 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
         if let (Some(note), false) = (&window_note, quiet) {
             pb.suspend(|| crate::term::note(&format!("note: {}: {note}", quantity.name())));
         }
+        let box_faces: Vec<&'static str> = faces_reached(&st.field.grid, &psi)?
+            .into_iter()
+            .map(|f| f.name())
+            .collect();
+        let box_note = box_face_note(&box_faces);
+        if let (Some(note), false) = (&box_note, quiet) {
+            pb.suspend(|| eprintln!("note: {}: {note}", quantity.name()));
+        }
         let cycle = match &spec.cycle {
             None => None,
             Some(c) => {
@@ -956,6 +997,8 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
             psi,
             cycle,
             window_note,
+            box_faces,
+            box_note,
         });
     }
     let study = match &spec.study {

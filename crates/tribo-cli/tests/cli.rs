@@ -236,6 +236,10 @@ fn the_default_run_writes_everything() {
         "sigma_xx_z05a.png",
         "von_mises_y0.png",
         "psi_sigma_int_y0.png",
+        // The default case slides along y: the sections in the plane x = 0 too.
+        "sigma_yy_x0.png",
+        "von_mises_x0.png",
+        "psi_sigma_int_x0.png",
     ] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
@@ -244,7 +248,7 @@ fn the_default_run_writes_everything() {
         .unwrap()
         .map(|e| e.unwrap().file_name())
         .collect();
-    assert_eq!(names.len(), 16, "{names:?}");
+    assert_eq!(names.len(), 19, "{names:?}");
 
     let s = read_json(&out.join("summary.json"));
     let c = &s["contact"];
@@ -1215,6 +1219,69 @@ fn rolling_carries_the_contact_field_through_the_body() {
     let c = read_json(&out.join("summary.json"))["damage"]["criteria"][0].clone();
     assert!(f(&c["volume"]) > 0.0);
     assert!(c.get("cycle_window_note").is_none(), "{c}");
+}
+
+/// A dangerous region (psi >= 1) that reaches the faces of the field box makes V and Psi
+/// depend on the box: the summary names the faces (box_faces, box_note) and stderr says so.
+/// At 0.186 p0 the region under the roller reaches about 0.9 mm deep: through the bottom of a
+/// field 0.8 mm deep (and not its sides, 0.8 mm out); in a window of half-width 0.4 mm it
+/// reaches the four sides. At 0.45 p0 it lies inside (under the contact, about 0.5 a deep):
+/// it reaches only the surface z = 0, which is the body's and not a face, and nothing is
+/// flagged.
+#[test]
+fn a_dangerous_region_reaching_the_field_box_is_flagged() {
+    let paper = PAPER.replacen(
+        "load = 2000.0\n",
+        &format!("load = 2000.0\n{DAMAGE_BASE}"),
+        1,
+    );
+    let case = format!(
+        "{paper}[field]\nn = [9, 9, 5]\nhalf_width = 8e-4\ndepth_m = 8e-4\n\
+         [damage]\nlimit_over_p0 = 0.186\n"
+    );
+    let faces_of = |case: &str| {
+        let (o, out, _d) = run_case(case, &[], &[]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let c = read_json(&out.join("summary.json"))["damage"]["criteria"][0].clone();
+        let faces: Vec<String> = c["box_faces"]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .filter_map(|f| f.as_str())
+                    .map(String::from)
+                    .collect()
+            })
+            .unwrap_or_default();
+        let note = c["box_note"].as_str().unwrap_or_default().to_string();
+        for f in &faces {
+            assert!(note.contains(f.as_str()), "{note}");
+        }
+        assert!(c["volume"].as_f64().unwrap() > 0.0);
+        // Without --quiet the note is on stderr too.
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("case.toml");
+        std::fs::write(&path, case).unwrap();
+        let out = dir.path().join("out");
+        let o = tribo(
+            &["run", path.to_str().unwrap(), "-o", out.to_str().unwrap()],
+            None,
+        );
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        (faces, note, stderr(&o))
+    };
+    let (faces, note, err) = faces_of(&case);
+    assert_eq!(faces, ["bottom"], "{note}");
+    assert!(err.contains("reaches the field box at bottom"), "{err}");
+    assert!(note.contains("deepen") && !note.contains("widen"), "{note}");
+    let narrow = case.replace("half_width = 8e-4", "half_width = 4e-4");
+    let (faces, note, _) = faces_of(&narrow);
+    for f in ["x-", "x+", "y-", "y+"] {
+        assert!(faces.iter().any(|g| g == f), "{f}: {faces:?} {note}");
+    }
+    let inside = case.replace("limit_over_p0 = 0.186", "limit_over_p0 = 0.45");
+    let (faces, note, err) = faces_of(&inside);
+    assert!(faces.is_empty() && note.is_empty(), "{faces:?} {note}");
+    assert!(!err.contains("field box"), "{err}");
 }
 
 #[test]

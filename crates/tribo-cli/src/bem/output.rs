@@ -844,15 +844,20 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
                     dashed: false,
                 });
             }
+            // Both panels of a pair show its contact zone (with context) where that is a
+            // small part of the interface (the gmsh Hertz example: 0.2 mm of 20 mm).
+            let view = plot::contact_view(&pl);
             panels.push((
                 format!("contact pressure, {} on {}", pair.slave, pair.master),
                 "p, MPa".to_string(),
                 pl,
+                view,
             ));
             panels.push((
                 format!("tangential traction, {} on {}", pair.slave, pair.master),
                 "q, MPa".to_string(),
                 ql,
+                view,
             ));
         }
         plot_atomic(dir, "interfaces.png", |p| {
@@ -1009,6 +1014,7 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
                             colour: plot::palette(0),
                             dashed: false,
                         }],
+                        None,
                     ),
                     (
                         format!("damageability Psi ({}), {}", d.quantity, d.region),
@@ -1019,6 +1025,7 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
                             colour: plot::palette(1),
                             dashed: false,
                         }],
+                        None,
                     ),
                     (
                         "largest damage psi_max".to_string(),
@@ -1029,6 +1036,7 @@ pub fn write_all(dir: &Path, case: &BemCase, out: &BemOutcome) -> CliResult<BemS
                             colour: plot::palette(2),
                             dashed: false,
                         }],
+                        None,
                     ),
                 ];
                 plot_atomic(dir, "damage_sweep.png", |p| {

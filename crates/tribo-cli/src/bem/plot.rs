@@ -2,34 +2,16 @@
 //! (Fig. 7a, 8a), interface tractions along x for each step (Fig. 7b), the damage sweep
 //! (Fig. 8b) and the material comparison.
 
+use crate::output::canvas::Canvas;
 use plotters::prelude::*;
 use std::path::Path;
 
-use crate::output::plot::{e, legend_box, register_font, styled_axes, tick, viridis, FAMILY};
+use crate::output::plot::{
+    axis_range, densify, e, legend_avoiding, log_ticks, map_chart, register_font, sig, styled_axes,
+    tick, viridis, FAMILY,
+};
 
-/// Blue-white-red for signed values, `t` in [-1, 1].
-pub fn diverging(t: f64) -> RGBColor {
-    let t = if t.is_finite() {
-        t.clamp(-1.0, 1.0)
-    } else {
-        0.0
-    };
-    let lerp = |a: f64, b: f64, s: f64| (a + s * (b - a)).round() as u8;
-    if t < 0.0 {
-        let s = -t;
-        RGBColor(
-            lerp(255.0, 33.0, s),
-            lerp(255.0, 102.0, s),
-            lerp(255.0, 172.0, s),
-        )
-    } else {
-        RGBColor(
-            lerp(255.0, 178.0, t),
-            lerp(255.0, 24.0, t),
-            lerp(255.0, 43.0, t),
-        )
-    }
-}
+pub use crate::output::plot::diverging;
 
 /// One triangulated region with nodal values.
 pub struct MapPart<'a> {
@@ -84,17 +66,17 @@ pub fn field_map(
     let plot_w = 1300u32;
     let plot_h = ((plot_w as f64 - 140.0) * (h + 2.0 * pad) / (w + 2.0 * pad) + 130.0)
         .clamp(320.0, 1100.0) as u32;
-    let root = BitMapBackend::new(path, (plot_w + 150, plot_h)).into_drawing_area();
+    let root = Canvas::new(path, (plot_w + 150, plot_h)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
     let (main, bar) = root.split_horizontally(plot_w);
-    let mut chart = ChartBuilder::on(&main)
-        .caption(title, (FAMILY, 20))
-        .margin(15)
-        .x_label_area_size(45)
-        .y_label_area_size(60)
-        .build_cartesian_2d((lo[0] - pad)..(hi[0] + pad), (lo[1] - pad)..(hi[1] + pad))
-        .map_err(e)?;
-    styled_axes(&mut chart, "x, mm", "y, mm", 14)?;
+    let mut chart = map_chart(
+        &main,
+        (lo[0] - pad, hi[0] + pad),
+        (lo[1] - pad, hi[1] + pad),
+        title,
+        ("x, mm", "y, mm"),
+        &tick,
+    )?;
     let (c0, c1) = match scale {
         Scale::Sequential => (vmin.min(0.0), vmax.max(f64::MIN_POSITIVE)),
         Scale::Diverging => {
@@ -144,6 +126,43 @@ pub fn field_map(
             }))
             .map_err(e)?;
     }
+    if let Scale::Damage = scale {
+        // The edge of the dangerous region: psi = 1 on the linear interpolant of each
+        // triangle.
+        let line = RED.stroke_width(2);
+        let mut any = false;
+        for p in parts {
+            let segs = isoline_triangles(p.nodes, p.triangles, p.values, 1.0);
+            any |= !segs.is_empty();
+            chart
+                .draw_series(segs.into_iter().map(|(a, b)| {
+                    PathElement::new(vec![(1e3 * a.0, 1e3 * a.1), (1e3 * b.0, 1e3 * b.1)], line)
+                }))
+                .map_err(e)?;
+        }
+        if any {
+            chart
+                .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
+                .map_err(e)?
+                .label("psi = 1 (edge of the dangerous region)")
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], line));
+            let hot: Vec<(f64, f64)> = parts
+                .iter()
+                .flat_map(|p| {
+                    p.nodes
+                        .iter()
+                        .zip(p.values)
+                        .filter(|(_, &v)| v >= 1.0)
+                        .map(|(n, _)| (1e3 * n[0], 1e3 * n[1]))
+                })
+                .collect();
+            legend_avoiding(
+                &mut chart,
+                &hot,
+                &["psi = 1 (edge of the dangerous region)"],
+            )?;
+        }
+    }
     colour_bar(&bar, c0, c1, &colour, unit)?;
     root.present().map_err(e)?;
     Ok(())
@@ -166,6 +185,39 @@ fn boundary_edges(triangles: &[[usize; 3]]) -> Vec<(usize, usize)> {
         .collect();
     edges.sort_unstable();
     edges
+}
+
+/// The isoline `values = level` of nodal values interpolated linearly on each triangle, as
+/// segments (m): on each triangle whose vertices lie on both sides (>= level counts as
+/// above), the two edge points where the linear interpolant equals `level`.
+pub fn isoline_triangles(
+    nodes: &[[f64; 2]],
+    triangles: &[[usize; 3]],
+    values: &[f64],
+    level: f64,
+) -> Vec<((f64, f64), (f64, f64))> {
+    let mut out = Vec::new();
+    for t in triangles {
+        if t.iter().any(|&k| k >= nodes.len() || k >= values.len()) {
+            continue;
+        }
+        let mut cross = Vec::with_capacity(2);
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let (va, vb) = (values[a], values[b]);
+            if (va >= level) != (vb >= level) {
+                let s = (level - va) / (vb - va);
+                cross.push((
+                    nodes[a][0] + s * (nodes[b][0] - nodes[a][0]),
+                    nodes[a][1] + s * (nodes[b][1] - nodes[a][1]),
+                ));
+            }
+        }
+        if cross.len() == 2 {
+            out.push((cross[0], cross[1]));
+        }
+    }
+    out
 }
 
 fn colour_bar<DB: DrawingBackend>(
@@ -231,24 +283,68 @@ pub fn palette(k: usize) -> RGBColor {
     P[k % P.len()]
 }
 
-/// Panels of curves, one panel per entry of `panels` (title, y label, lines), stacked
-/// vertically with a common x label; `log_y` for logarithmic y axes (positive values).
-pub fn panels(
-    path: &Path,
-    panels: &[(String, String, Vec<Line>)],
-    x_desc: &str,
-    log_y: bool,
-) -> Result<(), String> {
+/// One panel of [`panels`]: title, y label, lines, and the x range shown (None: all the
+/// data; e.g. the contact zone of a long interface, [`contact_view`]).
+pub type Panel = (String, String, Vec<Line>, Option<(f64, f64)>);
+
+/// The x range that shows a contact zone with context: the points of `lines` with y > 0
+/// (the pressure) span the zone; the view adds half its width on each side (at least 2 % of
+/// the data's range), within the data's range. None when there is no zone or the view would
+/// cover most (80 %) of the data anyway.
+pub fn contact_view(lines: &[Line]) -> Option<(f64, f64)> {
+    let all = lines.iter().flat_map(|l| l.points.iter());
+    let (f0, f1) = all
+        .clone()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
+    let (z0, z1) = all
+        .filter(|p| p.1 > 0.0)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
+    if !(f1 > f0 && z1 >= z0) {
+        return None;
+    }
+    let context = (0.5 * (z1 - z0)).max(0.02 * (f1 - f0));
+    let view = ((z0 - context).max(f0), (z1 + context).min(f1));
+    (view.1 - view.0 < 0.8 * (f1 - f0)).then_some(view)
+}
+
+/// Panels of curves, one panel per entry of `panels` (title, y label, lines, x view),
+/// stacked vertically with a common x label; `log_y` for logarithmic y axes (positive values,
+/// ticks from [`log_ticks`] so that a range of less than a decade is labelled too). Constant
+/// data (the shear of a frictionless contact) gets a valid axis ([`axis_range`]); legends go
+/// to the corner with the least data.
+pub fn panels(path: &Path, panels: &[Panel], x_desc: &str, log_y: bool) -> Result<(), String> {
     register_font()?;
     let rows = panels.len().max(1);
-    let root = BitMapBackend::new(path, (1100, 360 * rows as u32)).into_drawing_area();
+    let root = Canvas::new(path, (1100, 360 * rows as u32)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
     let areas = root.split_evenly((rows, 1));
-    for (area, (title, y_desc, lines)) in areas.iter().zip(panels) {
+    for (area, (title, y_desc, lines, view)) in areas.iter().zip(panels) {
+        // The lines within the view (all of them without one).
+        let lines: Vec<Line> = lines
+            .iter()
+            .map(|l| Line {
+                label: l.label.clone(),
+                points: l
+                    .points
+                    .iter()
+                    .copied()
+                    .filter(|p| view.is_none_or(|v| p.0 >= v.0 && p.0 <= v.1))
+                    .collect(),
+                colour: l.colour,
+                dashed: l.dashed,
+            })
+            .collect();
         let xs = lines.iter().flat_map(|l| l.points.iter().map(|p| p.0));
-        let (x0, x1) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
-            (a.min(x), b.max(x))
-        });
+        let (x0, x1) = match view {
+            Some(v) => *v,
+            None => xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            }),
+        };
         let ys = lines.iter().flat_map(|l| l.points.iter().map(|p| p.1));
         let (y0, y1) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
             (a.min(y), b.max(y))
@@ -259,31 +355,54 @@ pub fn panels(
         let (x0, x1) = if x1 > x0 {
             (x0, x1)
         } else {
-            (x0 - 1.0, x0 + 1.0)
+            axis_range(x0, x1, 0.0)
         };
         let mut builder = ChartBuilder::on(area);
         builder
-            .caption(title, (FAMILY, 18))
+            .caption(
+                title,
+                (FAMILY, crate::output::plot::title_size(title, 18.0, 1100)),
+            )
             .margin(12)
             .x_label_area_size(45)
             .y_label_area_size(80);
+        let mut occupied = Vec::new();
+        for l in &lines {
+            occupied.extend(densify(&l.points));
+        }
+        let labels: Vec<&str> = lines.iter().map(|l| l.label.as_str()).collect();
         if log_y {
-            let y0 = y0.max(f64::MIN_POSITIVE);
-            let (y0, y1) = (y0 / 1.3, (y1.max(y0)) * 1.3);
+            let pos: Vec<f64> = lines
+                .iter()
+                .flat_map(|l| l.points.iter().map(|p| p.1))
+                .filter(|&v| v > 0.0 && v.is_finite())
+                .collect();
+            let lo = pos.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = pos.iter().copied().fold(0.0, f64::max);
+            let (lo, hi) = if lo.is_finite() && hi > 0.0 {
+                (lo, hi)
+            } else {
+                (1.0, 1.0)
+            };
+            let (y0, y1) = (lo / 1.3, hi * 1.3);
             let mut chart = builder
-                .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
+                .build_cartesian_2d(
+                    x0..x1,
+                    (y0..y1).log_scale().with_key_points(log_ticks(y0, y1)),
+                )
                 .map_err(e)?;
             chart
                 .configure_mesh()
                 .x_desc(x_desc)
                 .y_desc(y_desc.as_str())
                 .x_label_formatter(&tick)
-                .y_label_formatter(&|v| format!("{v:.3e}"))
+                .y_label_formatter(&sig)
                 .label_style((FAMILY, 13))
                 .axis_desc_style((FAMILY, 15))
+                .light_line_style(WHITE.mix(0.0))
                 .draw()
                 .map_err(e)?;
-            for l in lines {
+            for l in &lines {
                 let c = l.colour;
                 let pts: Vec<(f64, f64)> = l.points.iter().copied().filter(|p| p.1 > 0.0).collect();
                 chart
@@ -297,14 +416,27 @@ pub fn panels(
                     .draw_series(pts.iter().map(|&p| Circle::new(p, 4, c.filled())))
                     .map_err(e)?;
             }
-            legend_box(&mut chart)?;
+            // The legend's corner, on the log axis's fractions (log y).
+            let lin: Vec<(f64, f64)> = occupied
+                .iter()
+                .filter(|p| p.1 > 0.0)
+                .map(|p| (p.0, p.1.ln()))
+                .collect();
+            let px = chart.plotting_area().dim_in_pixel();
+            let frac = crate::output::plot::legend_frac(&labels, 14.0, px);
+            let (corner, _) =
+                crate::output::plot::emptiest_corner(&lin, (x0, x1), (y0.ln(), y1.ln()), frac);
+            chart
+                .configure_series_labels()
+                .position(corner)
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .label_font((FAMILY, 14))
+                .draw()
+                .map_err(e)?;
         } else {
-            let pad = 0.08
-                * (y1 - y0)
-                    .abs()
-                    .max(y1.abs().max(y0.abs()) * 1e-3)
-                    .max(f64::MIN_POSITIVE);
-            let (y0, y1) = (y0.min(0.0) - pad, y1.max(0.0) + pad);
+            let (lo, hi) = (y0.min(0.0), y1.max(0.0));
+            let (y0, y1) = axis_range(lo, hi, 0.08);
             let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1).map_err(e)?;
             styled_axes(&mut chart, x_desc, y_desc, 13)?;
             chart
@@ -313,7 +445,7 @@ pub fn panels(
                     BLACK.mix(0.3).stroke_width(1),
                 ))
                 .map_err(e)?;
-            for l in lines {
+            for l in &lines {
                 let c = l.colour;
                 if l.dashed {
                     let pts = l.points.clone();
@@ -338,7 +470,7 @@ pub fn panels(
                         });
                 }
             }
-            legend_box(&mut chart)?;
+            legend_avoiding(&mut chart, &occupied, &labels)?;
         }
     }
     root.present().map_err(e)?;
@@ -355,7 +487,7 @@ pub fn change_bars(
     title: &str,
 ) -> Result<(), String> {
     register_font()?;
-    let root = BitMapBackend::new(path, (1100, 600)).into_drawing_area();
+    let root = Canvas::new(path, (1100, 600)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
     let mut vals: Vec<f64> = series.iter().flat_map(|s| s.1.iter().copied()).collect();
     if let Some(p) = paper {
@@ -423,4 +555,59 @@ pub fn change_bars(
         .map_err(e)?;
     root.present().map_err(e)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_contact_view_zooms_to_a_small_zone_with_context() {
+        // The gmsh Hertz example: a 20 mm interface, contact over |x| <= 0.105 mm.
+        let points: Vec<(f64, f64)> = (0..=2000)
+            .map(|k| {
+                let x = -10.0 + 20.0 * k as f64 / 2000.0;
+                (x, (1.0 - (x / 0.105).powi(2)).max(0.0).sqrt())
+            })
+            .collect();
+        let line = |pts: Vec<(f64, f64)>| Line {
+            label: "press".into(),
+            points: pts,
+            colour: palette(0),
+            dashed: false,
+        };
+        let v = contact_view(&[line(points.clone())]).unwrap();
+        // Zone [-0.1, 0.1] (the nodes inside), 2 % of 20 mm = 0.4 mm context each side.
+        assert!(v.0 < -0.1 && v.1 > 0.1 && v.1 - v.0 < 1.2, "{v:?}");
+        // A zone over most of the interface: no zoom.
+        let wide: Vec<(f64, f64)> = points.iter().map(|p| (p.0, 1.0 + p.1)).collect();
+        assert!(contact_view(&[line(wide)]).is_none());
+        // No contact: no zoom.
+        let none: Vec<(f64, f64)> = points.iter().map(|p| (p.0, 0.0)).collect();
+        assert!(contact_view(&[line(none)]).is_none());
+    }
+
+    /// psi = 2 - r on a fan of triangles around the origin: the isoline psi = 1 crosses each
+    /// triangle's two radial edges at r = 1 exactly (psi linear along them).
+    #[test]
+    fn the_triangle_isoline_is_where_psi_is_one() {
+        let k = 12;
+        let mut nodes = vec![[0.0, 0.0]];
+        for i in 0..k {
+            let t = 2.0 * std::f64::consts::PI * i as f64 / k as f64;
+            nodes.push([2.0 * t.cos(), 2.0 * t.sin()]);
+        }
+        let tris: Vec<[usize; 3]> = (0..k).map(|i| [0, 1 + i, 1 + (i + 1) % k]).collect();
+        let psi: Vec<f64> = nodes
+            .iter()
+            .map(|n| 2.0 - (n[0] * n[0] + n[1] * n[1]).sqrt())
+            .collect();
+        let segs = isoline_triangles(&nodes, &tris, &psi, 1.0);
+        assert_eq!(segs.len(), k);
+        for (a, b) in segs {
+            for p in [a, b] {
+                assert!(((p.0 * p.0 + p.1 * p.1).sqrt() - 1.0).abs() < 1e-12);
+            }
+        }
+    }
 }

@@ -1,7 +1,8 @@
 //! The plots of `tribo fatigue`: the S-N diagram (log-log) and the limiting-state diagram.
 
 use super::{DiagramReport, FitReport};
-use crate::output::plot::register_font;
+use crate::output::canvas::Canvas;
+use crate::output::plot::{register_font, title_size};
 use plotters::prelude::*;
 use std::path::Path;
 use tribo::analysis::woehler::{Life, Load};
@@ -45,7 +46,7 @@ fn measure_label(r: &FitReport) -> &'static str {
 /// range, and the maximum-likelihood curve with its fatigue limit.
 pub fn woehler(path: &Path, r: &FitReport) -> Result<(), String> {
     register_font()?;
-    let root = BitMapBackend::new(path, (960, 720)).into_drawing_area();
+    let root = Canvas::new(path, (960, 720)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
     let (mut smin, mut smax) = (f64::INFINITY, 0.0f64);
     let (mut nmin, mut nmax) = (f64::INFINITY, 0.0f64);
@@ -60,16 +61,14 @@ pub fn woehler(path: &Path, r: &FitReport) -> Result<(), String> {
         10f64.powf((nmax.log10() + 0.3).ceil()),
     );
     let (slo, shi) = (smin / 1e6 * 0.85, smax / 1e6 * 1.15);
+    let caption = format!(
+        "Woehler curve {} ({}): {}",
+        r.kind.symbol(),
+        r.limit_symbol,
+        r.data
+    );
     let mut chart = ChartBuilder::on(&root)
-        .caption(
-            format!(
-                "Woehler curve {} ({}): {}",
-                r.kind.symbol(),
-                r.limit_symbol,
-                r.data
-            ),
-            (FAMILY, 18),
-        )
+        .caption(&caption, (FAMILY, title_size(&caption, 18.0, 960)))
         .margin(20)
         .x_label_area_size(55)
         .y_label_area_size(75)
@@ -188,7 +187,7 @@ pub fn woehler(path: &Path, r: &FitReport) -> Result<(), String> {
 /// with its ray to the boundary.
 pub fn limit_diagram(path: &Path, r: &DiagramReport) -> Result<(), String> {
     register_font()?;
-    let root = BitMapBackend::new(path, (900, 760)).into_drawing_area();
+    let root = Canvas::new(path, (900, 760)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
     let d = &r.diagram;
     let pts: Vec<(f64, f64)> = d
@@ -203,11 +202,9 @@ pub fn limit_diagram(path: &Path, r: &DiagramReport) -> Result<(), String> {
         ymax = ymax.max(c.stress_ratio).max(c.boundary_stress_ratio);
     }
     let (xmax, ymax) = (xmax * 1.15, ymax * 1.4);
+    let caption = format!("Limiting states, mechano-rolling fatigue: {}", r.title);
     let mut chart = ChartBuilder::on(&root)
-        .caption(
-            format!("Limiting states, mechano-rolling fatigue: {}", r.title),
-            (FAMILY, 18),
-        )
+        .caption(&caption, (FAMILY, title_size(&caption, 18.0, 900)))
         .margin(20)
         .x_label_area_size(55)
         .y_label_area_size(75)

@@ -10,6 +10,7 @@
 //! an incomplete run.
 
 pub mod back_effect;
+pub mod canvas;
 pub mod fields;
 pub mod plot;
 pub mod stress;
@@ -48,6 +49,24 @@ pub const STRESS_FILES: [&str; 4] = [
     "von_mises_y0.png",
 ];
 
+/// Sections in the plane x = 0, written besides those in y = 0 when the friction traction
+/// acts mainly along y (sliding or a tangential force along y): the plane y = 0 then misses
+/// the plane in which friction acts.
+pub const STRESS_X0_FILES: [&str; 2] = ["sigma_yy_x0.png", "von_mises_x0.png"];
+
+/// Whether the tangential traction of `out` acts mainly along y (|Q_y| > |Q_x|).
+pub fn traction_along_y(out: &Outcome) -> bool {
+    out.tangential.as_ref().is_some_and(|t| {
+        let (qx, qy) = t.solution.tangential_force;
+        qy.abs() > qx.abs()
+    })
+}
+
+/// The psi section of a criterion in the plane x = 0 (with [`STRESS_X0_FILES`]).
+pub fn damage_plot_name_x0(name: &str) -> String {
+    format!("psi_{}_x0.png", safe_name(name))
+}
+
 /// Names of the files a run of this outcome writes.
 pub fn files(out: &Outcome) -> Vec<String> {
     let mut f: Vec<String> = FILES.iter().map(|f| f.to_string()).collect();
@@ -57,8 +76,12 @@ pub fn files(out: &Outcome) -> Vec<String> {
     if out.tangential.is_some() {
         f.extend(TANGENTIAL_FILES.iter().map(|f| f.to_string()));
     }
+    let x0 = traction_along_y(out);
     if out.stress.is_some() {
         f.extend(STRESS_FILES.iter().map(|f| f.to_string()));
+        if x0 {
+            f.extend(STRESS_X0_FILES.iter().map(|f| f.to_string()));
+        }
     }
     if let Some(d) = &out.damage {
         f.extend(
@@ -66,6 +89,13 @@ pub fn files(out: &Outcome) -> Vec<String> {
                 .iter()
                 .map(|c| damage_plot_name(&c.assessment.name)),
         );
+        if x0 && out.stress.is_some() {
+            f.extend(
+                d.criteria
+                    .iter()
+                    .map(|c| damage_plot_name_x0(&c.assessment.name)),
+            );
+        }
         if d.study.is_some() {
             f.extend(STUDY_FILES.iter().map(|f| f.to_string()));
         }
@@ -575,6 +605,7 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                 &stress::plane_y(st, sxx, iy0),
                 true,
                 ("sigma_xx", 1e9, "GPa"),
+                plot::SectionScale::Signed,
                 &format!("{y0}, {}", case.title),
             )
         })?;
@@ -586,6 +617,7 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                 &stress::plane_z(st, sxx, iz),
                 false,
                 ("sigma_xx", 1e9, "GPa"),
+                plot::SectionScale::Signed,
                 &format!(
                     "layer z = {:.4} mm nearest {}, {}",
                     1e3 * g.z[iz],
@@ -602,9 +634,47 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                 &stress::plane_y(st, vm, iy0),
                 true,
                 ("von Mises", 1e9, "GPa"),
+                plot::SectionScale::Sequential,
                 &format!("{y0}, {}", case.title),
             )
         })?;
+        if traction_along_y(out) {
+            let Some(syy) = get("sigma_yy") else {
+                return Err(CliError::Output {
+                    what: "stress sections".into(),
+                    detail: "missing sigma_yy".into(),
+                });
+            };
+            let ix0 = stress::nearest(&g.x, 0.0);
+            let x0 = format!("plane x = {:.4} mm (friction along y)", 1e3 * g.x[ix0]);
+            for (file, values, quantity, scale) in [
+                (
+                    STRESS_X0_FILES[0],
+                    syy,
+                    "sigma_yy",
+                    plot::SectionScale::Signed,
+                ),
+                (
+                    STRESS_X0_FILES[1],
+                    vm,
+                    "von Mises",
+                    plot::SectionScale::Sequential,
+                ),
+            ] {
+                plot_atomic(dir, file, |p| {
+                    plot::section(
+                        p,
+                        (&g.y, "y"),
+                        (&g.z, "z"),
+                        &stress::plane_x(st, values, ix0),
+                        true,
+                        (quantity, 1e9, "GPa"),
+                        scale,
+                        &format!("{x0}, {}", case.title),
+                    )
+                })?;
+            }
+        }
     }
     if let (Some(d), Some(st)) = (&out.damage, &out.stress) {
         let g = &st.field.grid;
@@ -620,6 +690,7 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                     &stress::plane_y(st, &c.psi, iy0),
                     true,
                     (&format!("psi_{name}"), 1.0, "1 (dangerous where >= 1)"),
+                    plot::SectionScale::Damage,
                     &format!(
                         "y = {:.3} mm, V = {:.3e} m^3, Psi = {:.3e} m^3, max {:.3}",
                         1e3 * g.y[iy0],
@@ -629,6 +700,28 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
                     ),
                 )
             })?;
+            if traction_along_y(out) {
+                let ix0 = stress::nearest(&g.x, 0.0);
+                plot_atomic(dir, &damage_plot_name_x0(name), |p| {
+                    plot::section(
+                        p,
+                        (&g.y, "y"),
+                        (&g.z, "z"),
+                        &stress::plane_x(st, &c.psi, ix0),
+                        true,
+                        (&format!("psi_{name}"), 1.0, "1 (dangerous where >= 1)"),
+                        plot::SectionScale::Damage,
+                        &format!(
+                            "x = {:.3} mm (friction along y), V = {:.3e} m^3, Psi = {:.3e} m^3, \
+                             max {:.3}",
+                            1e3 * g.x[ix0],
+                            r.volume,
+                            r.damageability,
+                            r.psi_max
+                        ),
+                    )
+                })?;
+            }
         }
     }
     if let Some(study) = summary.damage.as_ref().and_then(|d| d.study.as_ref()) {

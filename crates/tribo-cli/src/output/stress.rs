@@ -126,6 +126,18 @@ pub fn plane_y(st: &Stress, values: &[f64], iy: usize) -> Vec<f64> {
     out
 }
 
+/// The plane `x = x[ix]` of `values`: (y fastest, z rows).
+pub fn plane_x(st: &Stress, values: &[f64], ix: usize) -> Vec<f64> {
+    let g = &st.field.grid;
+    let mut out = Vec::with_capacity(g.y.len() * g.z.len());
+    for iz in 0..g.z.len() {
+        for iy in 0..g.y.len() {
+            out.push(values[g.index(ix, iy, iz)]);
+        }
+    }
+    out
+}
+
 /// The plane `z = z[iz]` of `values`: (x fastest, y rows).
 pub fn plane_z(st: &Stress, values: &[f64], iz: usize) -> Vec<f64> {
     let g = &st.field.grid;

@@ -1044,6 +1044,14 @@ pub struct DamageCriterionSummary {
     /// accumulation then depends on the window).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cycle_window_note: Option<String>,
+    /// The faces of the field box ("x-", "x+", "y-", "y+", "top", "bottom") that the
+    /// dangerous region (psi >= 1) reaches: V and Psi then depend on the box (empty list
+    /// omitted).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub box_faces: Vec<&'static str>,
+    /// The note that says so, as on stderr.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub box_note: Option<String>,
 }
 
 /// One sigma_b / p0 of the Sec. 6 study: changes against the loading n, %.
@@ -1120,6 +1128,8 @@ impl DamageSummary {
                     average: r.average,
                     cycle: c.cycle.as_ref().map(|c| c.0.clone()),
                     cycle_window_note: c.window_note.clone(),
+                    box_faces: c.box_faces.clone(),
+                    box_note: c.box_note.clone(),
                     cycles: c.cycle.as_ref().map(|c| c.1),
                 }
             })

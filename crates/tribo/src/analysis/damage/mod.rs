@@ -68,6 +68,7 @@
 //! The tests compare this with the integration on disc meshes and report the order.
 
 mod cycle;
+mod faces;
 mod mesh;
 mod quantity;
 mod study;
@@ -79,6 +80,7 @@ pub use cycle::{
     accumulate, accumulate_psi, trapezoid_weights, CycleDamage, CyclesDamage, LoadHistory,
     RollingContact, RotatingBentShaft, StateDamage,
 };
+pub use faces::{faces_reached, BoxFace};
 pub use mesh::{dangerous_region, DamageMesh, DangerousRegion, Execution};
 pub use quantity::{
     assess, plane_strain_stress, relative_damage, Component, DamageAssessment, DamageQuantity,
