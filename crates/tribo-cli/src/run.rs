@@ -473,16 +473,17 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
         }
     }
     if let tribo::solvers::tangential::TangentialLoading::Force { magnitude, .. } = fr.loading {
-        // The library refuses |Q| >= f F_N; within rounding of f F_N the stick zone vanishes
-        // first, so the same rule is applied here with a relative margin of 1e-9.
+        // The library's rule, |Q| < (1 - 1e-10) f F_N (PARTIAL_SLIP_LIMIT: within 1e-10 of
+        // f F_N the stick zone carries less than the force tolerance), checked here first.
         let limit = fr.coefficient * out.solution.normal_load;
-        if magnitude >= limit * (1.0 - 1e-9) {
+        let largest = tribo::solvers::tangential::PARTIAL_SLIP_LIMIT * limit;
+        if magnitude >= largest {
             return Err(crate::error::CliError::field(
                 "contact.tangential_load",
                 magnitude,
                 format!(
-                    "partial slip needs |Q| < f F_N = {limit:.6e} N; at or above it the contact \
-                     slides (use sliding = true)"
+                    "partial slip needs |Q| < (1 - 1e-10) f F_N = {largest:.6e} N (f F_N = \
+                     {limit:.6e} N); at or above f F_N the contact slides (use sliding = true)"
                 ),
             ));
         }

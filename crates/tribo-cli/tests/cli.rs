@@ -1391,3 +1391,45 @@ fn free_traction_direction_solves_the_2d_problem() {
         "contact.traction_direction",
     );
 }
+
+/// The documented range of partial slip is the open 0 < |Q| < f F_N (up to 1 - 1e-10):
+/// Q = 0.9999 f F_N runs with the load-parallel solver (before: it stopped at 0.9997 with
+/// "non-positive curvature") on the sphere and on the paper's roller/shaft (Q along the
+/// rolling direction y), carries Q to the solver tolerance and writes no NaN.
+#[test]
+fn partial_slip_runs_up_to_gross_slip() {
+    let roller = PAPER.replace("[grid]", "friction = 0.2\nTANGENTIAL\n[grid]");
+    for (name, base, friction, load) in [
+        (
+            "sphere",
+            format!("{SPHERE}friction = 0.3\nTANGENTIAL\n[grid]\nn = 32\n"),
+            0.3,
+            100.0,
+        ),
+        ("roller", roller, 0.2, 2000.0),
+    ] {
+        let q = 0.9999 * friction * load;
+        let angle = if name == "roller" {
+            "tangential_angle_deg = 90\n"
+        } else {
+            ""
+        };
+        let text = base.replace("TANGENTIAL\n", &format!("tangential_load = {q}\n{angle}"));
+        let (o, out, _d) = run_case(&text, &[], &[]);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+        let s = read_json(&out.join("summary.json"));
+        let force = &s["tangential"]["tangential_force"];
+        let (qx, qy) = (force[0].as_f64().unwrap(), force[1].as_f64().unwrap());
+        let (along, across) = if name == "roller" { (qy, qx) } else { (qx, qy) };
+        // The library's force tolerance is 1e-10; 1e-9 leaves room for the sums.
+        assert!((along / q - 1.0).abs() < 1e-9, "{name}: {force}");
+        assert!(across.abs() < 1e-9 * q, "{name}: {force}");
+        let csv = std::fs::read_to_string(out.join("traction.csv")).unwrap();
+        assert!(!csv.contains("NaN") && !csv.contains("inf"));
+    }
+    // At and above the documented limit: exit 2 naming the field.
+    let text = format!("{SPHERE}friction = 0.3\ntangential_load = 30.0\n[grid]\nn = 16\n");
+    let (o, _, _d) = run_case(&text, &[], &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("contact.tangential_load"));
+}
