@@ -1433,3 +1433,44 @@ fn partial_slip_runs_up_to_gross_slip() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("contact.tangential_load"));
 }
+
+/// A height map coarser than the contact grid is noted on stderr and in summary.json
+/// (`gap.note`): MAP's 3 x 3 nodes 0.1 mm apart under 8 x 8 elements of 25 um. The shipped
+/// example's map (20 um nodes under 21.9 um elements) is not.
+#[test]
+fn coarse_height_maps_are_noted() {
+    // A bowl of 0.1 um per node step, touching at the centre.
+    let bowl = "1,0.5,1\n0.5,0,0.5\n1,0.5,1\n";
+    let (o, out, _d) = run_case(MAP, &[("map.csv", bowl)], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let note = s["gap"]["note"].as_str().unwrap();
+    assert!(note.contains("coarser than the contact grid"), "{note}");
+    assert!(note.contains("body1"), "{note}");
+    // Without --quiet the note goes to stderr.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("case.toml"), MAP).unwrap();
+    std::fs::write(dir.path().join("map.csv"), bowl).unwrap();
+    let case = dir.path().join("case.toml");
+    let o = tribo(
+        &[
+            "run",
+            case.to_str().unwrap(),
+            "-o",
+            dir.path().join("out").to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("coarser than the contact grid"),
+        "{}",
+        stderr(&o)
+    );
+    // The example's map resolves the grid: no note.
+    let text = stdout(&tribo(&["example", "height-map"], None));
+    let (o, out, _d) = run_case(&text, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    assert!(s["gap"].get("note").is_none(), "{}", s["gap"]);
+}
