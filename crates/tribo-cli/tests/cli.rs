@@ -1439,8 +1439,9 @@ fn partial_slip_runs_up_to_gross_slip() {
 /// example's map (20 um nodes under 21.9 um elements) is not.
 #[test]
 fn coarse_height_maps_are_noted() {
-    // A bowl of 0.1 um per node step, touching at the centre.
-    let bowl = "1,0.5,1\n0.5,0,0.5\n1,0.5,1\n";
+    // A paraboloid of radius 0.5 mm (10 um at one node spacing, 0.1 mm): contact radius
+    // 32 um under 10 N, inside the +-0.1 mm window.
+    let bowl = "20,10,20\n10,0,10\n20,10,20\n";
     let (o, out, _d) = run_case(MAP, &[("map.csv", bowl)], &[]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let s = read_json(&out.join("summary.json"));
