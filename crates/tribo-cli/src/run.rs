@@ -53,6 +53,8 @@ pub struct Prepared {
     pub composite_modulus: f64,
     /// Hertz, where the gap is Hertzian.
     pub hertz: Option<HertzReference>,
+    /// A note on a height map coarser than the contact grid ([`height_map_note`]).
+    pub gap_note: Option<String>,
 }
 
 /// A solved case.
@@ -332,11 +334,13 @@ pub fn prepare(case: &Case) -> CliResult<Prepared> {
             &case.body2.profile("body2")?,
         )?,
     };
+    let gap_note = height_map_note(case, &grid);
     Ok(Prepared {
         grid,
         initial_gap: gap,
         composite_modulus: e_star,
         hertz,
+        gap_note,
     })
 }
 
@@ -346,6 +350,36 @@ fn load_field(loading: NormalLoading) -> (&'static str, String) {
         NormalLoading::Force(f) => ("contact.load", format!("{f:e} N")),
         NormalLoading::Approach(d) => ("contact.approach", format!("{d:e} m")),
     }
+}
+
+/// The note of a height map whose node spacing is coarser than the contact grid's elements:
+/// the interpolation (Keys' bicubic, [`tribo::geometry::HeightMap::height`]) then invents the
+/// surface between the nodes, and features shorter than a few node spacings are lost.
+pub fn height_map_note(case: &Case, grid: &SurfaceGrid) -> Option<String> {
+    let notes: Vec<String> = [("body1", &case.body1), ("body2", &case.body2)]
+        .into_iter()
+        .filter_map(|(name, body)| match &body.shape {
+            Shape::Surface(tribo::geometry::SurfaceProfile::HeightMap(m)) => {
+                let (sx, sy) = m.spacing();
+                // 1e-9: a map spaced like the grid up to round-off is not coarser.
+                (sx > grid.dx() * (1.0 + 1e-9) || sy > grid.dy() * (1.0 + 1e-9)).then(|| {
+                    format!(
+                        "the height map of {name} ({} x {} nodes, spacing {sx:.3e} x {sy:.3e} \
+                         m) is coarser than the contact grid ({:.3e} x {:.3e} m): the surface \
+                         between its nodes is interpolated (bicubic), so features shorter than \
+                         a few node spacings are not resolved; sample it at least as finely as \
+                         the grid",
+                        m.nx(),
+                        m.ny(),
+                        grid.dx(),
+                        grid.dy()
+                    )
+                })
+            }
+            _ => None,
+        })
+        .collect();
+    (!notes.is_empty()).then(|| notes.join("; "))
 }
 
 /// A spinner on stderr while the solver runs (hidden with `quiet` or when stderr is not a
@@ -366,6 +400,9 @@ pub fn spinner(quiet: bool, message: String) -> ProgressBar {
 
 /// Solve the prepared case with the case's method, and compare with Hertz.
 pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome> {
+    if let (Some(note), false) = (&prepared.gap_note, quiet) {
+        eprintln!("note: {note}");
+    }
     let problem = NormalContactProblem {
         grid: &prepared.grid,
         initial_gap: &prepared.initial_gap,
@@ -577,16 +614,17 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
         }
     }
     if let tribo::solvers::tangential::TangentialLoading::Force { magnitude, .. } = fr.loading {
-        // The library refuses |Q| >= f F_N; within rounding of f F_N the stick zone vanishes
-        // first, so the same rule is applied here with a relative margin of 1e-9.
+        // The library's rule, |Q| < (1 - 1e-10) f F_N (PARTIAL_SLIP_LIMIT: within 1e-10 of
+        // f F_N the stick zone carries less than the force tolerance), checked here first.
         let limit = fr.coefficient * out.solution.normal_load;
-        if magnitude >= limit * (1.0 - 1e-9) {
+        let largest = tribo::solvers::tangential::PARTIAL_SLIP_LIMIT * limit;
+        if magnitude >= largest {
             return Err(crate::error::CliError::field(
                 "contact.tangential_load",
                 magnitude,
                 format!(
-                    "partial slip needs |Q| < f F_N = {limit:.6e} N; at or above it the contact \
-                     slides (use sliding = true)"
+                    "partial slip needs |Q| < (1 - 1e-10) f F_N = {largest:.6e} N (f F_N = \
+                     {limit:.6e} N); at or above f F_N the contact slides (use sliding = true)"
                 ),
             ));
         }

@@ -1751,3 +1751,87 @@ fn the_default_field_is_the_interpolated_fft_and_dry_run_estimates_it() {
     assert!(printed.contains("field stage: about"), "{printed}");
     assert!(printed.contains(" MiB"), "{printed}");
 }
+
+/// The documented range of partial slip is the open 0 < |Q| < f F_N (up to 1 - 1e-10):
+/// Q = 0.9999 f F_N runs with the load-parallel solver (before: it stopped at 0.9997 with
+/// "non-positive curvature") on the sphere and on the paper's roller/shaft (Q along the
+/// rolling direction y), carries Q to the solver tolerance and writes no NaN.
+#[test]
+fn partial_slip_runs_up_to_gross_slip() {
+    let roller = PAPER.replace("[grid]", "friction = 0.2\nTANGENTIAL\n[grid]");
+    for (name, base, friction, load) in [
+        (
+            "sphere",
+            format!("{SPHERE}friction = 0.3\nTANGENTIAL\n[grid]\nn = 32\n"),
+            0.3,
+            100.0,
+        ),
+        ("roller", roller, 0.2, 2000.0),
+    ] {
+        let q = 0.9999 * friction * load;
+        let angle = if name == "roller" {
+            "tangential_angle_deg = 90\n"
+        } else {
+            ""
+        };
+        let text = base.replace("TANGENTIAL\n", &format!("tangential_load = {q}\n{angle}"));
+        let (o, out, _d) = run_case(&text, &[], &[]);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+        let s = read_json(&out.join("summary.json"));
+        let force = &s["tangential"]["tangential_force"];
+        let (qx, qy) = (force[0].as_f64().unwrap(), force[1].as_f64().unwrap());
+        let (along, across) = if name == "roller" { (qy, qx) } else { (qx, qy) };
+        // The library's force tolerance is 1e-10; 1e-9 leaves room for the sums.
+        assert!((along / q - 1.0).abs() < 1e-9, "{name}: {force}");
+        assert!(across.abs() < 1e-9 * q, "{name}: {force}");
+        let csv = std::fs::read_to_string(out.join("traction.csv")).unwrap();
+        assert!(!csv.contains("NaN") && !csv.contains("inf"));
+    }
+    // At and above the documented limit: exit 2 naming the field.
+    let text = format!("{SPHERE}friction = 0.3\ntangential_load = 30.0\n[grid]\nn = 16\n");
+    let (o, _, _d) = run_case(&text, &[], &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("contact.tangential_load"));
+}
+
+/// A height map coarser than the contact grid is noted on stderr and in summary.json
+/// (`gap.note`): MAP's 3 x 3 nodes 0.1 mm apart under 8 x 8 elements of 25 um. The shipped
+/// example's map (20 um nodes under 21.9 um elements) is not.
+#[test]
+fn coarse_height_maps_are_noted() {
+    // A paraboloid of radius 0.5 mm (10 um at one node spacing, 0.1 mm): contact radius
+    // 32 um under 10 N, inside the +-0.1 mm window.
+    let bowl = "20,10,20\n10,0,10\n20,10,20\n";
+    let (o, out, _d) = run_case(MAP, &[("map.csv", bowl)], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    let note = s["gap"]["note"].as_str().unwrap();
+    assert!(note.contains("coarser than the contact grid"), "{note}");
+    assert!(note.contains("body1"), "{note}");
+    // Without --quiet the note goes to stderr.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("case.toml"), MAP).unwrap();
+    std::fs::write(dir.path().join("map.csv"), bowl).unwrap();
+    let case = dir.path().join("case.toml");
+    let o = tribo(
+        &[
+            "run",
+            case.to_str().unwrap(),
+            "-o",
+            dir.path().join("out").to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("coarser than the contact grid"),
+        "{}",
+        stderr(&o)
+    );
+    // The example's map resolves the grid: no note.
+    let text = stdout(&tribo(&["example", "height-map"], None));
+    let (o, out, _d) = run_case(&text, &[], &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let s = read_json(&out.join("summary.json"));
+    assert!(s["gap"].get("note").is_none(), "{}", s["gap"]);
+}

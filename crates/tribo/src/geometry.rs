@@ -291,7 +291,9 @@ impl Roller {
 /// Heights on a regular `nx * ny` grid of nodes with spacing `dx`, `dy` (m), centred on the
 /// origin: node `(i, j)` lies at `x_i = (i - (nx-1)/2) dx`, `y_j = (j - (ny-1)/2) dy` and its
 /// height (m) is `heights[j * nx + i]` (x varies fastest, as in [`crate::grid`]). Between
-/// nodes the height is interpolated bilinearly; outside the node rectangle it is undefined.
+/// nodes the height is interpolated by Keys' bicubic convolution (see [`HeightMap::height`]):
+/// C1, so that a coarse map makes no kinks (a bilinear map's kinks along the node lines put
+/// cross-shaped ridges into the pressure); outside the node rectangle it is undefined.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct HeightMap {
     nx: usize,
@@ -373,7 +375,20 @@ impl HeightMap {
         )
     }
 
-    /// Bilinearly interpolated height at (x, y), m; `None` outside the node rectangle.
+    /// The height at (x, y), m, by Keys' cubic convolution with a = -1/2 (the Catmull-Rom
+    /// spline; R. G. Keys, "Cubic convolution interpolation for digital image processing",
+    /// IEEE Trans. ASSP 29 (1981) 1153, eq. (15)), as a tensor product in x and y; `None`
+    /// outside the node rectangle.
+    ///
+    /// Along each direction, between nodes k and k+1 with t in [0, 1] and the neighbours
+    /// h_{k-1}, h_{k+2}: h(t) = h_k + t (h_{k+1} - h_{k-1})/2 + t^2 (h_{k-1} - 5/2 h_k +
+    /// 2 h_{k+1} - 1/2 h_{k+2}) + t^3 (3/2 (h_k - h_{k+1}) + 1/2 (h_{k+2} - h_{k-1})). The
+    /// interpolant passes through the nodes, is C1 (its slope at a node is the central
+    /// difference there, from either side) and reproduces quadratics exactly (Keys' third-order
+    /// accuracy). At the map's borders the missing neighbour is Keys' boundary condition
+    /// (eq. (25)), h_{-1} = 3 h_0 - 3 h_1 + h_2 (and the mirror at the far end), the quadratic
+    /// through the three border nodes, so quadratics stay exact up to the border; a direction
+    /// with only 2 nodes extends linearly (h_{-1} = 2 h_0 - h_1) and is interpolated linearly.
     pub fn height(&self, x: f64, y: f64) -> Option<f64> {
         let (hx, hy) = self.half_extents();
         // A relative slack so that points on the border, up to round-off, count as inside.
@@ -385,14 +400,46 @@ impl HeightMap {
         let fy = ((y + hy) / self.dy).clamp(0.0, (self.ny - 1) as f64);
         let i = (fx.floor() as usize).min(self.nx - 2);
         let j = (fy.floor() as usize).min(self.ny - 2);
-        let tx = fx - i as f64;
-        let ty = fy - j as f64;
-        let h = |i: usize, j: usize| self.heights[j * self.nx + i];
-        Some(
-            (1.0 - ty) * ((1.0 - tx) * h(i, j) + tx * h(i + 1, j))
-                + ty * ((1.0 - tx) * h(i, j + 1) + tx * h(i + 1, j + 1)),
-        )
+        let (tx, ty) = (fx - i as f64, fy - j as f64);
+        // Four rows j-1 .. j+2 (extended at the borders), each interpolated along x.
+        let row = |jj: usize| -> f64 {
+            let h = |ii: usize| self.heights[jj * self.nx + ii];
+            catmull_rom(extended(self.nx, i, h), tx)
+        };
+        Some(catmull_rom(extended(self.ny, j, row), ty))
     }
+}
+
+/// The four values at nodes k-1, k, k+1, k+2 of a line of `n` nodes (0 <= k <= n - 2), those
+/// beyond the ends given by Keys' boundary condition (quadratic extrapolation; linear for
+/// n = 2). `value` gives the value at a node 0..n.
+fn extended(n: usize, k: usize, value: impl Fn(usize) -> f64) -> [f64; 4] {
+    let v1 = value(k);
+    let v2 = value(k + 1);
+    let v0 = if k > 0 {
+        value(k - 1)
+    } else if n >= 3 {
+        3.0 * v1 - 3.0 * v2 + value(2)
+    } else {
+        2.0 * v1 - v2
+    };
+    let v3 = if k + 2 < n {
+        value(k + 2)
+    } else if n >= 3 {
+        3.0 * v2 - 3.0 * v1 + value(k - 1)
+    } else {
+        2.0 * v2 - v1
+    };
+    [v0, v1, v2, v3]
+}
+
+/// Keys' cubic convolution (a = -1/2, Catmull-Rom) between p[1] (t = 0) and p[2] (t = 1).
+fn catmull_rom(p: [f64; 4], t: f64) -> f64 {
+    let [p0, p1, p2, p3] = p;
+    p1 + 0.5
+        * t
+        * ((p2 - p0)
+            + t * ((2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) + t * (3.0 * (p1 - p2) + p3 - p0)))
 }
 
 /// The surface profile of one body, in the convention of this module.
@@ -575,6 +622,166 @@ mod tests {
             assert!((m.height(x, y).unwrap() - f(x, y)).abs() < 1e-12, "{x} {y}");
         }
         assert_eq!(m.height(1.01, 0.0), None);
+    }
+
+    /// A map of `n` x `n` nodes over |x|, |y| <= `half` (m) sampling `f`.
+    fn sampled(n: usize, half: f64, f: impl Fn(f64, f64) -> f64) -> HeightMap {
+        let d = 2.0 * half / (n - 1) as f64;
+        let mut h = Vec::with_capacity(n * n);
+        for j in 0..n {
+            for i in 0..n {
+                h.push(f((i as f64) * d - half, (j as f64) * d - half));
+            }
+        }
+        HeightMap::new("m", n, n, [d, d], h).unwrap()
+    }
+
+    /// Keys' cubic convolution reproduces every product of quadratics in x and y exactly,
+    /// in the interior and (by Keys' quadratic boundary condition) in the border cells, on a
+    /// map with unequal spacings; also with 3 nodes (the border condition alone) and 2 nodes
+    /// (linear). Round-off bound: 1e-12 of the largest value. Bilinear interpolation misses
+    /// the x^2 term by up to dx^2/4 = 0.0625 here.
+    #[test]
+    fn height_map_reproduces_quadratics_up_to_the_border() {
+        let f = |x: f64, y: f64| {
+            1.0 + 2.0 * x - 3.0 * y + 0.7 * x * x - 1.1 * x * y + 0.4 * y * y + 0.3 * x * x * y * y
+                - 0.2 * x * x * y
+        };
+        for (nx, ny) in [(7, 5), (3, 4), (3, 3)] {
+            let (dx, dy) = (0.5, 0.3);
+            let (cx, cy) = (0.5 * (nx - 1) as f64, 0.5 * (ny - 1) as f64);
+            let mut h = Vec::new();
+            for j in 0..ny {
+                for i in 0..nx {
+                    h.push(f((i as f64 - cx) * dx, (j as f64 - cy) * dy));
+                }
+            }
+            let m = HeightMap::new("m", nx, ny, [dx, dy], h).unwrap();
+            let (hx, hy) = m.half_extents();
+            for k in 0..400 {
+                // A deterministic scatter over the whole map, borders included.
+                let u = ((k as f64 * 0.618_033_988_75) % 1.0) * 2.0 - 1.0;
+                let v = ((k as f64 * 0.754_877_666_25) % 1.0) * 2.0 - 1.0;
+                let (x, y) = (u * hx, v * hy);
+                let got = m.height(x, y).unwrap();
+                assert!(
+                    (got - f(x, y)).abs() < 1e-12 * 10.0,
+                    "{nx}x{ny} at ({x}, {y}): {got} vs {}",
+                    f(x, y)
+                );
+            }
+            assert!((m.height(hx, -hy).unwrap() - f(hx, -hy)).abs() < 1e-12 * 10.0);
+        }
+        let lin = |x: f64, y: f64| 1.0 + 2.0 * x + 3.0 * y + 4.0 * x * y;
+        let m = HeightMap::new(
+            "m",
+            2,
+            2,
+            [1.0, 1.0],
+            vec![
+                lin(-0.5, -0.5),
+                lin(0.5, -0.5),
+                lin(-0.5, 0.5),
+                lin(0.5, 0.5),
+            ],
+        )
+        .unwrap();
+        assert!((m.height(0.1, -0.3).unwrap() - lin(0.1, -0.3)).abs() < 1e-14);
+    }
+
+    /// The interpolant is C1: across every node line (x = x_i, y = y_j) of a map of rough
+    /// data, the one-sided slopes over e = 1e-7 of the spacing agree to O(e h'') (bound:
+    /// 1e-4 of max|h| / spacing, about 1e3 times that term and 1e3 times below the slope
+    /// jump of a bilinear map, which is of order max|h| / spacing).
+    #[test]
+    fn height_map_is_c1_across_cell_edges() {
+        let (nx, ny, d) = (6, 5, 0.2);
+        let h: Vec<f64> = (0..nx * ny)
+            .map(|k| ((k * 7919) % 13) as f64 / 13.0 - 0.5)
+            .collect();
+        let m = HeightMap::new("m", nx, ny, [d, d], h).unwrap();
+        let (hx, hy) = m.half_extents();
+        let e = 1e-7 * d;
+        let bound = 1e-4 * 0.5 / d;
+        for i in 1..nx - 1 {
+            let x = i as f64 * d - hx;
+            for y in [-0.33, -0.05, 0.17, 0.31] {
+                let c = m.height(x, y).unwrap();
+                let right = (m.height(x + e, y).unwrap() - c) / e;
+                let left = (c - m.height(x - e, y).unwrap()) / e;
+                assert!(
+                    (right - left).abs() < bound,
+                    "x = {x}, y = {y}: {left} vs {right}"
+                );
+            }
+        }
+        for j in 1..ny - 1 {
+            let y = j as f64 * d - hy;
+            for x in [-0.41, -0.02, 0.23, 0.44] {
+                let c = m.height(x, y).unwrap();
+                let up = (m.height(x, y + e).unwrap() - c) / e;
+                let down = (c - m.height(x, y - e).unwrap()) / e;
+                assert!(
+                    (up - down).abs() < bound,
+                    "x = {x}, y = {y}: {down} vs {up}"
+                );
+            }
+        }
+    }
+
+    /// The pressure under a coarse map of a smooth surface agrees with a fine map's: the
+    /// `height-map` example's surface (a 10 mm sphere with a 0.05 um waviness of wavelength
+    /// 0.4 mm, 50 N on a steel flat, 48 x 48 elements over +-0.35 mm) sampled at 9 x 9 and at
+    /// 81 x 81 nodes over +-0.4 mm. The sphere alone: Keys is exact for the paraboloid, so the
+    /// pressures agree to the solver's tolerance (bilinear: the 9 x 9 peak is far off). With
+    /// the waviness, sampled at only 4 nodes per wavelength, the peaks agree within 2 %
+    /// (measured: 0.986 against 0.994 GPa, 0.8 %; bilinear: 1.38 against 0.99 GPa, 39 %).
+    #[test]
+    fn coarse_and_fine_maps_give_the_same_pressure() {
+        use crate::material::{composite_modulus, ElasticMaterial};
+        use crate::solvers::normal::{
+            solve_normal_cg, NormalContactParams, NormalContactProblem, NormalLoading,
+        };
+        let steel = ElasticMaterial::new(2.01e11, 0.3).unwrap();
+        let e_star = composite_modulus(&steel, &steel);
+        let grid = SurfaceGrid::centred(48, 48, 3.5e-4, 3.5e-4).unwrap();
+        let flat = SurfaceProfile::Quadratic(
+            QuadraticProfile::from_radii("f", [f64::INFINITY; 2], 0.0).unwrap(),
+        );
+        let pressure = |map: HeightMap| -> Vec<f64> {
+            let gap = initial_gap(&grid, &SurfaceProfile::HeightMap(map), &flat).unwrap();
+            let problem = NormalContactProblem {
+                grid: &grid,
+                initial_gap: &gap,
+                composite_modulus: e_star,
+                loading: NormalLoading::Force(50.0),
+            };
+            solve_normal_cg(&problem, &NormalContactParams::default())
+                .unwrap()
+                .pressure
+        };
+        let peak = |p: &[f64]| p.iter().fold(0.0f64, |a, &b| a.max(b));
+        let sphere = |x: f64, y: f64| (x * x + y * y) / (2.0 * 0.01);
+        let wavy = |x: f64, y: f64| {
+            let k = 2.0 * std::f64::consts::PI / 4e-4;
+            sphere(x, y) + 5e-8 * (k * x).cos() * (k * y).cos()
+        };
+        let (coarse, fine) = (
+            pressure(sampled(9, 4e-4, sphere)),
+            pressure(sampled(81, 4e-4, sphere)),
+        );
+        let p0 = peak(&fine);
+        let worst = coarse
+            .iter()
+            .zip(&fine)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(worst < 1e-6 * p0, "sphere: {worst:e} of {p0:e}");
+        let (coarse, fine) = (
+            pressure(sampled(9, 4e-4, wavy)),
+            pressure(sampled(81, 4e-4, wavy)),
+        );
+        let (pc, pf) = (peak(&coarse), peak(&fine));
+        assert!((pc / pf - 1.0).abs() < 0.02, "{pc:e} vs {pf:e}");
     }
 
     #[test]

@@ -855,6 +855,58 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
             src,
         ));
     }
+    // Near gross slip (the whole documented range 0 < Q < f F_N): the stick zone shrinks to
+    // the central elements and the shift tends to Mindlin's finite 3 (2 - nu) f P / (8 G a).
+    for ratio in [0.999, 1.0 - 1e-9] {
+        let problem = TangentialProblem {
+            grid: &grid,
+            pressure: &normal.pressure,
+            friction: f,
+            body1: steel,
+            body2: steel,
+            loading: TangentialLoading::Force {
+                magnitude: ratio * f * normal.normal_load,
+                angle: 0.0,
+            },
+        };
+        let s = solve_tangential(&problem, &TangentialParams::default())?;
+        let case = format!("Cattaneo-Mindlin sphere near gross slip, Q/fP = {ratio}, 96x96");
+        let src = "Cattaneo 1938, Mindlin 1949 (Johnson 1985 sec. 7.1, eq. (7.42))";
+        // The smallest symmetric stick zone of an even grid is the 2 x 2 central elements,
+        // of equivalent radius 2 dx / sqrt(pi) = 1.13 dx: tolerance 1.2 elements.
+        rows.push(ValidationRow::new(
+            &case,
+            "stick radius c / a = (1 - Q/fP)^(1/3)",
+            (1.0 - ratio).cbrt(),
+            (s.stick_area / std::f64::consts::PI).sqrt() / a,
+            ErrorMeasure::Absolute,
+            1.2 * grid.dx() / a,
+            src,
+        ));
+        let shift =
+            2.0 * 3.0 * (2.0 - nu) * f * normal.normal_load * (1.0 - (1.0 - ratio).powf(2.0 / 3.0))
+                / (16.0 * g * a);
+        // As above (load discretization O((dx/a)^2)); observed 2e-3 on 40 x 40 elements.
+        rows.push(ValidationRow::new(
+            &case,
+            "rigid shift W, m",
+            shift,
+            s.shift,
+            ErrorMeasure::Relative,
+            5e-3,
+            src,
+        ));
+        let carried = s.tangential_force.0.hypot(s.tangential_force.1);
+        rows.push(ValidationRow::new(
+            &case,
+            "tangential force carried / Q",
+            1.0,
+            carried / (ratio * f * normal.normal_load),
+            ErrorMeasure::Absolute,
+            1e-9,
+            "the load (solver force tolerance 1e-10, sums' round-off)",
+        ));
+    }
     // The paper's ellipse, Q/fP = 0.5: stick area / contact area = (1 - Q/fP)^(2/3).
     let (curvature, e_star) = paper_case_curvature()?;
     let paper_steel = ElasticMaterial::new(2.01e11, 0.3)?;

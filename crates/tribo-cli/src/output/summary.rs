@@ -208,6 +208,9 @@ pub struct GapInfo {
     /// Angle of x' from x, rad (Hertzian only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub angle: Option<f64>,
+    /// A height map coarser than the contact grid (the note also printed on stderr).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
 }
 
 /// The grid.
@@ -533,6 +536,7 @@ impl Summary {
                     .hertz
                     .map(|h| [h.curvature.a_coefficient, h.curvature.b_coefficient]),
                 angle: p.hertz.map(|h| h.curvature.angle.to_degrees() + 0.0),
+                note: p.gap_note.clone(),
             },
             grid: GridInfo {
                 nx: p.grid.nx(),

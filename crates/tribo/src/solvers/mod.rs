@@ -19,6 +19,9 @@ pub(crate) fn nan_max(a: f64, b: f64) -> f64 {
     }
 }
 
+#[cfg(test)]
+mod near_gross_slip;
+
 pub use normal::{
     solve_normal_active_set, solve_normal_cg, solve_normal_cg_observed, NormalContactParams,
     NormalContactProblem, NormalContactSolution, NormalLoading,

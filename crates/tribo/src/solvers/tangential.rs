@@ -23,6 +23,15 @@
 //! elements with the residual's mean removed (the mean is W; the force stays fixed), elements
 //! that leave the box are projected onto it and slip, slip elements whose slip would reverse
 //! re-enter the stick zone, the conjugate direction is reset when the zones change.
+//! Near gross slip (Q -> f F_N) the stick zone shrinks to one element or a few, which carry
+//! f F_N - Q: the force is restored exactly after each projection ([`restore_force`]: over
+//! the stick zone, or over the whole contact where the stick zone cannot carry it); with a
+//! single stick element the conjugate direction vanishes and the slip elements re-enter with
+//! the Jacobi step 1 / C_ee(0, 0); where a step leaves no element inside its box, the element
+//! with the largest sign(tau) C tau sticks. The shift W stays finite up to gross slip: it tends
+//! to Mindlin's 3 f F_N (2 - nu) / (8 G a) for the sphere (Johnson 1985 eq. (7.42); tested),
+//! the displacement of the last sticking point. Partial slip is solved for
+//! |Q| < [`PARTIAL_SLIP_LIMIT`] f F_N.
 //!
 //! Scope: for bodies of equal elastic constants (Dundurs beta = 0) the tangential traction
 //! does not act back on the pressure; for dissimilar materials the problems couple, and
@@ -56,6 +65,14 @@ pub enum TangentialLoading {
         angle: f64,
     },
 }
+
+/// The largest |Q| / (f F_N) of partial slip, 1 - 1e-10. At Q -> f F_N the stick zone
+/// shrinks to nothing (Cattaneo-Mindlin: c = a (1 - Q/(f F_N))^(1/3), docs/theory/HALFSPACE.md
+/// 3.4) and the traction tends to full sliding f p; the discrete solution keeps at least one
+/// sticking element, which carries f F_N - Q. Within 1e-10 of f F_N that is the default
+/// solver tolerance on the force: partial slip and sliding can no longer be told apart, and
+/// the problem is refused (use [`TangentialLoading::Sliding`]).
+pub const PARTIAL_SLIP_LIMIT: f64 = 1.0 - 1e-10;
 
 /// Parameters of the tangential solver.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -105,8 +122,10 @@ pub struct TangentialSolution {
     pub slip: Vec<f64>,
     /// Whether each element sticks (in contact with |q| < f p).
     pub stick: Vec<bool>,
-    /// Rigid shift W of body 2 relative to body 1 along the load direction, m (partial slip;
-    /// 0 for full sliding).
+    /// Rigid shift W of body 2 relative to body 1 along the load direction, m (partial slip:
+    /// the tangential displacement of the stick zone, finite up to gross slip, where it tends
+    /// to the displacement of the last sticking element; 0 for full sliding, where no stick
+    /// zone defines it).
     pub shift: f64,
     /// Tangential force (Q_x, Q_y) = sum q dA, N.
     pub tangential_force: (f64, f64),
@@ -257,13 +276,16 @@ fn validate(problem: &TangentialProblem<'_>, params: &TangentialParams) -> Resul
                     "must be finite",
                 ));
             }
-            if magnitude >= f * normal {
+            if magnitude >= PARTIAL_SLIP_LIMIT * f * normal {
                 return Err(Error::invalid(
                     "contact.tangential_load",
                     magnitude,
                     format!(
-                        "partial slip needs |Q| < f F_N = {:.6e} N; at or above it the contact \
-                         slides (use sliding = true)",
+                        "partial slip needs |Q| < (1 - 1e-10) f F_N = {:.6e} N (f F_N = \
+                         {:.6e} N); at or above f F_N the contact slides, and within 1e-10 of \
+                         it the stick zone carries less than the solver's force tolerance (use \
+                         sliding = true)",
+                        PARTIAL_SLIP_LIMIT * f * normal,
                         f * normal
                     ),
                 ));
@@ -389,10 +411,20 @@ pub fn solve_tangential_with_offset(
             }
         }
         if n_free == 0 {
-            return Err(Error::Numerical {
-                context: "tangential CG",
-                detail: "the stick zone vanished below f F_N".into(),
-            });
+            // Every element at its bound (possible only to round-off, as the force restore
+            // keeps sum tau = Q / dA < f P / dA): the element whose slip is nearest to
+            // reversing, the largest sign(tau) C tau, sticks and fixes W (at Q -> f F_N the
+            // stick zone shrinks to the element where C f p peaks).
+            let k = (0..n)
+                .filter(|&i| bound[i] > 0.0)
+                .max_by(|&i, &j| {
+                    (displacement[i] * tau[i].signum())
+                        .total_cmp(&(displacement[j] * tau[j].signum()))
+                })
+                .unwrap_or(0);
+            free[k] = true;
+            n_free = 1;
+            shift = displacement[k];
         }
         shift /= n_free as f64;
         let u_scale = displacement.iter().fold(0.0f64, |m, u| nan_max(m, u.abs()));
@@ -467,13 +499,25 @@ pub fn solve_tangential_with_offset(
                 den += response[i] * direction[i];
             }
         }
-        if den.is_nan() || den <= 0.0 {
+        if den.is_nan() {
             return Err(Error::Numerical {
                 context: "tangential CG",
-                detail: format!("non-positive curvature {den:e} along the search direction"),
+                detail: "NaN curvature along the search direction".into(),
             });
         }
-        let step = num / den;
+        // With one stick element (near gross slip) or the stick residual already zero the
+        // direction vanishes (den = 0: C is positive definite, so den > 0 for any nonzero
+        // direction up to round-off) and the stick problem is solved; the iteration goes on
+        // with the slip elements' re-entry, whose step is then the Jacobi one, 1 / C_ee(0, 0).
+        let cg_step = den > 0.0 && num.is_finite();
+        let step = if cg_step {
+            num / den
+        } else {
+            for d in direction.iter_mut() {
+                *d = 0.0;
+            }
+            1.0 / operator.diagonal()
+        };
 
         // Step, projection onto the box, re-entry of slip elements whose slip reversed.
         let mut changed = false;
@@ -497,18 +541,9 @@ pub fn solve_tangential_with_offset(
         }
         // Restore the force on the stick zone (projections change it).
         if changed {
-            let deficit = target - tau.iter().sum::<f64>();
-            let inside: Vec<usize> = (0..n)
-                .filter(|&i| bound[i] > 0.0 && tau[i].abs() < INSIDE * bound[i])
-                .collect();
-            if !inside.is_empty() {
-                let share = deficit / inside.len() as f64;
-                for &i in &inside {
-                    tau[i] = (tau[i] + share).clamp(-bound[i], bound[i]);
-                }
-            }
+            restore_force(&mut tau, &bound, target, INSIDE);
         }
-        conjugate = !changed;
+        conjugate = !changed && cg_step;
     }
     Err(Error::NotConverged {
         solver: "tangential constrained conjugate gradient",
@@ -516,6 +551,84 @@ pub fn solve_tangential_with_offset(
         residual,
         tolerance: params.tolerance,
     })
+}
+
+/// Restore `sum tau = target` after a projection, keeping `|tau_i| <= bound_i`: a common
+/// shift mu added to the stick elements (`|tau_i| < inside * bound_i`), each clamped to its
+/// box, with mu the root of the nondecreasing piecewise linear `sum clamp(tau_i + mu)`
+/// (bisection, then the last round-off spread over the elements left inside). Where the
+/// stick elements cannot carry the deficit (near gross slip, when a step pushed most of them
+/// to the bound), the same shift over every element in contact: the Euclidean projection
+/// onto `{|tau_i| <= bound_i, sum tau = target}`, which is not empty as |target| < sum bound.
+/// Without clamping this is the uniform share of Polonsky & Keer (1999).
+pub(crate) fn restore_force(tau: &mut [f64], bound: &[f64], target: f64, inside: f64) {
+    let stick: Vec<usize> = (0..tau.len())
+        .filter(|&i| bound[i] > 0.0 && tau[i].abs() < inside * bound[i])
+        .collect();
+    if shift_to_sum(tau, bound, &stick, target) {
+        return;
+    }
+    let contact: Vec<usize> = (0..tau.len()).filter(|&i| bound[i] > 0.0).collect();
+    shift_to_sum(tau, bound, &contact, target);
+}
+
+/// Add a common mu to `tau` on `members`, clamped to `|tau_i| <= bound_i`, so that the sum of
+/// all of `tau` is `target`; false (and `tau` unchanged) when the members cannot carry it.
+fn shift_to_sum(tau: &mut [f64], bound: &[f64], members: &[usize], target: f64) -> bool {
+    if members.is_empty() {
+        return false;
+    }
+    let others: f64 = tau.iter().sum::<f64>() - members.iter().map(|&i| tau[i]).sum::<f64>();
+    let goal = target - others;
+    let capacity: f64 = members.iter().map(|&i| bound[i]).sum();
+    // The goal must lie strictly inside (-capacity, capacity) for a root with an element
+    // left inside its box.
+    if goal.is_nan() || goal.abs() >= capacity * (1.0 - 1e-12) {
+        return false;
+    }
+    let sum_at = |mu: f64| -> f64 {
+        members
+            .iter()
+            .map(|&i| (tau[i] + mu).clamp(-bound[i], bound[i]))
+            .sum()
+    };
+    let reach = members
+        .iter()
+        .map(|&i| bound[i] + tau[i].abs())
+        .fold(0.0f64, f64::max);
+    let (mut lo, mut hi) = (-reach, reach);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if sum_at(mid) < goal {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let mu = 0.5 * (lo + hi);
+    for &i in members {
+        tau[i] = (tau[i] + mu).clamp(-bound[i], bound[i]);
+    }
+    // The bisection's last round-off, spread over the members strictly inside their boxes.
+    for _ in 0..4 {
+        let rest = target - tau.iter().sum::<f64>();
+        let open: Vec<usize> = members
+            .iter()
+            .copied()
+            .filter(|&i| tau[i].abs() < bound[i])
+            .collect();
+        if rest == 0.0 || open.is_empty() {
+            break;
+        }
+        let share = rest / open.len() as f64;
+        for &i in &open {
+            tau[i] = (tau[i] + share).clamp(-bound[i], bound[i]);
+        }
+    }
+    true
 }
 
 #[allow(clippy::too_many_arguments)]
