@@ -401,7 +401,7 @@ pub fn spinner(quiet: bool, message: String) -> ProgressBar {
 /// Solve the prepared case with the case's method, and compare with Hertz.
 pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome> {
     if let (Some(note), false) = (&prepared.gap_note, quiet) {
-        eprintln!("note: {note}");
+        crate::term::note(&format!("note: {note}"));
     }
     let problem = NormalContactProblem {
         grid: &prepared.grid,
@@ -978,7 +978,7 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
             .collect();
         let box_note = box_face_note(&box_faces);
         if let (Some(note), false) = (&box_note, quiet) {
-            pb.suspend(|| eprintln!("note: {}: {note}", quantity.name()));
+            pb.suspend(|| crate::term::note(&format!("note: {}: {note}", quantity.name())));
         }
         let cycle = match &spec.cycle {
             None => None,
