@@ -307,8 +307,9 @@ fn contact_far_from_origin_matches_contact_at_origin() {
     for (theta, shift) in [(0.0, [0.2, 0.1]), (FRAC_PI_2 / 3.0, [-3.0, 7.0])] {
         let m = Motion { theta, shift };
         let (ep, eq, ew, et) = contact_errors(&base, &m);
+        // As in the property test below: pressures to 1e-8 (input rounding), the rest 1e-9.
         assert!(
-            ep < 1e-9 && eq < 1e-9 && ew < 1e-9 && et < 1e-9,
+            ep < 1e-8 && eq < 1e-8 && ew < 1e-9 && et < 1e-9,
             "theta {theta}, shift {shift:?} (b = {b:.3e} m): p {ep:.2e}, q {eq:.2e}, \
              width {ew:.2e}, translation {et:.2e}"
         );
@@ -348,8 +349,12 @@ proptest! {
         let d = 10f64.powf(log_dist);
         let m = Motion { theta, shift: [d * dir.cos(), d * dir.sin()] };
         let (ep, eq, ew, et) = contact_errors(&base, &m);
+        // Pressures and shears to 1e-8: the moved model's defining points are rounded
+        // independently (ulp(20 m) = 3.6e-15 m), a gap change dg moves a contact node's
+        // pressure by about E* dg / h (h = 5 um): up to 1e-7 of p0 in the worst case,
+        // measured up to 1.4e-9; the width and the rigid translation to 1e-9.
         prop_assert!(
-            ep < 1e-9 && eq < 1e-9 && ew < 1e-9 && et < 1e-9,
+            ep < 1e-8 && eq < 1e-8 && ew < 1e-9 && et < 1e-9,
             "{m:?}: p {ep:.2e}, q {eq:.2e}, width {ew:.2e}, translation {et:.2e}"
         );
     }
