@@ -273,3 +273,53 @@ fn coupled_solver_runs_near_gross_slip() {
         }
     }
 }
+
+/// The free-direction solver over its documented range 0 < Q <= 0.7 f F_N
+/// ([`crate::solvers::tangential_2d::FREE_DIRECTION_LIMIT`]): converged, carrying Q with
+/// |q| <= f p, on the sphere (nu = 0.3) and the paper's roller/shaft at 21 x 21 and 48 x 48,
+/// Q along x and y. Its stick zone is not Cattaneo-Mindlin's (the traction turns across Q),
+/// so the zone check allows two elements. Above the limit the solver refuses with an
+/// invalid-parameter error naming `contact.tangential_load` (before: "the stick zone
+/// vanished", a numerical failure, from about 0.77 f F_N).
+#[test]
+fn free_direction_solver_covers_its_documented_range() {
+    use crate::solvers::tangential_2d::{solve_tangential_2d, FREE_DIRECTION_LIMIT};
+    let f = 0.2;
+    let run = |c: &Case, ratio: f64, angle: f64| {
+        let load: f64 = c.pressure.iter().sum::<f64>() * c.grid.element_area();
+        let problem = TangentialProblem {
+            grid: &c.grid,
+            pressure: &c.pressure,
+            friction: f,
+            body1: c.material,
+            body2: c.material,
+            loading: TangentialLoading::Force {
+                magnitude: ratio * f * load,
+                angle,
+            },
+        };
+        solve_tangential_2d(&problem, &TangentialParams::default())
+    };
+    for (name, c) in [
+        ("sphere", sphere(0.3)),
+        ("roller 21", roller(21)),
+        ("roller 48", roller(48)),
+    ] {
+        for angle in [0.0, std::f64::consts::FRAC_PI_2] {
+            for r in [0.3, 0.6, FREE_DIRECTION_LIMIT] {
+                let label = format!("free, {name}, angle {angle}, Q/fP = {r}");
+                let s = run(&c, r, angle).unwrap_or_else(|e| panic!("{label}: {e}"));
+                check(&c, &s, r, angle, 2.0, &label);
+            }
+            let above = run(&c, FREE_DIRECTION_LIMIT + 1e-3, angle);
+            assert!(
+                matches!(
+                    &above,
+                    Err(crate::error::Error::InvalidParameter { field, .. })
+                        if field == "contact.tangential_load"
+                ),
+                "{name}: {above:?}"
+            );
+        }
+    }
+}

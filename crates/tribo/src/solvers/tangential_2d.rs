@@ -119,6 +119,15 @@ impl TangentialBlockOperator {
     }
 }
 
+/// The largest |Q| / (f F_N) the free-direction solver accepts. Its projected iteration turns
+/// the slip elements outside the line search; once the slip zone dominates (from about
+/// Q = 0.75 f F_N on the sphere at 64 x 64, 0.78 at 32 x 32) it stalls with "the stick zone
+/// vanished" or cycles. Up to 0.7 it converges on the sphere (32 x 32, 64 x 64) and the
+/// paper's roller/shaft (21 x 21, 48 x 48, Q along x and y), tested; above it the
+/// load-parallel solver ([`super::tangential`], valid up to
+/// [`super::tangential::PARTIAL_SLIP_LIMIT`]) is the one to use. A known limit of issue 11.
+pub const FREE_DIRECTION_LIMIT: f64 = 0.7;
+
 /// Solve partial slip with the traction direction free (module docs). Full sliding (and a
 /// force at or above f F_N, which the validation rejects) is delegated to
 /// [`solve_tangential`]: q = f p along the given direction is exact there. The returned
@@ -147,6 +156,22 @@ pub fn solve_tangential_2d_with_offset(
     // The 1D validation (lengths, finite values, friction, force below f F_N).
     crate::solvers::tangential::validate_problem(problem, params)?;
     let grid = problem.grid;
+    let normal_load: f64 = problem.pressure.iter().sum::<f64>() * grid.element_area();
+    let largest = FREE_DIRECTION_LIMIT * problem.friction * normal_load;
+    if magnitude > largest {
+        return Err(Error::invalid(
+            "contact.tangential_load",
+            magnitude,
+            format!(
+                "the free-direction solver (traction_direction = \"free\") is limited to \
+                 |Q| <= {FREE_DIRECTION_LIMIT} f F_N = {largest:.6e} N (f F_N = {:.6e} N): \
+                 nearer gross slip it does not converge (a known limit); use the \
+                 load-parallel solver (traction_direction = \"parallel\"), valid up to \
+                 (1 - 1e-10) f F_N",
+                problem.friction * normal_load
+            ),
+        ));
+    }
     let n = grid.len();
     if let Some(o) = offset {
         for (c, part) in o.iter().enumerate() {
