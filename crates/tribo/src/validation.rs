@@ -1158,7 +1158,7 @@ pub(crate) struct SlidingSphereComparison {
 /// the element edges, shifted from them by 1e-12 m and by 0.3 element, and f = 0 ... 0.5,
 /// the surface stresses on the line y = 0, the stresses below, and the largest von Mises
 /// stress of the plane y = 0 (z in [0, 0.7a]) and its place, against Hamilton's equations
-/// ([`SlidingSpherePlane`]).
+/// (`SlidingSpherePlane`).
 pub fn sliding_sphere_surface_rows() -> Result<Vec<ValidationRow>> {
     let mut rows = Vec::new();
     let source = "Hamilton 1983, Proc. IMechE 197C:53 (explicit equations)";

@@ -24,7 +24,7 @@
 //! that leave the box are projected onto it and slip, slip elements whose slip would reverse
 //! re-enter the stick zone, the conjugate direction is reset when the zones change.
 //! Near gross slip (Q -> f F_N) the stick zone shrinks to one element or a few, which carry
-//! f F_N - Q: the force is restored exactly after each projection ([`restore_force`]: over
+//! f F_N - Q: the force is restored exactly after each projection (`restore_force`: over
 //! the stick zone, or over the whole contact where the stick zone cannot carry it); with a
 //! single stick element the conjugate direction vanishes and the slip elements re-enter with
 //! the Jacobi step 1 / C_ee(0, 0); where a step leaves no element inside its box, the element
