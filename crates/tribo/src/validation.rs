@@ -781,7 +781,8 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
     let f = 0.3;
     let g = steel.shear_modulus();
     let nu = steel.poisson_ratio();
-    for ratio in [0.2, 0.5, 0.8] {
+    // Partial slip of the sphere at Q = ratio f P along x (both rows below).
+    let solve_at = |ratio: f64| {
         let problem = TangentialProblem {
             grid: &grid,
             pressure: &normal.pressure,
@@ -793,7 +794,16 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
                 angle: 0.0,
             },
         };
-        let s = solve_tangential(&problem, &TangentialParams::default())?;
+        solve_tangential(&problem, &TangentialParams::default())
+    };
+    // Mindlin's rigid shift of two identical bodies, m: 2 x 3 (2 - nu) f P
+    // [1 - (1 - Q/fP)^(2/3)] / (16 G a) (Johnson 1985 eq. (7.42)).
+    let mindlin_shift = |ratio: f64| {
+        2.0 * 3.0 * (2.0 - nu) * f * normal.normal_load * (1.0 - (1.0 - ratio).powf(2.0 / 3.0))
+            / (16.0 * g * a)
+    };
+    for ratio in [0.2, 0.5, 0.8] {
+        let s = solve_at(ratio)?;
         let case = format!("Cattaneo-Mindlin sphere, Q/fP = {ratio}, 96x96");
         let src = "Cattaneo 1938, Mindlin 1949 (Johnson 1985 sec. 7.1)";
         // The stick boundary is located within an element: tolerance half an element.
@@ -806,12 +816,9 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
             0.5 * grid.dx() / a,
             src,
         ));
-        // Rigid shift of two identical bodies: 2 x 3 (2 - nu) f P [1 - (1 - Q/fP)^(2/3)] /
-        // (16 G a). The load discretization moves it by O((dx/a)^2) = 7e-4 at most; observed
+        // Rigid shift of two identical bodies (mindlin_shift). The load discretization moves it by O((dx/a)^2) = 7e-4 at most; observed
         // 2e-5.
-        let shift =
-            2.0 * 3.0 * (2.0 - nu) * f * normal.normal_load * (1.0 - (1.0 - ratio).powf(2.0 / 3.0))
-                / (16.0 * g * a);
+        let shift = mindlin_shift(ratio);
         rows.push(ValidationRow::new(
             &case,
             "rigid shift W, m",
@@ -858,18 +865,7 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
     // Near gross slip (the whole documented range 0 < Q < f F_N): the stick zone shrinks to
     // the central elements and the shift tends to Mindlin's finite 3 (2 - nu) f P / (8 G a).
     for ratio in [0.999, 1.0 - 1e-9] {
-        let problem = TangentialProblem {
-            grid: &grid,
-            pressure: &normal.pressure,
-            friction: f,
-            body1: steel,
-            body2: steel,
-            loading: TangentialLoading::Force {
-                magnitude: ratio * f * normal.normal_load,
-                angle: 0.0,
-            },
-        };
-        let s = solve_tangential(&problem, &TangentialParams::default())?;
+        let s = solve_at(ratio)?;
         let case = format!("Cattaneo-Mindlin sphere near gross slip, Q/fP = {ratio}, 96x96");
         let src = "Cattaneo 1938, Mindlin 1949 (Johnson 1985 sec. 7.1, eq. (7.42))";
         // The smallest symmetric stick zone of an even grid is the 2 x 2 central elements,
@@ -883,9 +879,7 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
             1.2 * grid.dx() / a,
             src,
         ));
-        let shift =
-            2.0 * 3.0 * (2.0 - nu) * f * normal.normal_load * (1.0 - (1.0 - ratio).powf(2.0 / 3.0))
-                / (16.0 * g * a);
+        let shift = mindlin_shift(ratio);
         // As above (load discretization O((dx/a)^2)); observed 2e-3 on 40 x 40 elements.
         rows.push(ValidationRow::new(
             &case,

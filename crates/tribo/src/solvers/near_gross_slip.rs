@@ -89,6 +89,19 @@ const RATIOS: [f64; 24] = [
 ];
 
 fn solve(c: &Case, ratio: f64, angle: f64) -> crate::error::Result<TangentialSolution> {
+    solve_with(solve_tangential, c, ratio, angle)
+}
+
+/// Partial slip at Q = ratio f F_N (f = 0.2) along `angle` by the given solver.
+fn solve_with(
+    solver: fn(
+        &TangentialProblem<'_>,
+        &TangentialParams,
+    ) -> crate::error::Result<TangentialSolution>,
+    c: &Case,
+    ratio: f64,
+    angle: f64,
+) -> crate::error::Result<TangentialSolution> {
     let f = 0.2;
     let load: f64 = c.pressure.iter().sum::<f64>() * c.grid.element_area();
     let problem = TangentialProblem {
@@ -102,8 +115,7 @@ fn solve(c: &Case, ratio: f64, angle: f64) -> crate::error::Result<TangentialSol
             angle,
         },
     };
-    let params = TangentialParams::default();
-    solve_tangential(&problem, &params)
+    solver(&problem, &TangentialParams::default())
 }
 
 /// The checks at one Q: converged to the tolerance, the force Q along its direction (to
@@ -284,22 +296,7 @@ fn coupled_solver_runs_near_gross_slip() {
 #[test]
 fn free_direction_solver_covers_its_documented_range() {
     use crate::solvers::tangential_2d::{solve_tangential_2d, FREE_DIRECTION_LIMIT};
-    let f = 0.2;
-    let run = |c: &Case, ratio: f64, angle: f64| {
-        let load: f64 = c.pressure.iter().sum::<f64>() * c.grid.element_area();
-        let problem = TangentialProblem {
-            grid: &c.grid,
-            pressure: &c.pressure,
-            friction: f,
-            body1: c.material,
-            body2: c.material,
-            loading: TangentialLoading::Force {
-                magnitude: ratio * f * load,
-                angle,
-            },
-        };
-        solve_tangential_2d(&problem, &TangentialParams::default())
-    };
+    let run = |c: &Case, ratio: f64, angle: f64| solve_with(solve_tangential_2d, c, ratio, angle);
     for (name, c) in [
         ("sphere", sphere(0.3)),
         ("roller 21", roller(21)),
