@@ -268,16 +268,20 @@ fn the_clamp_knife_base_example_prints_and_validates() {
     );
 }
 
-/// The generic case printed in the README, run as written: a block pressed on a base held
-/// only by contact and friction. The contact force equals the applied pressure times the
-/// block's width (equilibrium of the free block: the pressure is its only other load).
+/// The generic case printed in the 2D case reference (docs/user/case-bem2d.md), run as
+/// written: a block pressed on a base held only by contact and friction. The contact force
+/// equals the applied pressure times the block's width (equilibrium of the free block: the
+/// pressure is its only other load).
 #[test]
 fn the_readme_bem_case_runs_and_balances() {
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
+    let readme = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/user/case-bem2d.md"
+    ))
+    .unwrap();
     let start = readme
-        .find("## 2D boundary element cases")
-        .expect("README section");
+        .find("## A complete case")
+        .expect("the reference's section");
     let body = &readme[start..];
     let open = body.find("```toml\n").expect("toml block") + "```toml\n".len();
     let close = open + body[open..].find("```").expect("block end");

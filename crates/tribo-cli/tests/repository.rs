@@ -1,6 +1,7 @@
 //! The repository's metadata is honest: a clone is self-contained (every document the code
-//! and the docs cite is in the repository), the licence files Cargo names are there, and the
-//! declared minimum Rust version is not below what the locked dependencies need.
+//! and the docs cite is in the repository, every relative link of the docs resolves), the
+//! licence files Cargo names are there, and the declared minimum Rust version is not below
+//! what the locked dependencies need.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -184,4 +185,115 @@ fn rust_version_covers_the_locked_dependencies() {
         "rust-version {declared} is below {} in the lockfile",
         needed.1
     );
+}
+
+/// The GitHub / mdBook anchor of a heading: lower case, punctuation dropped, spaces to `-`.
+fn slug(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter(|c| c.is_alphanumeric() || matches!(c, '-' | '_' | ' '))
+        .map(|c| if c == ' ' { '-' } else { c })
+        .collect()
+}
+
+/// A Markdown text without its code blocks and inline code (links there are not links).
+fn prose(text: &str) -> String {
+    let mut out = String::new();
+    let mut fenced = false;
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+            continue;
+        }
+        if fenced {
+            continue;
+        }
+        let mut code = false;
+        for c in line.chars() {
+            if c == '`' {
+                code = !code;
+            } else if !code {
+                out.push(c);
+            }
+        }
+        out.push('\n');
+    }
+    out
+}
+
+fn anchors(text: &str) -> BTreeSet<String> {
+    let mut fenced = false;
+    let mut out = BTreeSet::new();
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+        } else if !fenced && line.starts_with('#') {
+            out.insert(slug(line.trim_start_matches('#')));
+        }
+    }
+    out
+}
+
+/// Every relative link of the README and of docs/ (the user guide, the theory notes, the
+/// verification and references pages) names a file of the repository, and every `#anchor` a
+/// heading of that file: the docs build as a self-contained book.
+#[test]
+fn every_relative_link_in_the_docs_resolves() {
+    let root = root();
+    let mut files = vec![root.join("README.md")];
+    text_files(&root.join("docs"), &mut files);
+    files.retain(|f| f.extension().is_some_and(|e| e == "md"));
+    assert!(files.len() >= 10, "found only {} pages", files.len());
+    for page in [
+        "docs/SUMMARY.md",
+        "docs/verification.md",
+        "docs/references.md",
+    ] {
+        assert!(root.join(page).is_file(), "{page} missing");
+    }
+    let mut broken = Vec::new();
+    let mut checked = 0;
+    for file in &files {
+        let text = std::fs::read_to_string(file).expect("a readable page");
+        let rel = file
+            .strip_prefix(&root)
+            .unwrap_or(file)
+            .display()
+            .to_string();
+        let body = prose(&text);
+        let mut rest = body.as_str();
+        while let Some(i) = rest.find("](") {
+            rest = &rest[i + 2..];
+            let Some(end) = rest.find(')') else { break };
+            let target = &rest[..end];
+            rest = &rest[end..];
+            if target.contains(char::is_whitespace)
+                || target.contains("://")
+                || target.starts_with("mailto:")
+            {
+                continue;
+            }
+            checked += 1;
+            let (path, anchor) = target.split_once('#').unwrap_or((target, ""));
+            let resolved = if path.is_empty() {
+                file.clone()
+            } else {
+                file.parent().expect("a folder").join(path)
+            };
+            if !resolved.exists() {
+                broken.push(format!("{rel}: {target} (no such file)"));
+                continue;
+            }
+            if !anchor.is_empty() && (path.is_empty() || path.ends_with(".md")) {
+                let target_text = std::fs::read_to_string(&resolved).unwrap_or_default();
+                if !anchors(&target_text).contains(anchor) {
+                    broken.push(format!("{rel}: {target} (no such heading)"));
+                }
+            }
+        }
+    }
+    assert!(checked > 50, "checked only {checked} links");
+    assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
 }
