@@ -667,3 +667,64 @@ fn verification_page_has_every_row_of_tribo_validate() {
         );
     }
 }
+
+// ------------------------------------------------------------------ the outputs reference
+
+/// docs/user/outputs.md names every file the default case and the 2D reference case write,
+/// every CSV header (as written), and every key of their `units` tables.
+#[test]
+fn outputs_reference_lists_every_file_column_and_unit() {
+    let page = read("docs/user/outputs.md");
+    let bem = first_toml_block("docs/user/case-bem2d.md");
+    let mut missing = Vec::new();
+    for (name, case) in [("roller-shaft", example("roller-shaft")), ("bem2d", bem)] {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let out = dir.path().to_str().expect("UTF-8 path");
+        let o = tribo(&["run", "-", "-q", "-o", out], &case);
+        assert!(
+            o.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let text = std::fs::read_to_string(dir.path().join("summary.json")).expect("summary");
+        let summary: serde_json::Value = serde_json::from_str(&text).expect("summary JSON");
+        let units = summary["units"].as_object().expect("units");
+        assert!(units.len() > 20, "{name}: only {} units", units.len());
+        for key in units.keys() {
+            if !page.contains(&format!("| `{key}` |")) {
+                missing.push(format!("{name}: units key `{key}`"));
+            }
+        }
+        // File names, with the names a case chooses in their documented placeholders.
+        let mut names: Vec<String> = summary["steps"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(|s| s["name"].as_str().map(str::to_string))
+            .collect();
+        names.push("sigma_int".into());
+        for file in summary["outputs"].as_array().expect("outputs") {
+            let file = file.as_str().expect("a file name");
+            let forms: Vec<String> = std::iter::once(file.to_string())
+                .chain(names.iter().flat_map(|n| {
+                    ["<step>", "<name>", "<quantity>"].map(|p| file.replacen(n.as_str(), p, 1))
+                }))
+                .collect();
+            if !forms.iter().any(|f| page.contains(&format!("`{f}`"))) {
+                missing.push(format!("{name}: file `{file}`"));
+            }
+            if file.ends_with(".csv") {
+                let csv = std::fs::read_to_string(dir.path().join(file)).expect("CSV");
+                let header = csv.lines().next().unwrap_or("");
+                if !page.contains(&format!("`{header}`")) {
+                    missing.push(format!("{name}: {file} header `{header}`"));
+                }
+            }
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "not in docs/user/outputs.md:\n{}",
+        missing.join("\n")
+    );
+}
