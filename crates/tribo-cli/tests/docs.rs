@@ -499,13 +499,19 @@ fn fatigue_diagram_table_documents_exactly_the_accepted_keys() {
 }
 
 #[test]
-fn every_key_of_every_example_is_documented_and_the_references_examples_run() {
+fn every_example_and_every_key_of_it_is_documented_and_the_references_examples_run() {
     let halfspace = Doc::load("docs/user/case-halfspace.md");
     let bem = Doc::load("docs/user/case-bem2d.md");
     let fatigue = Doc::load("docs/user/fatigue.md");
     let names = example_names();
     assert!(names.len() >= 10, "only {} examples listed", names.len());
     let mut missing = Vec::new();
+    let examples_page = read("docs/user/examples.md");
+    for n in &names {
+        if !examples_page.contains(&format!("| `{n}` |")) {
+            missing.push(format!("example {n} is not in docs/user/examples.md"));
+        }
+    }
     let mut cases: Vec<(String, String)> = names
         .iter()
         .map(|n| (format!("example {n}"), example(n)))
@@ -725,6 +731,66 @@ fn outputs_reference_lists_every_file_column_and_unit() {
     assert!(
         missing.is_empty(),
         "not in docs/user/outputs.md:\n{}",
+        missing.join("\n")
+    );
+}
+
+// ------------------------------------------------------------------ the CLI reference
+
+/// docs/user/cli.md names every command and every flag the binary's `--help` lists.
+#[test]
+fn cli_reference_lists_every_command_and_flag() {
+    let page = read("docs/user/cli.md");
+    let help = |args: &[&str]| {
+        let mut all = args.to_vec();
+        all.push("--help");
+        let o = tribo(&all, "");
+        assert!(o.status.success(), "tribo {args:?} --help");
+        String::from_utf8(o.stdout).expect("UTF-8 help")
+    };
+    let mut missing = Vec::new();
+    let mut flags = 0;
+    for command in [
+        &["run"][..],
+        &["example"],
+        &["validate"],
+        &["fatigue", "fit"],
+        &["fatigue", "diagram"],
+    ] {
+        let name = format!("tribo {}", command.join(" "));
+        if !page.contains(&format!("`{name}")) {
+            missing.push(format!("command `{name}`"));
+        }
+        let text = help(command);
+        let options = &text[text.find("Options:").expect("an Options section")..];
+        for line in options.lines() {
+            let Some(i) = line.find("--") else { continue };
+            let flag: String = line[i..]
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '-')
+                .collect();
+            if flag == "--help" || !line.trim_start().starts_with('-') {
+                continue;
+            }
+            flags += 1;
+            if !page.contains(&format!("`{flag}")) && !page.contains(&format!(", {flag}")) {
+                missing.push(format!("{name} {flag}"));
+            }
+        }
+    }
+    // Every command of `tribo --help`.
+    let top = help(&[]);
+    let commands = &top[top.find("Commands:").expect("a Commands section")..];
+    for line in commands.lines().skip(1).take_while(|l| l.starts_with("  ")) {
+        let word = line.split_whitespace().next().unwrap_or("");
+        if word != "help" && !page.contains(&format!("`tribo {word}")) {
+            missing.push(format!("command `tribo {word}`"));
+        }
+    }
+    assert!(flags >= 10, "found only {flags} flags");
+    assert!(
+        missing.is_empty(),
+        "not in docs/user/cli.md:\n{}",
         missing.join("\n")
     );
 }
