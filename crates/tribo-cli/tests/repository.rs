@@ -297,3 +297,117 @@ fn every_relative_link_in_the_docs_resolves() {
     assert!(checked > 50, "checked only {checked} links");
     assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
 }
+
+/// Author-year citations (`Johnson 1985`, `Polonsky & Keer (1999`, `Lagarias et al. (1998`)
+/// in a text: (first author, year).
+fn author_year_citations(text: &str) -> Vec<(String, String)> {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i + 4 <= chars.len() {
+        let year: String = chars[i..i + 4].iter().collect();
+        let bounded = (i == 0 || !chars[i - 1].is_alphanumeric())
+            && chars.get(i + 4).is_none_or(|c| !c.is_alphanumeric());
+        if !(bounded
+            && year.chars().all(|c| c.is_ascii_digit())
+            && ["18", "19", "20"].iter().any(|p| year.starts_with(p)))
+        {
+            i += 1;
+            continue;
+        }
+        let before: String = chars[i.saturating_sub(80)..i].iter().collect();
+        // The author, then the year after a space, optionally with a comma or a parenthesis.
+        let Some(b) = [", (", " (", ", ", " "]
+            .iter()
+            .find_map(|sep| before.strip_suffix(sep))
+        else {
+            i += 1;
+            continue;
+        };
+        let b = b.strip_suffix(" et al.").unwrap_or(b);
+        let word = |s: &str| -> (String, usize) {
+            let w: String = s
+                .chars()
+                .rev()
+                .take_while(|c| c.is_alphabetic() || *c == '-')
+                .collect::<Vec<_>>()
+                .into_iter()
+                .rev()
+                .collect();
+            let len = w.len();
+            (w, len)
+        };
+        let (mut author, len) = word(b);
+        let rest = b[..b.len() - len].trim_end();
+        if let Some(r) = rest.strip_suffix('&').or_else(|| rest.strip_suffix(" and")) {
+            let (first, _) = word(r.trim_end());
+            if !first.is_empty() {
+                author = first;
+            }
+        }
+        let capitalised = author.chars().next().is_some_and(char::is_uppercase)
+            && author.chars().skip(1).any(char::is_lowercase);
+        if capitalised {
+            out.push((author, year));
+        }
+        i += 4;
+    }
+    out
+}
+
+/// Every author-year citation of the code, the README and the docs has a full reference in
+/// docs/references.md: an entry whose bold label names the (first) author and the year.
+#[test]
+fn every_author_year_citation_has_a_reference() {
+    let root = root();
+    let refs = std::fs::read_to_string(root.join("docs/references.md")).expect("references");
+    let labels: Vec<&str> = refs
+        .lines()
+        .filter_map(|l| l.strip_prefix("- **"))
+        .filter_map(|l| l.split("**").next())
+        .collect();
+    assert!(labels.len() > 40, "only {} references", labels.len());
+    // Words before a year that are not authors: places, publishers, venues, abbreviations.
+    let not_authors = [
+        "Gliwice",
+        "Springer",
+        "Problems",
+        "Mesomechanics",
+        "Motion",
+        "Run",
+    ];
+    let mut files = vec![root.join("README.md")];
+    text_files(&root.join("crates"), &mut files);
+    text_files(&root.join("docs"), &mut files);
+    files.retain(|f| {
+        f.extension().is_some_and(|e| e == "rs" || e == "md") && !f.ends_with("references.md")
+    });
+    let mut missing = BTreeSet::new();
+    let mut cited = 0;
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap_or_default();
+        let rel = file
+            .strip_prefix(&root)
+            .unwrap_or(file)
+            .display()
+            .to_string();
+        for (author, year) in author_year_citations(&text) {
+            if not_authors.contains(&author.as_str()) {
+                continue;
+            }
+            cited += 1;
+            let surname = author.split('-').next().unwrap_or(&author);
+            if !labels
+                .iter()
+                .any(|l| l.contains(surname) && l.contains(&year))
+            {
+                missing.insert(format!("{author} {year} ({rel})"));
+            }
+        }
+    }
+    assert!(cited > 100, "found only {cited} citations");
+    assert!(
+        missing.is_empty(),
+        "cited without an entry in docs/references.md:\n{missing:#?}"
+    );
+}
