@@ -202,6 +202,8 @@ fn slug(heading: &str) -> String {
 fn prose(text: &str) -> String {
     let mut out = String::new();
     let mut fenced = false;
+    // A code span may continue on the next line of its paragraph.
+    let mut code = false;
     for line in text.lines() {
         if line.trim_start().starts_with("```") {
             fenced = !fenced;
@@ -210,7 +212,9 @@ fn prose(text: &str) -> String {
         if fenced {
             continue;
         }
-        let mut code = false;
+        if line.trim().is_empty() {
+            code = false;
+        }
         for c in line.chars() {
             if c == '`' {
                 code = !code;
