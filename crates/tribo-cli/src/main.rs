@@ -2,16 +2,15 @@
 //! out. See README.md and `tribo --help`.
 
 mod bem;
-mod case;
 mod error;
-mod examples;
 mod fatigue;
 mod memory;
 mod output;
 mod run;
 mod term;
-mod units;
 mod validate;
+
+use tribo_case::{case, examples, units};
 
 use clap::{Parser, Subcommand};
 use error::{CliError, CliResult, EXIT_OK, EXIT_OTHER, EXIT_VALIDATION_FAILED};
@@ -234,7 +233,7 @@ fn read_case(case: Option<&Path>) -> CliResult<(String, String, PathBuf)> {
             PathBuf::from("."),
         )),
         Some(p) => {
-            let unreadable = |source| CliError::Unreadable {
+            let unreadable = |source| tribo_case::CaseError::Unreadable {
                 field: "case".into(),
                 path: p.to_path_buf(),
                 source,
@@ -254,7 +253,7 @@ fn read_bounded(reader: impl Read, path: &Path) -> CliResult<String> {
     reader
         .take(limit + 1)
         .read_to_end(&mut bytes)
-        .map_err(|source| CliError::Unreadable {
+        .map_err(|source| tribo_case::CaseError::Unreadable {
             field: "case".into(),
             path: path.to_path_buf(),
             source,
@@ -270,11 +269,12 @@ fn read_bounded(reader: impl Read, path: &Path) -> CliResult<String> {
             ),
         ));
     }
-    String::from_utf8(bytes).map_err(|e| CliError::Unreadable {
+    let text = String::from_utf8(bytes).map_err(|e| tribo_case::CaseError::Unreadable {
         field: "case".into(),
         path: path.to_path_buf(),
         source: std::io::Error::new(std::io::ErrorKind::InvalidData, e),
-    })
+    })?;
+    Ok(text)
 }
 
 fn cmd_run(

@@ -194,10 +194,12 @@ pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CliResult<BuiltModel
     let mut meshes = Vec::new();
     for (i, m) in case.meshes.iter().enumerate() {
         let field = format!("mesh[{i}].file");
-        let text = std::fs::read_to_string(&m.path).map_err(|source| CliError::Unreadable {
-            field: field.clone(),
-            path: m.path.clone(),
-            source,
+        let text = std::fs::read_to_string(&m.path).map_err(|source| {
+            tribo_case::CaseError::Unreadable {
+                field: field.clone(),
+                path: m.path.clone(),
+                source,
+            }
         })?;
         let lookup = |surface: &str| -> Option<ElasticMaterial> {
             m.materials.get(surface).map(|name| material(surface, name))
