@@ -1,4 +1,4 @@
-//! Case files: TOML in, a validated [`Case`] out, before any computation.
+//! Case files: TOML in, a validated [`HalfSpaceCase`] out, before any computation.
 //!
 //! The schema (every key; README.md "Case files" is the user's reference):
 //!
@@ -502,7 +502,7 @@ pub struct StudySpec {
 
 /// A validated case, ready to run.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Case {
+pub struct HalfSpaceCase {
     /// Title (the file name where none is given).
     pub title: String,
     /// Where the case came from (a path, or `<embedded NAME>`).
@@ -533,7 +533,7 @@ pub struct Case {
     pub echo: serde_json::Value,
 }
 
-impl Case {
+impl HalfSpaceCase {
     /// Whether both bodies are given by radii, so that the gap is Hertzian.
     pub fn is_hertzian(&self) -> bool {
         matches!(self.body1.shape, Shape::Radii { .. })
@@ -557,8 +557,21 @@ impl Case {
 
 /// Parse and validate a case file's text. `source` names it in errors; `base_dir` resolves
 /// relative file paths (height maps).
-pub fn parse_case(text: &str, source: &str, base_dir: &Path) -> CaseResult<Case> {
+pub fn parse_case(text: &str, source: &str, base_dir: &Path) -> CaseResult<HalfSpaceCase> {
     let (raw, echo) = parse_raw::<RawCase>(text, source)?;
+    validate(raw, source, base_dir, echo)
+}
+
+/// Validate a case given as a TOML table (the same schema and rules as a case file; see
+/// [`crate::builder::CaseBuilder`] for building one in code). `source` names it in errors;
+/// `base_dir` resolves relative file paths (height maps).
+pub fn from_table(table: toml::Table, source: &str, base_dir: &Path) -> CaseResult<HalfSpaceCase> {
+    let value = Value::Table(table);
+    let echo = echo_json(&value);
+    let raw = RawCase::deserialize(value).map_err(|e| CaseError::Parse {
+        path: source.to_string(),
+        message: e.to_string().trim_end().to_string(),
+    })?;
     validate(raw, source, base_dir, echo)
 }
 
@@ -604,7 +617,7 @@ fn validate(
     source: &str,
     base_dir: &Path,
     echo: serde_json::Value,
-) -> CaseResult<Case> {
+) -> CaseResult<HalfSpaceCase> {
     let m1 = material("body1", &raw.body1)?;
     let m2 = material("body2", &raw.body2)?;
     let e_star = tribo::composite_modulus(&m1, &m2);
@@ -759,7 +772,7 @@ fn validate(
         }
     };
     let title = raw.title.unwrap_or_else(|| source.to_string());
-    Ok(Case {
+    Ok(HalfSpaceCase {
         title,
         source: source.to_string(),
         body1: Body {
@@ -2221,7 +2234,7 @@ n = 21
 extent = 1.5
 "#;
 
-    fn parse(text: &str) -> CaseResult<Case> {
+    fn parse(text: &str) -> CaseResult<HalfSpaceCase> {
         parse_case(text, "test.toml", Path::new("."))
     }
 

@@ -8,7 +8,7 @@
 //! test `memory_estimate_is_within_a_factor_of_two_of_the_peak` in tests/cli.rs checks the
 //! factor on mid-size cases. They are deliberately on the high side (within a factor 2).
 
-use crate::case::{Case, FieldPoints};
+use crate::case::{FieldPoints, HalfSpaceCase};
 
 /// Largest case file read, bytes: the largest example is ~10 KiB; a case file is a few
 /// hundred lines of TOML (height maps and meshes are separate files). The TOML parser needs
@@ -68,7 +68,7 @@ pub fn human(bytes: u64) -> String {
 /// (influence spectra and work arrays on the 2nx x 2ny padded grid) and the element arrays of
 /// the outputs; per field point the stress tensor, the derived quantities and the VTK
 /// writer's buffers; per damage criterion a value per point.
-pub fn half_space(case: &Case) -> Estimate {
+pub fn half_space(case: &HalfSpaceCase) -> Estimate {
     let elements = (case.n[0] as f64) * (case.n[1] as f64);
     // Measured: 10.4 MiB at 21 x 21, 11.1 MiB at 64 x 64, 14.8 MiB at 128 x 128 (normal
     // contact with all outputs): ~280 B per element above a 10.4 MiB base.

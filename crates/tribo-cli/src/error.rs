@@ -22,7 +22,7 @@ pub const EXIT_VALIDATION_FAILED: u8 = 1;
 pub enum CliError {
     /// An error of the case: bad input, or the library failing while running it.
     #[error(transparent)]
-    Case(#[from] CaseError),
+    HalfSpaceCase(#[from] CaseError),
     /// Writing an output failed.
     #[error("cannot write {}: {source}", path.display())]
     Write {
@@ -57,7 +57,7 @@ pub enum CliError {
 
 impl From<tribo::Error> for CliError {
     fn from(e: tribo::Error) -> Self {
-        CliError::Case(CaseError::Library(e))
+        CliError::HalfSpaceCase(CaseError::Library(e))
     }
 }
 
@@ -68,16 +68,16 @@ impl CliError {
         value: impl std::fmt::Display,
         rule: impl Into<String>,
     ) -> Self {
-        CliError::Case(CaseError::field(field, value, rule))
+        CliError::HalfSpaceCase(CaseError::field(field, value, rule))
     }
 
     /// The process exit code for this error (see the README, "Exit codes").
     pub fn exit_code(&self) -> u8 {
         match self {
-            CliError::Case(e) if e.is_bad_input() => EXIT_BAD_INPUT,
-            CliError::Case(e) if e.is_not_converged() => EXIT_NOT_CONVERGED,
+            CliError::HalfSpaceCase(e) if e.is_bad_input() => EXIT_BAD_INPUT,
+            CliError::HalfSpaceCase(e) if e.is_not_converged() => EXIT_NOT_CONVERGED,
             CliError::UnknownExample { .. } => EXIT_BAD_INPUT,
-            CliError::Case(_)
+            CliError::HalfSpaceCase(_)
             | CliError::Write { .. }
             | CliError::Stdout { .. }
             | CliError::Output { .. } => EXIT_OTHER,

@@ -3,6 +3,7 @@
 //! interior fields, damage and a material comparison (the paper's Sec. 7 workflow).
 
 pub mod case;
+pub mod pipeline;
 pub mod template;
 
 /// Whether the case text is a boundary element case (`kind = "bem2d"`); false where the text

@@ -4,9 +4,8 @@
 
 pub mod output;
 pub mod plot;
-pub mod run;
 
-pub use tribo_case::bem::{case, is_bem_text};
+pub use tribo_case::bem::{case, is_bem_text, pipeline as run};
 
 use std::path::Path;
 
@@ -68,6 +67,6 @@ pub fn run_text(
         crate::term::out(&listing)?;
         return Ok(None);
     }
-    let outcome = run::solve(&case, quiet)?;
+    let outcome = run::solve(&case, &mut crate::progress::Bars::new(quiet))?;
     Ok(Some(output::write_all(out, &case, &outcome)?))
 }
