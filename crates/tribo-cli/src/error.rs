@@ -1,7 +1,9 @@
-//! The command line's errors and their exit codes.
+//! The command line's errors and their exit codes: the case's own errors
+//! ([`tribo_case::CaseError`]) and those of the front end (writing, stdout, names).
 
 use std::path::PathBuf;
 use thiserror::Error;
+use tribo_case::CaseError;
 
 /// Exit code: success.
 pub const EXIT_OK: u8 = 0;
@@ -18,49 +20,9 @@ pub const EXIT_VALIDATION_FAILED: u8 = 1;
 /// Errors of the `tribo` command line.
 #[derive(Debug, Error)]
 pub enum CliError {
-    /// A field of the case breaks a rule (named field, its value, the rule).
-    #[error("{field} = {value}: {rule}")]
-    Field {
-        /// Dotted field name, e.g. `body1.nu`.
-        field: String,
-        /// The offending value as written.
-        value: String,
-        /// The rule.
-        rule: String,
-    },
-    /// The case file is not valid TOML or does not fit the schema (unknown key, wrong type).
-    #[error("{path}: {message}")]
-    Parse {
-        /// Case file (or `<embedded NAME>`).
-        path: String,
-        /// The parser's message (with line and column).
-        message: String,
-    },
-    /// An input file could not be read.
-    #[error("{field}: cannot read {}: {source}", path.display())]
-    Unreadable {
-        /// The field that names the file (or `case` for the case file itself).
-        field: String,
-        /// The file.
-        path: PathBuf,
-        /// Why.
-        source: std::io::Error,
-    },
-    /// A data file (height map) has a bad line.
-    #[error("{field}: {}, line {line}: {rule}", path.display())]
-    DataFile {
-        /// The field that names the file.
-        field: String,
-        /// The file.
-        path: PathBuf,
-        /// 1-based line number.
-        line: usize,
-        /// What is wrong.
-        rule: String,
-    },
-    /// An error of the tribo library.
+    /// An error of the case: bad input, or the library failing while running it.
     #[error(transparent)]
-    Library(#[from] tribo::Error),
+    HalfSpaceCase(#[from] CaseError),
     /// Writing an output failed.
     #[error("cannot write {}: {source}", path.display())]
     Write {
@@ -93,38 +55,32 @@ pub enum CliError {
     },
 }
 
+impl From<tribo::Error> for CliError {
+    fn from(e: tribo::Error) -> Self {
+        CliError::HalfSpaceCase(CaseError::Library(e))
+    }
+}
+
 impl CliError {
-    /// A field error.
+    /// A field error of the case.
     pub fn field(
         field: impl Into<String>,
         value: impl std::fmt::Display,
         rule: impl Into<String>,
     ) -> Self {
-        CliError::Field {
-            field: field.into(),
-            value: value.to_string(),
-            rule: rule.into(),
-        }
+        CliError::HalfSpaceCase(CaseError::field(field, value, rule))
     }
 
     /// The process exit code for this error (see the README, "Exit codes").
     pub fn exit_code(&self) -> u8 {
         match self {
-            CliError::Field { .. }
-            | CliError::Parse { .. }
-            | CliError::Unreadable { .. }
-            | CliError::DataFile { .. }
-            | CliError::UnknownExample { .. } => EXIT_BAD_INPUT,
-            CliError::Library(e) => match e {
-                tribo::Error::InvalidParameter { .. }
-                | tribo::Error::ContactReachesWindow { .. }
-                | tribo::Error::NoContact { .. } => EXIT_BAD_INPUT,
-                tribo::Error::NotConverged { .. } => EXIT_NOT_CONVERGED,
-                _ => EXIT_OTHER,
-            },
-            CliError::Write { .. } | CliError::Stdout { .. } | CliError::Output { .. } => {
-                EXIT_OTHER
-            }
+            CliError::HalfSpaceCase(e) if e.is_bad_input() => EXIT_BAD_INPUT,
+            CliError::HalfSpaceCase(e) if e.is_not_converged() => EXIT_NOT_CONVERGED,
+            CliError::UnknownExample { .. } => EXIT_BAD_INPUT,
+            CliError::HalfSpaceCase(_)
+            | CliError::Write { .. }
+            | CliError::Stdout { .. }
+            | CliError::Output { .. } => EXIT_OTHER,
         }
     }
 }
@@ -155,5 +111,10 @@ mod tests {
             detail: "y".into(),
         };
         assert_eq!(CliError::from(num).exit_code(), EXIT_OTHER);
+        let unknown = CliError::UnknownExample {
+            name: "x".into(),
+            known: "y".into(),
+        };
+        assert_eq!(unknown.exit_code(), EXIT_BAD_INPUT);
     }
 }

@@ -2,16 +2,15 @@
 //! out. See README.md and `tribo --help`.
 
 mod bem;
-mod case;
 mod error;
-mod examples;
 mod fatigue;
 mod memory;
 mod output;
-mod run;
+mod progress;
 mod term;
-mod units;
 mod validate;
+
+use tribo_case::{case, examples, pipeline as run};
 
 use clap::{Parser, Subcommand};
 use error::{CliError, CliResult, EXIT_OK, EXIT_OTHER, EXIT_VALIDATION_FAILED};
@@ -28,7 +27,7 @@ Contact mechanics of tribo-fatigue systems: normal contact of two elastic bodies
 contact area (the half-space model), compared with Hertz theory where the gap is Hertzian.
 
 Conventions:
-  * SI units everywhere (Pa, m, N). Case files may also write quantities as strings with a
+  * SI units everywhere (Pa, m, N). HalfSpaceCase files may also write quantities as strings with a
     unit: \"201 GPa\", \"48.4 MPa\", \"10 mm\", \"5 um\", \"2 kN\".
   * Frame: x = body 1's first principal direction (for a roller: its axis), y the second,
     z normal to the common tangent plane. Compressive pressure p > 0.
@@ -43,7 +42,7 @@ Conventions:
     approach / window half width) in [1e-15, 0.1], the small-strain range of the theory.
   * Memory: a case whose estimated peak memory exceeds --max-memory (default: what the
     machine has) is refused with exit 2 before solving; --dry-run prints the estimate.
-    Case files over 16 MiB are refused.
+    HalfSpaceCase files over 16 MiB are refused.
 
 A case file is TOML; `tribo example` lists ready-made ones and `tribo example NAME` prints
 one. A case with `kind = \"bem2d\"` is a 2D boundary element model of n bodies (regions from
@@ -234,7 +233,7 @@ fn read_case(case: Option<&Path>) -> CliResult<(String, String, PathBuf)> {
             PathBuf::from("."),
         )),
         Some(p) => {
-            let unreadable = |source| CliError::Unreadable {
+            let unreadable = |source| tribo_case::CaseError::Unreadable {
                 field: "case".into(),
                 path: p.to_path_buf(),
                 source,
@@ -254,7 +253,7 @@ fn read_bounded(reader: impl Read, path: &Path) -> CliResult<String> {
     reader
         .take(limit + 1)
         .read_to_end(&mut bytes)
-        .map_err(|source| CliError::Unreadable {
+        .map_err(|source| tribo_case::CaseError::Unreadable {
             field: "case".into(),
             path: path.to_path_buf(),
             source,
@@ -270,11 +269,12 @@ fn read_bounded(reader: impl Read, path: &Path) -> CliResult<String> {
             ),
         ));
     }
-    String::from_utf8(bytes).map_err(|e| CliError::Unreadable {
+    let text = String::from_utf8(bytes).map_err(|e| tribo_case::CaseError::Unreadable {
         field: "case".into(),
         path: path.to_path_buf(),
         source: std::io::Error::new(std::io::ErrorKind::InvalidData, e),
-    })
+    })?;
+    Ok(text)
 }
 
 fn cmd_run(
@@ -329,9 +329,9 @@ fn cmd_run(
         }
         return Ok(EXIT_OK);
     }
-    let outcome = run::solve(&case, prepared, quiet)?;
+    let outcome = run::solve(&case, prepared, &mut progress::Bars::new(quiet))?;
     let summary = output::write_all(out, &case, &outcome)?;
-    print_summary(&summary, &summary.human(out), json)
+    print_summary(&summary, &output::human::human(&summary, out), json)
 }
 
 /// Prints the summary: as JSON with `json`, else the human text.

@@ -1,127 +1,9 @@
-//! Memory before solving: an estimate of a case's peak memory, what the machine has, and the
-//! refusal (exit 2, nothing written) when the case would not fit. Out of memory is otherwise
-//! an abort (the allocator) or a panic deep in a solver, after minutes of work.
-//!
-//! The estimates are linear models in the sizes that dominate, calibrated against the peak
-//! resident set (VmHWM, `/usr/bin/time -v`'s "Maximum resident set size") of release runs; the
-//! test `memory_estimate_is_within_a_factor_of_two_of_the_peak` in tests/cli.rs checks the
-//! factor on mid-size cases. They are deliberately on the high side (within a factor 2).
+//! Memory before solving, the command line's part: what the machine has, `--max-memory`, and
+//! the refusal (exit 2, nothing written) when the case's estimate
+//! ([`tribo_case::memory`]) would not fit.
 
-use crate::case::{Case, FieldPoints};
 use crate::error::{CliError, CliResult};
-
-/// Largest case file read, bytes: the largest example is ~10 KiB; a case file is a few
-/// hundred lines of TOML (height maps and meshes are separate files). The TOML parser needs
-/// ~80 times a file's size (a 50 MB file took 3.9 GB), so a larger file is refused before
-/// reading.
-pub const MAX_CASE_FILE_BYTES: u64 = 16 << 20;
-
-/// Resident memory of the process before any case-dependent allocation (binary, fonts of the
-/// plots, the PNG canvases), bytes.
-const BASE_BYTES: f64 = 12.0 * 1048576.0;
-
-/// A case's estimated peak memory and its main parts.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Estimate {
-    /// The total, bytes.
-    pub bytes: u64,
-    /// The parts (name, bytes), largest first.
-    pub parts: Vec<(&'static str, u64)>,
-}
-
-impl Estimate {
-    fn new(parts: Vec<(&'static str, f64)>) -> Self {
-        let mut parts: Vec<(&'static str, u64)> = parts
-            .into_iter()
-            .filter(|p| p.1 > 0.0)
-            .map(|(n, b)| (n, b.min(u64::MAX as f64) as u64))
-            .collect();
-        parts.sort_by_key(|p| std::cmp::Reverse(p.1));
-        let bytes = parts.iter().fold(0u64, |s, p| s.saturating_add(p.1));
-        Estimate { bytes, parts }
-    }
-
-    /// One line: the total and the parts.
-    pub fn describe(&self) -> String {
-        let parts: Vec<String> = self
-            .parts
-            .iter()
-            .map(|(n, b)| format!("{n} {}", human(*b)))
-            .collect();
-        format!("about {} ({})", human(self.bytes), parts.join(", "))
-    }
-}
-
-/// Bytes as "12.3 MiB".
-pub fn human(bytes: u64) -> String {
-    let b = bytes as f64;
-    let units = ["B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
-    let k = ((b.max(1.0).log2() / 10.0).floor() as usize).min(units.len() - 1);
-    if k == 0 {
-        format!("{bytes} B")
-    } else {
-        format!("{:.1} {}", b / (1u64 << (10 * k)) as f64, units[k])
-    }
-}
-
-/// The half-space pipeline's peak: per contact element the normal solver's FFT buffers
-/// (influence spectra and work arrays on the 2nx x 2ny padded grid) and the element arrays of
-/// the outputs; per field point the stress tensor, the derived quantities and the VTK
-/// writer's buffers; per damage criterion a value per point.
-pub fn half_space(case: &Case) -> Estimate {
-    let elements = (case.n[0] as f64) * (case.n[1] as f64);
-    // Measured: 10.4 MiB at 21 x 21, 11.1 MiB at 64 x 64, 14.8 MiB at 128 x 128 (normal
-    // contact with all outputs): ~280 B per element above a 10.4 MiB base.
-    let per_element = 400.0;
-    let tangential = if case.friction.is_some() {
-        800.0 * elements
-    } else {
-        0.0
-    };
-    let (points, field_fft) = match &case.field {
-        None => (0.0, 0.0),
-        Some(f) => {
-            let p = f.n.iter().map(|&k| k as f64).product::<f64>();
-            let fft = match f.points {
-                // Per depth: six stress components on the padded grid, complex.
-                FieldPoints::Centres => 6.0 * 4.0 * 16.0 * elements * 2.0,
-                FieldPoints::Uniform => 0.0,
-            };
-            (p, fft)
-        }
-    };
-    let damage = case
-        .damage
-        .as_ref()
-        .map_or(0.0, |d| (d.criteria.len() as f64 + 2.0) * 64.0 * points);
-    Estimate::new(vec![
-        ("base", BASE_BYTES),
-        ("contact grid", per_element * elements),
-        ("tangential", tangential),
-        ("stress field", 1100.0 * points + field_fft),
-        ("damage", damage),
-    ])
-}
-
-/// The 2D boundary element pipeline's peak for `dof` boundary unknowns and `interior` field
-/// points: the dense H and G (dof x dof each), the assembled system and its LU factors, the
-/// contact condensation (a dof x dof block at most), and the interior fields.
-///
-/// Measured: 35.2 MiB for the gmsh Hertz example (1004 unknowns), 141 MiB for
-/// clamp-knife-base (2096 unknowns, 2 steps): ~4 dense matrices (3.2 and 3.8 x 8 dof^2).
-///
-/// Computed here from the DOF count until the library offers its own estimate (task B's
-/// `memory_estimate()`); this function is the one place to call it from then.
-pub fn bem(dof: usize, interior: usize) -> Estimate {
-    let d = dof as f64;
-    Estimate::new(vec![
-        ("base", BASE_BYTES),
-        ("dense H, G", 2.0 * 8.0 * d * d),
-        ("system and LU", 2.0 * 8.0 * d * d),
-        ("condensation", 4.0 * d * d),
-        ("interior fields", 800.0 * interior as f64),
-    ])
-}
+pub use tribo_case::memory::*;
 
 /// The memory this process may use, bytes, and where the figure comes from: the smaller of
 /// `/proc/meminfo`'s MemAvailable and the cgroup's limit (`/sys/fs/cgroup/memory.max` less
@@ -222,18 +104,12 @@ mod tests {
         for bad in ["", "GiB", "4 GB/s", "-1 GiB", "0", "1e30 TiB", "four"] {
             assert!(parse_size(bad).is_err(), "{bad}");
         }
-        assert_eq!(human(100 << 20), "100.0 MiB");
-        assert_eq!(human(512), "512 B");
     }
 
     #[test]
-    fn bem_grows_with_the_square_of_the_unknowns() {
-        let a = bem(1000, 0).bytes as f64 - BASE_BYTES;
-        let b = bem(2000, 0).bytes as f64 - BASE_BYTES;
-        assert!((b / a - 4.0).abs() < 1e-9);
+    fn a_large_bem_case_is_refused_under_its_estimate() {
         // 3000 quadratic elements, 12000 unknowns: 4.8 GiB, refused under 4 GiB.
         let e = bem(12000, 0);
-        assert!(e.bytes > 4 << 30 && e.bytes < 6 << 30, "{}", e.describe());
         assert!(check(&e, Some(4 << 30)).is_err());
         assert!(check(&e, Some(8 << 30)).is_ok());
     }

@@ -41,7 +41,8 @@ fn commands(dir: &Path, validate: bool) -> Vec<(Vec<String>, Option<String>)> {
     let out = |n: &str| dir.join(n).display().to_string();
     let case = dir.join("case.toml");
     fs::write(&case, SMALL).unwrap();
-    let diagram = fs::read_to_string(manifest("examples/fatigue-diagram.toml")).unwrap();
+    let diagram =
+        fs::read_to_string(manifest("../tribo-case/examples/fatigue-diagram.toml")).unwrap();
     let data = manifest("examples/data/woehler-steel.csv")
         .display()
         .to_string();

@@ -2,21 +2,14 @@
 //! conditions per named segment in load groups, frictional contact pairs, load steps,
 //! interior fields, damage and a material comparison (the paper's Sec. 7 workflow).
 
-pub mod case;
 pub mod output;
 pub mod plot;
-pub mod run;
-pub mod template;
+
+pub use tribo_case::bem::{case, is_bem_text, pipeline as run};
 
 use std::path::Path;
 
 use crate::error::CliResult;
-
-/// Whether the case text is a boundary element case (`kind = "bem2d"`); None where the text
-/// is not TOML (the caller's parser reports the error).
-pub fn is_bem_text(text: &str) -> bool {
-    toml::from_str::<toml::Table>(text).is_ok_and(|t| case::is_bem(&t))
-}
 
 /// `tribo run` on a boundary element case: solves and writes the outputs, returning the
 /// summary; with `dry_run` validates, prints the model and returns None.
@@ -74,6 +67,6 @@ pub fn run_text(
         crate::term::out(&listing)?;
         return Ok(None);
     }
-    let outcome = run::solve(&case, quiet)?;
+    let outcome = run::solve(&case, &mut crate::progress::Bars::new(quiet))?;
     Ok(Some(output::write_all(out, &case, &outcome)?))
 }

@@ -1,7 +1,7 @@
 //! `back_effect.csv` and the series of `back_effect.png`: the back effect of bulk loading,
 //! the paper's Fig. 2a.
 
-use crate::case::Case;
+use crate::case::HalfSpaceCase;
 use crate::error::{CliError, CliResult};
 use crate::run::BackEffect;
 use tribo::kernels::bulk::hertz_force_ratio;
@@ -63,7 +63,7 @@ pub struct Series {
 }
 
 /// The plotted series: numerical points and the Hertz curve per load kind.
-pub fn series(case: &Case, b: &BackEffect) -> CliResult<Vec<Series>> {
+pub fn series(case: &HalfSpaceCase, b: &BackEffect) -> CliResult<Vec<Series>> {
     let Some(bulk) = &case.bulk else {
         return Ok(Vec::new());
     };

@@ -12,12 +12,13 @@
 pub mod back_effect;
 pub mod canvas;
 pub mod fields;
+pub mod human;
 pub mod plot;
 pub mod stress;
-pub mod summary;
+pub use tribo_case::summary;
 pub mod vtk;
 
-use crate::case::Case;
+use crate::case::HalfSpaceCase;
 use crate::error::{CliError, CliResult};
 use crate::run::Outcome;
 use std::io::Write;
@@ -382,7 +383,7 @@ pub mod signals {
 }
 
 /// The summary of a solved case, checked finite.
-pub fn summary(case: &Case, out: &Outcome) -> CliResult<Summary> {
+pub fn summary(case: &HalfSpaceCase, out: &Outcome) -> CliResult<Summary> {
     let s = Summary::new(case, out, files(out));
     let c = &s.contact;
     let mut scalars = vec![
@@ -430,7 +431,7 @@ pub fn summary(case: &Case, out: &Outcome) -> CliResult<Summary> {
 }
 
 /// Write all files of a run into `dir` (created if needed) and return the summary.
-pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
+pub fn write_all(dir: &Path, case: &HalfSpaceCase, out: &Outcome) -> CliResult<Summary> {
     let grid = &out.prepared.grid;
     let sol = &out.solution;
     check_finite("pressure", &sol.pressure)?;
@@ -536,13 +537,8 @@ pub fn write_all(dir: &Path, case: &Case, out: &Outcome) -> CliResult<Summary> {
         let s = &t.solution;
         let fr = case.friction.as_ref();
         let f = fr.map_or(0.0, |f| f.coefficient);
-        // Cattaneo-Mindlin c/a (partial slip) or 0 (sliding: no stick zone).
-        let ratio = match (fr.map(|f| f.loading), hertz) {
-            (Some(TangentialLoading::Force { magnitude, .. }), Some(_)) => {
-                Some((1.0 - magnitude / (f * sol.normal_load)).max(0.0).cbrt())
-            }
-            _ => None,
-        };
+        // Cattaneo-Mindlin c/a (partial slip; None when sliding: no stick zone).
+        let ratio = t.stick_ratio_cattaneo_mindlin;
         let angle = match fr.map(|f| f.loading) {
             Some(TangentialLoading::Force { angle, .. })
             | Some(TangentialLoading::Sliding { angle }) => angle,

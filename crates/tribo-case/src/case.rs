@@ -1,4 +1,4 @@
-//! Case files: TOML in, a validated [`Case`] out, before any computation.
+//! Case files: TOML in, a validated [`HalfSpaceCase`] out, before any computation.
 //!
 //! The schema (every key; README.md "Case files" is the user's reference):
 //!
@@ -49,7 +49,7 @@
 //! # layers = 20                    # element centres (FFT, for large grids), `layers` depths
 //! ```
 
-use crate::error::{CliError, CliResult};
+use crate::error::{CaseError, CaseResult};
 use crate::units::{count, number, pair, quantity, show, Dim};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -502,7 +502,7 @@ pub struct StudySpec {
 
 /// A validated case, ready to run.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Case {
+pub struct HalfSpaceCase {
     /// Title (the file name where none is given).
     pub title: String,
     /// Where the case came from (a path, or `<embedded NAME>`).
@@ -533,7 +533,7 @@ pub struct Case {
     pub echo: serde_json::Value,
 }
 
-impl Case {
+impl HalfSpaceCase {
     /// Whether both bodies are given by radii, so that the gap is Hertzian.
     pub fn is_hertzian(&self) -> bool {
         matches!(self.body1.shape, Shape::Radii { .. })
@@ -557,8 +557,21 @@ impl Case {
 
 /// Parse and validate a case file's text. `source` names it in errors; `base_dir` resolves
 /// relative file paths (height maps).
-pub fn parse_case(text: &str, source: &str, base_dir: &Path) -> CliResult<Case> {
+pub fn parse_case(text: &str, source: &str, base_dir: &Path) -> CaseResult<HalfSpaceCase> {
     let (raw, echo) = parse_raw::<RawCase>(text, source)?;
+    validate(raw, source, base_dir, echo)
+}
+
+/// Validate a case given as a TOML table (the same schema and rules as a case file; see
+/// [`crate::builder::CaseBuilder`] for building one in code). `source` names it in errors;
+/// `base_dir` resolves relative file paths (height maps).
+pub fn from_table(table: toml::Table, source: &str, base_dir: &Path) -> CaseResult<HalfSpaceCase> {
+    let value = Value::Table(table);
+    let echo = echo_json(&value);
+    let raw = RawCase::deserialize(value).map_err(|e| CaseError::Parse {
+        path: source.to_string(),
+        message: e.to_string().trim_end().to_string(),
+    })?;
     validate(raw, source, base_dir, echo)
 }
 
@@ -567,8 +580,8 @@ pub fn parse_case(text: &str, source: &str, base_dir: &Path) -> CliResult<Case> 
 pub fn parse_raw<T: serde::de::DeserializeOwned>(
     text: &str,
     source: &str,
-) -> CliResult<(T, serde_json::Value)> {
-    let parse_error = |message: String| CliError::Parse {
+) -> CaseResult<(T, serde_json::Value)> {
+    let parse_error = |message: String| CaseError::Parse {
         path: source.to_string(),
         message,
     };
@@ -604,7 +617,7 @@ fn validate(
     source: &str,
     base_dir: &Path,
     echo: serde_json::Value,
-) -> CliResult<Case> {
+) -> CaseResult<HalfSpaceCase> {
     let m1 = material("body1", &raw.body1)?;
     let m2 = material("body2", &raw.body2)?;
     let e_star = tribo::composite_modulus(&m1, &m2);
@@ -612,7 +625,7 @@ fn validate(
     let loading = loading(&raw.contact)?;
 
     if let Some(a) = &raw.body1.angle_deg {
-        return Err(CliError::field(
+        return Err(CaseError::field(
             "body1.angle_deg",
             show(a),
             "not allowed: body 1's first principal direction defines the x axis; \
@@ -648,14 +661,14 @@ fn validate(
             "grid.n".to_string()
         };
         if *nk < 4 {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 f,
                 nk,
                 "at least 4 elements per side are needed",
             ));
         }
         if *nk > MAX_ELEMENTS_PER_SIDE {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 f,
                 nk,
                 format!("at most {MAX_ELEMENTS_PER_SIDE} elements per side (memory)"),
@@ -664,7 +677,7 @@ fn validate(
     }
     let window = match (&grid.extent, &grid.half_width) {
         (Some(e), Some(_)) => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "grid.extent",
                 show(e),
                 "give either grid.extent or grid.half_width, not both",
@@ -673,7 +686,7 @@ fn validate(
         (Some(e), None) => {
             let x = number("grid.extent", e)?;
             if !hertzian {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "grid.extent",
                     show(e),
                     "extent is in units of the Hertz semi-axis, defined only where both bodies \
@@ -681,7 +694,7 @@ fn validate(
                 ));
             }
             if !(x.is_finite() && x > 1.0) {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "grid.extent",
                     show(e),
                     "must be a finite number > 1 (the window must contain the Hertz contact)",
@@ -693,7 +706,7 @@ fn validate(
             let hw = pair("grid.half_width", h, |f, v| quantity(f, v, Dim::Length))?;
             for (k, w) in hw.iter().enumerate() {
                 if !(w.is_finite() && *w > 0.0) {
-                    return Err(CliError::field(
+                    return Err(CaseError::field(
                         format!("grid.half_width[{k}]"),
                         w,
                         "the window half width must be finite and > 0 (m)",
@@ -705,7 +718,7 @@ fn validate(
         }
         (None, None) => {
             if !hertzian {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "grid.half_width",
                     "(missing)",
                     "required where a body is given by a surface (the window cannot be sized \
@@ -720,7 +733,7 @@ fn validate(
             if let Shape::Surface(SurfaceProfile::HeightMap(m)) = s {
                 let (mx, my) = m.half_extents();
                 if hw[0] > mx * (1.0 + 1e-12) || hw[1] > my * (1.0 + 1e-12) {
-                    return Err(CliError::field(
+                    return Err(CaseError::field(
                         "grid.half_width",
                         format!("[{}, {}]", hw[0], hw[1]),
                         format!(
@@ -748,7 +761,7 @@ fn validate(
         None => None,
         Some(d) => {
             if field.is_none() {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "damage",
                     "given",
                     "needs a [field] section: the damage measures are integrals over the \
@@ -759,7 +772,7 @@ fn validate(
         }
     };
     let title = raw.title.unwrap_or_else(|| source.to_string());
-    Ok(Case {
+    Ok(HalfSpaceCase {
         title,
         source: source.to_string(),
         body1: Body {
@@ -795,7 +808,7 @@ fn damage_spec(
     d: RawDamage,
     loading: &NormalLoading,
     bulk: Option<&Bulk>,
-) -> CliResult<DamageSpec> {
+) -> CaseResult<DamageSpec> {
     let vocabulary = damage_vocabulary();
     let known = || {
         vocabulary
@@ -814,7 +827,7 @@ fn damage_spec(
                 match v {
                     Value::String(s) => names.push(s.clone()),
                     _ => {
-                        return Err(CliError::field(
+                        return Err(CaseError::field(
                             format!("damage.criteria[{k}]"),
                             show(v),
                             "must be the name of a quantity, e.g. \"sigma_int\"",
@@ -825,7 +838,7 @@ fn damage_spec(
             names
         }
         Some(v) => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "damage.criteria",
                 show(v),
                 "must be a non-empty list of quantity names, e.g. [\"sigma_int\", \"u\"]",
@@ -835,7 +848,7 @@ fn damage_spec(
     // Two default limits for the criteria without their own: the second would be silently
     // ignored (limit_load took precedence), so exactly one may be given.
     if let (Some(l), Some(_)) = (&d.limit_load, &d.limit_over_p0) {
-        return Err(CliError::field(
+        return Err(CaseError::field(
             "damage.limit_load",
             format!("{} (and damage.limit_over_p0)", show(l)),
             "give at most one of damage.limit_load (N) and damage.limit_over_p0 (the default \
@@ -850,7 +863,7 @@ fn damage_spec(
         None => None,
         Some(v) => {
             if !matches!(loading, NormalLoading::Force(_)) {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "damage.limit_load",
                     show(v),
                     "needs force control (contact.load): the limiting state is the same case \
@@ -868,7 +881,7 @@ fn damage_spec(
     let limits = d.limits.unwrap_or_default();
     for key in limits.keys() {
         if !names.iter().any(|n| n == key) {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 format!("damage.limits.{key}"),
                 "given",
                 "is not one of damage.criteria",
@@ -878,14 +891,14 @@ fn damage_spec(
     let mut criteria = Vec::new();
     for (k, name) in names.iter().enumerate() {
         let Some(quantity) = vocabulary.iter().find(|q| &q.name() == name).copied() else {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 format!("damage.criteria[{k}]"),
                 name,
                 format!("unknown quantity; known: {}", known()),
             ));
         };
         if criteria.iter().any(|(q, _)| *q == quantity) {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 format!("damage.criteria[{k}]"),
                 name,
                 "is named twice",
@@ -902,13 +915,13 @@ fn damage_spec(
                 None => number(&field, v)?,
             };
             tribo::analysis::damage::Limit::new(quantity, x)
-                .map_err(|e| CliError::field(&field, show(v), strip_field(&e.to_string())))?;
+                .map_err(|e| CaseError::field(&field, show(v), strip_field(&e.to_string())))?;
             LimitSource::Given(x)
         } else if limit_load.is_some() {
             LimitSource::LimitingLoad(limit_load.unwrap_or(0.0))
         } else if let Some(r) = over_p0 {
             if quantity.unit() != "Pa" {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     &field,
                     "(missing)",
                     format!(
@@ -924,7 +937,7 @@ fn damage_spec(
                 LimitSource::OverP0(r)
             }
         } else {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 &field,
                 "(missing)",
                 "required: give the limit here (material data), or damage.limit_over_p0 \
@@ -936,7 +949,7 @@ fn damage_spec(
     }
     if let Some(e) = &d.energy {
         // The generalized energy criterion (25)-(36): u_eff with the limit u0 (34).
-        let coefficient = |key: &str, v: &Option<Value>, default: f64| -> CliResult<f64> {
+        let coefficient = |key: &str, v: &Option<Value>, default: f64| -> CaseResult<f64> {
             match v {
                 None => Ok(default),
                 Some(v) => number(&format!("damage.energy.{key}"), v),
@@ -952,10 +965,10 @@ fn damage_spec(
         };
         coefficients
             .validate("damage.energy")
-            .map_err(CliError::from)?;
+            .map_err(CaseError::from)?;
         let temperature = coefficient("temperature", &e.temperature, 293.15)?;
         if !(temperature.is_finite() && temperature >= 0.0) {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "damage.energy.temperature",
                 temperature,
                 "must be finite and >= 0 K (absolute temperature)",
@@ -964,7 +977,7 @@ fn damage_spec(
         let u0 = match &e.u0 {
             Some(v) => number("damage.energy.u0", v)?,
             None => {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "damage.energy.u0",
                     "(missing)",
                     "required: the activation energy per unit volume u0, J/m^3",
@@ -972,7 +985,7 @@ fn damage_spec(
             }
         };
         if !(u0.is_finite() && u0 > 0.0) {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "damage.energy.u0",
                 u0,
                 "must be finite and > 0 (J/m^3)",
@@ -990,7 +1003,7 @@ fn damage_spec(
         None => None,
         Some(st) => {
             let Some(b) = bulk else {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "damage.study",
                     "given",
                     "needs a [bulk] section for the shaft (bulk.shaft, bulk.shaft_radius)",
@@ -1004,7 +1017,7 @@ fn damage_spec(
                         let f = format!("damage.study.bending_over_p0[{k}]");
                         let x = number(&f, v)?;
                         if !(x.is_finite() && x >= 0.0) || out.last().is_some_and(|&l| x <= l) {
-                            return Err(CliError::field(
+                            return Err(CaseError::field(
                                 f,
                                 show(v),
                                 "must be finite, >= 0 and increasing (sigma_b / p0; the zone \
@@ -1016,7 +1029,7 @@ fn damage_spec(
                     out
                 }
                 Some(v) => {
-                    return Err(CliError::field(
+                    return Err(CaseError::field(
                         "damage.study.bending_over_p0",
                         show(v),
                         "must be a list of 1 ... 101 values sigma_b / p0",
@@ -1046,11 +1059,11 @@ fn damage_spec(
     })
 }
 
-fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
+fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CaseResult<CycleSpec> {
     let kind = match &c.kind {
         Some(Value::String(k)) if k == "rotating-bending" => {
             if bulk.is_none() {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "damage.cycle.kind",
                     k,
                     "rotating bending needs a [bulk] section (the shaft and its radius)",
@@ -1060,7 +1073,7 @@ fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
                 (Some(v), None) => {
                     let x = crate::units::quantity("damage.cycle.amplitude", v, Dim::Pressure)?;
                     if !(x.is_finite() && x != 0.0) {
-                        return Err(CliError::field(
+                        return Err(CaseError::field(
                             "damage.cycle.amplitude",
                             show(v),
                             "must be finite and non-zero (Pa; > 0 starts in the tension zone)",
@@ -1071,7 +1084,7 @@ fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
                 (None, Some(v)) => {
                     let x = number("damage.cycle.amplitude_over_p0", v)?;
                     if !(x.is_finite() && x != 0.0) {
-                        return Err(CliError::field(
+                        return Err(CaseError::field(
                             "damage.cycle.amplitude_over_p0",
                             show(v),
                             "must be finite and non-zero (sigma_a / p0)",
@@ -1080,7 +1093,7 @@ fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
                     CycleAmplitude::OverP0(x)
                 }
                 _ => {
-                    return Err(CliError::field(
+                    return Err(CaseError::field(
                         "damage.cycle.amplitude",
                         "(missing or doubled)",
                         "give exactly one of amplitude (Pa) and amplitude_over_p0",
@@ -1088,7 +1101,7 @@ fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
                 }
             };
             if c.speed.is_some() {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "damage.cycle.speed",
                     "given",
                     "only for kind = \"rolling\"",
@@ -1098,7 +1111,7 @@ fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
         }
         Some(Value::String(k)) if k == "rolling" => {
             if c.amplitude.is_some() || c.amplitude_over_p0.is_some() {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "damage.cycle.amplitude",
                     "given",
                     "only for kind = \"rotating-bending\"",
@@ -1107,7 +1120,7 @@ fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
             let speed = match &c.speed {
                 Some(v) => number("damage.cycle.speed", v)?,
                 None => {
-                    return Err(CliError::field(
+                    return Err(CaseError::field(
                         "damage.cycle.speed",
                         "(missing)",
                         "required for rolling: the speed of the contact along y, m/s",
@@ -1115,7 +1128,7 @@ fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
                 }
             };
             if !(speed.is_finite() && speed != 0.0) {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "damage.cycle.speed",
                     speed,
                     "must be finite and non-zero (m/s)",
@@ -1124,7 +1137,7 @@ fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
             CycleKind::Rolling { speed }
         }
         other => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "damage.cycle.kind",
                 other.as_ref().map_or("(missing)".to_string(), show),
                 "must be \"rotating-bending\" (a bent shaft turning under the roller) or \
@@ -1135,7 +1148,7 @@ fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
     let period = match &c.period {
         Some(v) => positive_number("damage.cycle.period", v)?,
         None => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "damage.cycle.period",
                 "(missing)",
                 "required: the duration of one cycle (one revolution), s",
@@ -1147,7 +1160,7 @@ fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
         Some(v) => {
             let k = count("damage.cycle.steps", v)?;
             if !(2..=3600).contains(&k) {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "damage.cycle.steps",
                     k,
                     "must be in 2 ... 3600 time steps per cycle",
@@ -1159,7 +1172,7 @@ fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
     let cycles = match &c.cycles {
         None => 1.0,
         Some(v) => positive_number("damage.cycles", v).map_err(|_| {
-            CliError::field(
+            CaseError::field(
                 "damage.cycle.cycles",
                 show(v),
                 "must be finite and > 0 (the number of cycles N)",
@@ -1174,12 +1187,12 @@ fn cycle_spec(c: RawCycle, bulk: Option<&Bulk>) -> CliResult<CycleSpec> {
     })
 }
 
-fn positive_number(field: &str, v: &Value) -> CliResult<f64> {
+fn positive_number(field: &str, v: &Value) -> CaseResult<f64> {
     let x = number(field, v)?;
     if x.is_finite() && x > 0.0 {
         Ok(x)
     } else {
-        Err(CliError::field(field, show(v), "must be finite and > 0"))
+        Err(CaseError::field(field, show(v), "must be finite and > 0"))
     }
 }
 
@@ -1211,13 +1224,13 @@ fn shaft_radius_from(shape: &Shape) -> Option<f64> {
     }
 }
 
-fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
+fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CaseResult<Bulk> {
     let shaft = match &b.shaft {
         None => "body2",
         Some(Value::String(s)) if s == "body1" => "body1",
         Some(Value::String(s)) if s == "body2" => "body2",
         Some(v) => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "bulk.shaft",
                 show(v),
                 "must be \"body1\" or \"body2\" (the body that is the shaft)",
@@ -1228,7 +1241,7 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
     let shaft_radius = match &b.shaft_radius {
         Some(v) => positive("bulk.shaft_radius", v, Dim::Length, "the shaft radius (m)")?,
         None => shaft_radius_from(shaft_shape).ok_or_else(|| {
-            CliError::field(
+            CaseError::field(
                 "bulk.shaft_radius",
                 "(missing)",
                 format!(
@@ -1248,7 +1261,7 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
         }
         Some(Value::String(s)) if s == "bending" => vec![LoadKind::Bending],
         Some(v) => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "bulk.kind",
                 show(v),
                 "must be \"tension-compression\", \"bending\" or \"both\"",
@@ -1263,7 +1276,7 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
             "the largest bulk stress sigma_a,max (Pa)",
         )?,
         None => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "bulk.stress_max",
                 "(missing)",
                 "required: the largest bulk stress sigma_a,max in Pa (the curve spans \
@@ -1276,7 +1289,7 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
         Some(v) => {
             let k = count("bulk.points", v)?;
             if !(3..=MAX_BULK_POINTS).contains(&k) || k % 2 == 0 {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "bulk.points",
                     k,
                     format!(
@@ -1293,7 +1306,7 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
         Some(v) => {
             let x = quantity("bulk.stress", v, Dim::Pressure)?;
             if !x.is_finite() {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "bulk.stress",
                     show(v),
                     "the operating bulk stress must be finite (Pa, tension > 0)",
@@ -1309,14 +1322,14 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
         || b.bending_side.is_some();
     let stress = if from_force {
         if let Some(v) = &b.stress {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "bulk.stress",
                 show(v),
                 "give either bulk.stress or bulk.bending_force with bulk.span, not both",
             ));
         }
         if kinds != [LoadKind::Bending] {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "bulk.bending_force",
                 "given",
                 "needs kind = \"bending\" (the force bends the shaft)",
@@ -1324,7 +1337,7 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
         }
         let required = |key: &str, v: &Option<Value>| {
             v.clone().ok_or_else(|| {
-                CliError::field(
+                CaseError::field(
                     format!("bulk.{key}"),
                     "(missing)",
                     "required with a bending force: bending_force (N), span (m), and \
@@ -1343,7 +1356,7 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
             Some(Value::String(s)) if s == "simply-supported" => BeamSupport::SimplySupported,
             Some(Value::String(s)) if s == "cantilever" => BeamSupport::Cantilever,
             Some(v) => {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "bulk.support",
                     show(v),
                     "must be \"simply-supported\" (force at mid-span, M = F L/4) or \
@@ -1356,7 +1369,7 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
             Some(Value::String(s)) if s == "tension" => 1.0,
             Some(Value::String(s)) if s == "compression" => -1.0,
             Some(v) => {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "bulk.bending_side",
                     show(v),
                     "must be \"tension\" or \"compression\" (the side of the shaft the \
@@ -1379,14 +1392,14 @@ fn bulk(b: RawBulk, shape1: &Shape, shape2: &Shape) -> CliResult<Bulk> {
     })
 }
 
-fn boolean(field: &str, v: &Value) -> CliResult<bool> {
+fn boolean(field: &str, v: &Value) -> CaseResult<bool> {
     match v {
         Value::Boolean(b) => Ok(*b),
-        _ => Err(CliError::field(field, show(v), "must be true or false")),
+        _ => Err(CaseError::field(field, show(v), "must be true or false")),
     }
 }
 
-fn angle_deg(field: &str, v: Option<&Value>) -> CliResult<f64> {
+fn angle_deg(field: &str, v: Option<&Value>) -> CaseResult<f64> {
     match v {
         None => Ok(0.0),
         Some(v) => {
@@ -1394,7 +1407,7 @@ fn angle_deg(field: &str, v: Option<&Value>) -> CliResult<f64> {
             if x.is_finite() {
                 Ok(x.to_radians())
             } else {
-                Err(CliError::field(
+                Err(CaseError::field(
                     field,
                     show(v),
                     "the angle must be a finite number of degrees from the x axis",
@@ -1404,7 +1417,7 @@ fn angle_deg(field: &str, v: Option<&Value>) -> CliResult<f64> {
     }
 }
 
-fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
+fn friction(c: &RawContact) -> CaseResult<Option<Friction>> {
     use tribo::solvers::tangential::TangentialLoading;
     let sliding = match &c.sliding {
         None => None,
@@ -1412,14 +1425,14 @@ fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
     };
     let Some(fv) = &c.friction else {
         if let Some(q) = &c.tangential_load {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "contact.tangential_load",
                 show(q),
                 "needs contact.friction (the Coulomb coefficient f > 0)",
             ));
         }
         if let Some((_, v)) = sliding {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "contact.sliding",
                 show(v),
                 "needs contact.friction (the Coulomb coefficient f > 0)",
@@ -1431,7 +1444,7 @@ fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
             ("contact.traction_direction", &c.traction_direction),
         ] {
             if let Some(v) = v {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     name,
                     show(v),
                     "needs contact.friction and a tangential load or sliding = true",
@@ -1442,7 +1455,7 @@ fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
     };
     let f = number("contact.friction", fv)?;
     if !(f.is_finite() && f > 0.0) {
-        return Err(CliError::field(
+        return Err(CaseError::field(
             "contact.friction",
             show(fv),
             "the friction coefficient must be finite and > 0",
@@ -1451,7 +1464,7 @@ fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
     let loading = match (&c.tangential_load, sliding) {
         (Some(q), None) | (Some(q), Some((false, _))) => {
             if let Some(v) = &c.sliding_angle_deg {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "contact.sliding_angle_deg",
                     show(v),
                     "applies to sliding = true; under a tangential load give \
@@ -1474,7 +1487,7 @@ fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
         }
         (None, Some((true, _))) => {
             if let Some(v) = &c.tangential_angle_deg {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "contact.tangential_angle_deg",
                     show(v),
                     "applies to tangential_load; when sliding give contact.sliding_angle_deg",
@@ -1485,7 +1498,7 @@ fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
             }
         }
         (Some(q), Some((true, _))) => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "contact.tangential_load",
                 show(q),
                 "give exactly one of contact.tangential_load (partial slip) and \
@@ -1493,7 +1506,7 @@ fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
             ))
         }
         (None, _) => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "contact.friction",
                 show(fv),
                 "needs exactly one of contact.tangential_load (N, partial slip) and \
@@ -1506,7 +1519,7 @@ fn friction(c: &RawContact) -> CliResult<Option<Friction>> {
         Some(Value::String(v)) if v == "parallel" => false,
         Some(Value::String(v)) if v == "free" => true,
         Some(v) => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "contact.traction_direction",
                 show(v),
                 "must be \"parallel\" (q along the load, Cattaneo-Mindlin's assumption) or \
@@ -1527,9 +1540,9 @@ fn field_length(
     metres_key: &str,
     metres: Option<&Value>,
     hertzian: bool,
-) -> CliResult<Length> {
+) -> CaseResult<Length> {
     match (semi, metres) {
-        (Some(v), Some(_)) => Err(CliError::field(
+        (Some(v), Some(_)) => Err(CaseError::field(
             semi_key,
             show(v),
             format!("give either {semi_key} or {metres_key}, not both"),
@@ -1537,7 +1550,7 @@ fn field_length(
         (Some(v), None) => {
             let x = number(semi_key, v)?;
             if !hertzian {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     semi_key,
                     show(v),
                     format!(
@@ -1547,7 +1560,7 @@ fn field_length(
                 ));
             }
             if !(x.is_finite() && x > 0.0) {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     semi_key,
                     show(v),
                     "must be finite and > 0 (units of the Hertz long semi-axis a)",
@@ -1565,7 +1578,7 @@ fn field_length(
             if hertzian {
                 Ok(Length::Semi(DEFAULT_FIELD_EXTENT))
             } else {
-                Err(CliError::field(
+                Err(CaseError::field(
                     metres_key,
                     "(missing)",
                     "required where a body is given by a surface (no Hertz semi-axis to scale \
@@ -1576,13 +1589,13 @@ fn field_length(
     }
 }
 
-fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<FieldSpec> {
+fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CaseResult<FieldSpec> {
     let points = match &f.points {
         None => FieldPoints::Uniform,
         Some(Value::String(s)) if s == "uniform" => FieldPoints::Uniform,
         Some(Value::String(s)) if s == "centres" || s == "centers" => FieldPoints::Centres,
         Some(v) => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "field.points",
                 show(v),
                 "must be \"uniform\" (n points over the extent, direct sum) or \"centres\" \
@@ -1595,7 +1608,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
         Some(Value::String(s)) if s == "fft" => FieldMethod::Fft,
         Some(Value::String(s)) if s == "direct" => FieldMethod::Direct,
         Some(v) => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "field.method",
                 show(v),
                 "must be \"fft\" (FFT on the extended contact grid + cubic interpolation, \
@@ -1610,7 +1623,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
             ("field.half_width", f.half_width.is_some()),
         ] {
             if given {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     name,
                     "given",
                     "with points = \"centres\" the x, y points are the contact grid's element \
@@ -1619,7 +1632,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
             }
         }
     } else if f.layers.is_some() {
-        return Err(CliError::field(
+        return Err(CaseError::field(
             "field.layers",
             "given",
             "only with points = \"centres\"; with uniform points give n = [nx, ny, nz]",
@@ -1632,7 +1645,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
                 Some(v) => count("field.layers", v)?,
             };
             if !(2..=MAX_FIELD_N).contains(&layers) {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "field.layers",
                     layers,
                     format!("must be in 2 ... {MAX_FIELD_N} depths"),
@@ -1647,7 +1660,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
                 let name = format!("field.n[{k}]");
                 let c = count(&name, v)?;
                 if !(2..=MAX_FIELD_N).contains(&c) {
-                    return Err(CliError::field(
+                    return Err(CaseError::field(
                         name,
                         c,
                         format!("must be in 2 ... {MAX_FIELD_N} points"),
@@ -1658,7 +1671,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
             n
         }
         Some(v) => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "field.n",
                 show(v),
                 "must be [nx, ny, nz], three point counts",
@@ -1667,7 +1680,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
     };
     let total = n[0] * n[1] * n[2];
     if total > MAX_FIELD_POINTS {
-        return Err(CliError::field(
+        return Err(CaseError::field(
             "field.n",
             format!("[{}, {}, {}]", n[0], n[1], n[2]),
             format!(
@@ -1699,7 +1712,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
         Some(Value::String(s)) if s == "body1" => "body1",
         Some(Value::String(s)) if s == "body2" => "body2",
         Some(v) => {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "field.body",
                 show(v),
                 "must be \"body1\" or \"body2\" (the body the field is computed in)",
@@ -1716,7 +1729,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CliResult<F
     })
 }
 
-fn material(name: &str, b: &RawBody) -> CliResult<ElasticMaterial> {
+fn material(name: &str, b: &RawBody) -> CaseResult<ElasticMaterial> {
     let e = quantity(&format!("{name}.E"), &b.e, Dim::Pressure)?;
     let nu = number(&format!("{name}.nu"), &b.nu)?;
     let m = ElasticMaterial::named(name, e, nu)?;
@@ -1727,7 +1740,7 @@ fn material(name: &str, b: &RawBody) -> CliResult<ElasticMaterial> {
 /// A quantity that must be finite and > 0; a length of the geometry (any `Dim::Length` but
 /// the approach, which is checked relative to the window in `run::prepare`) also within
 /// [`crate::units::LENGTH_RANGE`].
-fn positive(field: &str, value: &Value, dim: Dim, what: &str) -> CliResult<f64> {
+fn positive(field: &str, value: &Value, dim: Dim, what: &str) -> CaseResult<f64> {
     let x = quantity(field, value, dim)?;
     if x.is_finite() && x > 0.0 {
         if dim == Dim::Length && field != "contact.approach" {
@@ -1735,7 +1748,7 @@ fn positive(field: &str, value: &Value, dim: Dim, what: &str) -> CliResult<f64> 
         }
         Ok(x)
     } else {
-        Err(CliError::field(
+        Err(CaseError::field(
             field,
             show(value),
             format!("{what} must be finite and > 0"),
@@ -1743,7 +1756,7 @@ fn positive(field: &str, value: &Value, dim: Dim, what: &str) -> CliResult<f64> 
     }
 }
 
-fn loading(c: &RawContact) -> CliResult<NormalLoading> {
+fn loading(c: &RawContact) -> CaseResult<NormalLoading> {
     match (&c.load, &c.approach) {
         (Some(l), None) => Ok(NormalLoading::Force(positive(
             "contact.load",
@@ -1757,12 +1770,12 @@ fn loading(c: &RawContact) -> CliResult<NormalLoading> {
             Dim::Length,
             "the approach (m)",
         )?)),
-        (Some(l), Some(_)) => Err(CliError::field(
+        (Some(l), Some(_)) => Err(CaseError::field(
             "contact.load",
             show(l),
             "give exactly one of contact.load (N) and contact.approach (m), not both",
         )),
-        (None, None) => Err(CliError::field(
+        (None, None) => Err(CaseError::field(
             "contact",
             "(neither load nor approach)",
             "give exactly one of contact.load (N) and contact.approach (m)",
@@ -1780,7 +1793,7 @@ struct ShapeContext<'a> {
 /// as the string "inf" or the TOML float `inf` (both echoed as "inf" in summary.json). A
 /// negative infinity or a NaN is refused: a concave flat direction is not a different shape,
 /// and the sign convention asks for an explicit "inf".
-fn radius(field: &str, v: &Value) -> CliResult<f64> {
+fn radius(field: &str, v: &Value) -> CaseResult<f64> {
     if let Value::String(s) = v {
         let t = s.trim();
         if t.eq_ignore_ascii_case("inf") || t.eq_ignore_ascii_case("infinity") {
@@ -1792,7 +1805,7 @@ fn radius(field: &str, v: &Value) -> CliResult<f64> {
             return Ok(f64::INFINITY);
         }
         if !x.is_finite() {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 field,
                 show(v),
                 "a radius must be a finite number in m, or inf / \"inf\" (flat); -inf and \
@@ -1801,34 +1814,38 @@ fn radius(field: &str, v: &Value) -> CliResult<f64> {
         }
     }
     let r = quantity(field, v, Dim::Length).map_err(|_| {
-        CliError::field(
+        CaseError::field(
             field,
             show(v),
             "a radius must be a number in m (< 0 concave), a string like \"10 mm\", or \"inf\" (flat)",
         )
     })?;
     if r == 0.0 {
-        return Err(CliError::field(
+        return Err(CaseError::field(
             field,
             show(v),
             "a radius of curvature must be non-zero (use \"inf\" for a flat direction)",
         ));
     }
     if r.is_nan() {
-        return Err(CliError::field(field, show(v), "a radius must be a number"));
+        return Err(CaseError::field(
+            field,
+            show(v),
+            "a radius must be a number",
+        ));
     }
     crate::units::check_length(field, v, r)?;
     Ok(r)
 }
 
-fn shape(name: &str, b: RawBody, ctx: &ShapeContext<'_>) -> CliResult<Shape> {
+fn shape(name: &str, b: RawBody, ctx: &ShapeContext<'_>) -> CaseResult<Shape> {
     match (b.radii, b.surface) {
-        (Some(_), Some(_)) => Err(CliError::field(
+        (Some(_), Some(_)) => Err(CaseError::field(
             format!("{name}.radii"),
             "(and a surface)",
             format!("give exactly one of {name}.radii and [{name}.surface]"),
         )),
-        (None, None) => Err(CliError::field(
+        (None, None) => Err(CaseError::field(
             format!("{name}.radii"),
             "(missing)",
             format!("give the body's shape: {name}.radii = [Rx, Ry] or a [{name}.surface] table"),
@@ -1840,7 +1857,7 @@ fn shape(name: &str, b: RawBody, ctx: &ShapeContext<'_>) -> CliResult<Shape> {
                     radius(&format!("{name}.radii[1]"), &a[1])?,
                 ],
                 other => {
-                    return Err(CliError::field(
+                    return Err(CaseError::field(
                         format!("{name}.radii"),
                         show(other),
                         "must be an array of two principal radii [Rx, Ry] (m, or \"inf\")",
@@ -1852,7 +1869,7 @@ fn shape(name: &str, b: RawBody, ctx: &ShapeContext<'_>) -> CliResult<Shape> {
                 Some(v) => {
                     let deg = number(&format!("{name}.angle_deg"), v)?;
                     if !deg.is_finite() {
-                        return Err(CliError::field(
+                        return Err(CaseError::field(
                             format!("{name}.angle_deg"),
                             show(v),
                             "must be finite",
@@ -1865,7 +1882,7 @@ fn shape(name: &str, b: RawBody, ctx: &ShapeContext<'_>) -> CliResult<Shape> {
         }
         (None, Some(s)) => {
             if let Some(a) = &b.angle_deg {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     format!("{name}.angle_deg"),
                     show(a),
                     "applies to radii only; a surface is given in the common frame",
@@ -1876,7 +1893,7 @@ fn shape(name: &str, b: RawBody, ctx: &ShapeContext<'_>) -> CliResult<Shape> {
     }
 }
 
-fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CliResult<SurfaceProfile> {
+fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CaseResult<SurfaceProfile> {
     match s {
         RawSurface::Roller {
             radius,
@@ -1900,9 +1917,9 @@ fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CliResult<Surf
                 "the roller length (m)",
             )?;
             let kind = crown.as_deref().unwrap_or("none");
-            let unused = |key: &str, v: &Option<Value>| -> CliResult<()> {
+            let unused = |key: &str, v: &Option<Value>| -> CaseResult<()> {
                 match v {
-                    Some(v) => Err(CliError::field(
+                    Some(v) => Err(CaseError::field(
                         format!("{field}.{key}"),
                         show(v),
                         format!("does not apply to crown = {kind:?}"),
@@ -1922,7 +1939,7 @@ fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CliResult<Surf
                     unused("design_load", &design_load)?;
                     unused("crown_drop", &crown_drop)?;
                     let cr = crown_radius.as_ref().ok_or_else(|| {
-                        CliError::field(
+                        CaseError::field(
                             format!("{field}.crown_radius"),
                             "(missing)",
                             "a circular crown needs its radius (m)",
@@ -1954,7 +1971,7 @@ fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CliResult<Surf
                             "the design load (N)",
                         )?,
                         (None, NormalLoading::Force(f)) => f,
-                        (None, NormalLoading::Approach(_)) => return Err(CliError::field(
+                        (None, NormalLoading::Approach(_)) => return Err(CaseError::field(
                             format!("{field}.design_load"),
                             "(missing)",
                             "a logarithmic crown under approach control needs its design load (N)",
@@ -1972,7 +1989,7 @@ fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CliResult<Surf
                     Crown::Logarithmic(LogarithmicCrown::new(field, q, l, ctx.e_star, zm)?)
                 }
                 other => {
-                    return Err(CliError::field(
+                    return Err(CaseError::field(
                         format!("{field}.crown"),
                         format!("{other:?}"),
                         "must be \"none\", \"circular\" or \"logarithmic\"",
@@ -1995,7 +2012,7 @@ fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CliResult<Surf
                 Some(v) => {
                     let s = number(&format!("{field}.scale"), v)?;
                     if !(s.is_finite() && s > 0.0) {
-                        return Err(CliError::field(
+                        return Err(CaseError::field(
                             format!("{field}.scale"),
                             show(v),
                             "must be finite and > 0",
@@ -2011,14 +2028,14 @@ fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CliResult<Surf
                 }
                 (None, Some(rows)) => inline_heights(&format!("{field}.heights"), &rows)?,
                 (Some(f), Some(_)) => {
-                    return Err(CliError::field(
+                    return Err(CaseError::field(
                         format!("{field}.file"),
                         format!("{f:?}"),
                         "give either file or heights, not both",
                     ))
                 }
                 (None, None) => {
-                    return Err(CliError::field(
+                    return Err(CaseError::field(
                         format!("{field}.file"),
                         "(missing)",
                         "a height map needs file = \"map.csv\" or heights = [[...], ...]",
@@ -2033,13 +2050,13 @@ fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CliResult<Surf
     }
 }
 
-fn inline_heights(field: &str, rows: &[Vec<Value>]) -> CliResult<(usize, usize, Vec<f64>)> {
+fn inline_heights(field: &str, rows: &[Vec<Value>]) -> CaseResult<(usize, usize, Vec<f64>)> {
     let ny = rows.len();
     let nx = rows.first().map_or(0, Vec::len);
     let mut out = Vec::with_capacity(nx * ny);
     for (j, row) in rows.iter().enumerate() {
         if row.len() != nx {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 format!("{field}[{j}]"),
                 format!("{} values", row.len()),
                 format!("ragged: every row must have as many values as the first ({nx})"),
@@ -2048,7 +2065,7 @@ fn inline_heights(field: &str, rows: &[Vec<Value>]) -> CliResult<(usize, usize, 
         for (i, v) in row.iter().enumerate() {
             let h = number(&format!("{field}[{j}][{i}]"), v)?;
             if !h.is_finite() {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     format!("{field}[{j}][{i}]"),
                     h,
                     "heights must be finite",
@@ -2058,7 +2075,7 @@ fn inline_heights(field: &str, rows: &[Vec<Value>]) -> CliResult<(usize, usize, 
         }
     }
     if nx < 2 || ny < 2 {
-        return Err(CliError::field(
+        return Err(CaseError::field(
             field,
             format!("{ny} x {nx}"),
             "a height map needs at least 2 x 2 values",
@@ -2070,13 +2087,13 @@ fn inline_heights(field: &str, rows: &[Vec<Value>]) -> CliResult<(usize, usize, 
 /// Read a height map CSV: one row of the grid per line, values separated by commas, row `j`
 /// (the j-th data line) at `y_j`, column `i` at `x_i` (both increasing; see
 /// [`tribo::geometry::HeightMap`]); blank lines and lines starting with `#` are skipped.
-pub fn read_height_csv(field: &str, path: &Path) -> CliResult<(usize, usize, Vec<f64>)> {
-    let text = std::fs::read_to_string(path).map_err(|source| CliError::Unreadable {
+pub fn read_height_csv(field: &str, path: &Path) -> CaseResult<(usize, usize, Vec<f64>)> {
+    let text = std::fs::read_to_string(path).map_err(|source| CaseError::Unreadable {
         field: field.to_string(),
         path: path.to_path_buf(),
         source,
     })?;
-    let bad = |line: usize, rule: String| CliError::DataFile {
+    let bad = |line: usize, rule: String| CaseError::DataFile {
         field: field.to_string(),
         path: PathBuf::from(path),
         line,
@@ -2126,7 +2143,7 @@ pub fn read_height_csv(field: &str, path: &Path) -> CliResult<(usize, usize, Vec
 
 /// Refuse radii whose gap h = A x'^2 + B y'^2 is not positive definite (docs/theory/HALFSPACE.md 3.1,
 /// Johnson 1985 section 4.2): no bounded contact (both flat, or too conforming).
-fn check_convex(r1: [f64; 2], r2: [f64; 2], angle: f64) -> CliResult<()> {
+fn check_convex(r1: [f64; 2], r2: [f64; 2], angle: f64) -> CaseResult<()> {
     let k = |r: f64| if r.is_infinite() { 0.0 } else { 1.0 / r };
     let (k11, k12, k21, k22) = (k(r1[0]), k(r1[1]), k(r2[0]), k(r2[1]));
     let sum = 0.5 * (k11 + k12 + k21 + k22);
@@ -2141,7 +2158,7 @@ fn check_convex(r1: [f64; 2], r2: [f64; 2], angle: f64) -> CliResult<()> {
         .iter()
         .fold(0.0f64, |m, x| m.max(x.abs()));
     if !(a > 1e-9 * scale && b > 0.0) {
-        return Err(CliError::field(
+        return Err(CaseError::field(
             "body1.radii, body2.radii",
             format!("[{}, {}], [{}, {}]", r1[0], r1[1], r2[0], r2[1]),
             format!(
@@ -2154,7 +2171,7 @@ fn check_convex(r1: [f64; 2], r2: [f64; 2], angle: f64) -> CliResult<()> {
     Ok(())
 }
 
-fn solver(raw: Option<RawSolver>, n: [usize; 2]) -> CliResult<(Method, NormalContactParams)> {
+fn solver(raw: Option<RawSolver>, n: [usize; 2]) -> CaseResult<(Method, NormalContactParams)> {
     let mut params = NormalContactParams::default();
     let Some(s) = raw else {
         return Ok((Method::Cg, params));
@@ -2163,7 +2180,7 @@ fn solver(raw: Option<RawSolver>, n: [usize; 2]) -> CliResult<(Method, NormalCon
     if let Some(t) = &s.tolerance {
         let x = number("solver.tolerance", t)?;
         if !(x.is_finite() && x > 0.0 && x < 1.0) {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "solver.tolerance",
                 show(t),
                 "must be in (0, 1)",
@@ -2174,7 +2191,7 @@ fn solver(raw: Option<RawSolver>, n: [usize; 2]) -> CliResult<(Method, NormalCon
     if let Some(m) = &s.max_iterations {
         let x = count("solver.max_iterations", m)?;
         if x == 0 {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 "solver.max_iterations",
                 x,
                 "must be at least 1",
@@ -2183,7 +2200,7 @@ fn solver(raw: Option<RawSolver>, n: [usize; 2]) -> CliResult<(Method, NormalCon
         params.max_iterations = x;
     }
     if method == Method::ActiveSet && n[0] * n[1] > MAX_ACTIVE_SET_ELEMENTS {
-        return Err(CliError::field(
+        return Err(CaseError::field(
             "solver.method",
             "\"active_set\"",
             format!(
@@ -2217,7 +2234,7 @@ n = 21
 extent = 1.5
 "#;
 
-    fn parse(text: &str) -> CliResult<Case> {
+    fn parse(text: &str) -> CaseResult<HalfSpaceCase> {
         parse_case(text, "test.toml", Path::new("."))
     }
 
@@ -2586,6 +2603,6 @@ half_width = 1e-4
             e.to_string().starts_with("body1.surface.file: cannot read"),
             "{e}"
         );
-        assert_eq!(e.exit_code(), crate::error::EXIT_BAD_INPUT);
+        assert!(e.is_bad_input());
     }
 }

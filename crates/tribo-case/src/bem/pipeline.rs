@@ -20,8 +20,8 @@ use tribo::solvers::bem2d::{
 use tribo::ElasticMaterial;
 
 use super::case::{BcKind, BemCase, ComponentSpec, ProfileSpec};
-use crate::error::{CliError, CliResult};
-use crate::run::spinner;
+use crate::error::{CaseError, CaseResult};
+use crate::progress::Progress;
 
 /// One solved step.
 #[derive(Debug, Clone)]
@@ -172,7 +172,7 @@ pub struct BuiltModel {
 
 /// Builds the library model, with the material of region `swap.0` replaced by `swap.1`;
 /// imports the case's gmsh files and checks the region and segment names the case uses.
-pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CliResult<BuiltModel> {
+pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CaseResult<BuiltModel> {
     let material = |region: &str, name: &str| -> ElasticMaterial {
         let chosen = match swap {
             Some((r, m)) if r == region => m,
@@ -194,7 +194,7 @@ pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CliResult<BuiltModel
     let mut meshes = Vec::new();
     for (i, m) in case.meshes.iter().enumerate() {
         let field = format!("mesh[{i}].file");
-        let text = std::fs::read_to_string(&m.path).map_err(|source| CliError::Unreadable {
+        let text = std::fs::read_to_string(&m.path).map_err(|source| CaseError::Unreadable {
             field: field.clone(),
             path: m.path.clone(),
             source,
@@ -206,10 +206,10 @@ pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CliResult<BuiltModel
             corner_angle_deg: m.corner_angle_deg,
         };
         let imported = gmsh::import_msh_with(&text, &lookup, &options)
-            .map_err(|e| CliError::field(field.clone(), m.path.display(), format!("{e}")))?;
+            .map_err(|e| CaseError::field(field.clone(), m.path.display(), format!("{e}")))?;
         for surface in m.materials.keys() {
             if !imported.surfaces.contains_key(surface) {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     format!("mesh[{i}].materials.{surface}"),
                     format!("{surface:?}"),
                     format!(
@@ -263,18 +263,18 @@ pub fn model(case: &BemCase, swap: Option<(&str, &str)>) -> CliResult<BuiltModel
 /// The region names of the field, damage and comparison, and the segment names of the
 /// contact pairs and rigid segments, against the built model (gmsh files add names that the
 /// case parser cannot see).
-fn check_names(case: &BemCase, built: &BuiltModel) -> CliResult<()> {
+fn check_names(case: &BemCase, built: &BuiltModel) -> CaseResult<()> {
     let regions: Vec<&str> = built
         .model
         .regions
         .iter()
         .map(|r| r.name.as_str())
         .collect();
-    let region = |field: String, name: &str| -> CliResult<()> {
+    let region = |field: String, name: &str| -> CaseResult<()> {
         if regions.contains(&name) {
             return Ok(());
         }
-        Err(CliError::field(
+        Err(CaseError::field(
             field,
             format!("{name:?}"),
             format!("names no region (regions: {})", regions.join(", ")),
@@ -292,12 +292,12 @@ fn check_names(case: &BemCase, built: &BuiltModel) -> CliResult<()> {
     // A pair or a rigid face needs one segment: a gmsh name cut into parts is refused with
     // the parts to choose from.
     let shapes = segment_shapes(&built.model);
-    let single = |field: String, name: &str| -> CliResult<()> {
+    let single = |field: String, name: &str| -> CaseResult<()> {
         if shapes.contains_key(name) {
             return Ok(());
         }
         match built.curves.get(name) {
-            Some(parts) => Err(CliError::field(
+            Some(parts) => Err(CaseError::field(
                 field,
                 format!("{name:?}"),
                 format!(
@@ -338,7 +338,7 @@ fn library_profile(
     factor: f64,
     shape: Option<&SegmentShape>,
     origin: &str,
-) -> CliResult<Profile> {
+) -> CaseResult<Profile> {
     Ok(match spec {
         ProfileSpec::Uniform(v) => Profile::Uniform(factor * v),
         ProfileSpec::Linear(a, b) => Profile::Linear {
@@ -347,7 +347,7 @@ fn library_profile(
         },
         ProfileSpec::Table(rows) => {
             let Some(shape) = shape else {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     origin,
                     "table",
                     "tabulated profiles need a segment of the model",
@@ -371,8 +371,8 @@ fn library_bc(
     factor: f64,
     shape: Option<&SegmentShape>,
     origin: &str,
-) -> CliResult<SegmentBc> {
-    let comp = |c: &ComponentSpec| -> CliResult<Component> {
+) -> CaseResult<SegmentBc> {
+    let comp = |c: &ComponentSpec| -> CaseResult<Component> {
         Ok(match c {
             ComponentSpec::Displacement(p) => {
                 Component::Displacement(library_profile(p, factor, shape, origin)?)
@@ -397,7 +397,7 @@ fn conditions(
     case: &BemCase,
     built: &BuiltModel,
     factors: Option<&BTreeMap<String, f64>>,
-) -> CliResult<BoundaryConditions> {
+) -> CaseResult<BoundaryConditions> {
     let shapes = segment_shapes(&built.model);
     let mut bcs = BoundaryConditions::new();
     for b in &case.bcs {
@@ -407,7 +407,7 @@ fn conditions(
         } else if let Some(parts) = built.curves.get(&b.segment) {
             parts.iter().map(String::as_str).collect()
         } else {
-            return Err(CliError::field(
+            return Err(CaseError::field(
                 format!("{}.segment", b.origin),
                 format!("{:?}", b.segment),
                 "names no segment of the model",
@@ -451,7 +451,7 @@ fn default_field_size(mesh: &BemMesh) -> f64 {
 }
 
 /// The region names of the fields to sample.
-fn field_regions(case: &BemCase, mesh: &BemMesh, only: Option<&[&str]>) -> CliResult<Vec<usize>> {
+fn field_regions(case: &BemCase, mesh: &BemMesh, only: Option<&[&str]>) -> CaseResult<Vec<usize>> {
     let all: Vec<String> = mesh.regions.iter().map(|r| r.name.clone()).collect();
     let wanted: Vec<String> = match (only, &case.field.regions) {
         (Some(list), _) => list.iter().map(|s| s.to_string()).collect(),
@@ -462,7 +462,7 @@ fn field_regions(case: &BemCase, mesh: &BemMesh, only: Option<&[&str]>) -> CliRe
         .iter()
         .map(|w| {
             all.iter().position(|a| a == w).ok_or_else(|| {
-                CliError::field(
+                CaseError::field(
                     "field.regions",
                     format!("{w:?}"),
                     format!("names no region (regions: {})", all.join(", ")),
@@ -511,15 +511,15 @@ pub fn run_variant(
     case: &BemCase,
     swap: Option<(&str, &str)>,
     only_regions: Option<&[&str]>,
-    quiet: bool,
-) -> CliResult<Variant> {
+    progress: &mut dyn Progress,
+) -> CaseResult<Variant> {
     let label = swap
         .map(|(r, m)| format!(" ({r}: {m})"))
         .unwrap_or_default();
     let t0 = Instant::now();
     let built = model(case, swap)?;
     let model = &built.model;
-    let pb = spinner(quiet, format!("meshing, assembling and factoring{label}"));
+    progress.stage(&format!("meshing, assembling and factoring{label}"), None);
     let use_contact = !case.pairs.is_empty() || !case.rigid.is_empty();
     let mut steps = Vec::new();
     let (dof, contact_unknowns, setup, steps_time, mesh);
@@ -531,7 +531,7 @@ pub fn run_variant(
         dof = problem.bem().dof();
         contact_unknowns = problem.contact_unknowns();
         mesh = problem.bem().mesh.clone();
-        pb.set_message(format!("contact steps{label}"));
+        progress.stage(&format!("contact steps{label}"), None);
         let load_steps: Vec<LoadStep> = case
             .steps
             .iter()
@@ -568,7 +568,7 @@ pub fn run_variant(
         mesh = problem.mesh.clone();
         let t1 = Instant::now();
         for s in &case.steps {
-            pb.set_message(format!("step {}{label}", s.name));
+            progress.stage(&format!("step {}{label}", s.name), None);
             let bcs = conditions(case, &built, Some(&s.factors))?;
             let solution = problem.solve(&bcs)?;
             steps.push(StepOutcome {
@@ -584,7 +584,7 @@ pub fn run_variant(
         steps_time = t1.elapsed().as_secs_f64();
     }
     // Fields.
-    pb.set_message(format!("interior fields{label}"));
+    progress.stage(&format!("interior fields{label}"), None);
     let t2 = Instant::now();
     let field_size = case.field.size.unwrap_or_else(|| default_field_size(&mesh));
     let mut fields = Vec::new();
@@ -610,7 +610,7 @@ pub fn run_variant(
         None => None,
         Some(d) => {
             let Some(f) = fields.iter().find(|f| f.region == d.region) else {
-                return Err(CliError::field(
+                return Err(CaseError::field(
                     "damage.region",
                     format!("{:?}", d.region),
                     "is not among field.regions (its field is needed)",
@@ -621,7 +621,7 @@ pub fn run_variant(
                 .iter()
                 .map(|s| d.quantity.value(&tensor(&s.stress), &f.material))
                 .collect();
-            let region_at = |limit: f64| -> CliResult<(Vec<f64>, DangerousRegion)> {
+            let region_at = |limit: f64| -> CaseResult<(Vec<f64>, DangerousRegion)> {
                 let psi: Vec<f64> = phi.iter().map(|v| v / limit).collect();
                 let r = dangerous_region(&dm, &psi, Execution::Parallel)?;
                 Ok((psi, r))
@@ -647,7 +647,7 @@ pub fn run_variant(
         }
     };
     let damage_time = t3.elapsed().as_secs_f64();
-    pb.finish_and_clear();
+    progress.finish();
     Ok(Variant {
         material: swap.map(|(_, m)| m.to_string()),
         mesh,
@@ -667,8 +667,8 @@ pub fn run_variant(
 }
 
 /// Solves the case and its comparison.
-pub fn solve(case: &BemCase, quiet: bool) -> CliResult<BemOutcome> {
-    let main = run_variant(case, None, None, quiet)?;
+pub fn solve(case: &BemCase, progress: &mut dyn Progress) -> CaseResult<BemOutcome> {
+    let main = run_variant(case, None, None, progress)?;
     let mut compare = Vec::new();
     if let Some(c) = &case.compare {
         let own = main
@@ -677,7 +677,7 @@ pub fn solve(case: &BemCase, quiet: bool) -> CliResult<BemOutcome> {
             .iter()
             .position(|r| r.name == c.region)
             .ok_or_else(|| {
-                CliError::field(
+                CaseError::field(
                     "compare.region",
                     format!("{:?}", c.region),
                     "names no region of the model",
@@ -698,7 +698,7 @@ pub fn solve(case: &BemCase, quiet: bool) -> CliResult<BemOutcome> {
                 v.timings = Timings::default();
                 v
             } else {
-                run_variant(case, Some((&c.region, m)), Some(&only), quiet)?
+                run_variant(case, Some((&c.region, m)), Some(&only), progress)?
             };
             compare.push((m.clone(), v));
         }

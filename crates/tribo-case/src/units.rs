@@ -1,6 +1,6 @@
 //! Numbers in case files: plain SI numbers, or strings with a unit (`"201 GPa"`, `"10 mm"`).
 
-use crate::error::{CliError, CliResult};
+use crate::error::{CaseError, CaseResult};
 use toml::Value;
 
 /// The physical dimension a field expects; decides which unit strings are accepted.
@@ -63,27 +63,27 @@ pub fn show(value: &Value) -> String {
 /// A plain finite number (float or integer), dimensionless. TOML's `inf`, `-inf` and `nan`
 /// floats are refused here, for every field; the one field where infinity means something (a
 /// flat direction's radius of curvature) handles it before calling this.
-pub fn number(field: &str, value: &Value) -> CliResult<f64> {
+pub fn number(field: &str, value: &Value) -> CaseResult<f64> {
     match value {
-        Value::Float(f) if !f.is_finite() => Err(CliError::field(
+        Value::Float(f) if !f.is_finite() => Err(CaseError::field(
             field,
             show(value),
             "must be a finite number (TOML inf and nan are not accepted here)",
         )),
         Value::Float(f) => Ok(*f),
         Value::Integer(i) => Ok(*i as f64),
-        other => Err(CliError::field(field, show(other), "must be a number")),
+        other => Err(CaseError::field(field, show(other), "must be a number")),
     }
 }
 
 /// A quantity of dimension `dim`, returned in SI units: a number (taken as SI) or a string
 /// `"<number> <unit>"` (the space is optional).
-pub fn quantity(field: &str, value: &Value, dim: Dim) -> CliResult<f64> {
+pub fn quantity(field: &str, value: &Value, dim: Dim) -> CaseResult<f64> {
     match value {
         Value::Float(_) | Value::Integer(_) => number(field, value),
         Value::String(s) => parse_with_unit(s, dim).ok_or_else(|| {
             let units: Vec<&str> = dim.units().iter().map(|u| u.0).collect();
-            CliError::field(
+            CaseError::field(
                 field,
                 show(value),
                 format!(
@@ -93,7 +93,7 @@ pub fn quantity(field: &str, value: &Value, dim: Dim) -> CliResult<f64> {
                 ),
             )
         }),
-        other => Err(CliError::field(
+        other => Err(CaseError::field(
             field,
             show(other),
             format!("must be a number in {}", dim.si()),
@@ -180,12 +180,12 @@ pub const MAX_STRAIN: f64 = 0.1;
 pub const MIN_STRAIN: f64 = 1e-15;
 
 /// `E` (Pa) of the field `field` within [`MODULUS_RANGE`].
-pub fn check_modulus(field: &str, value: &Value, e: f64) -> CliResult<()> {
+pub fn check_modulus(field: &str, value: &Value, e: f64) -> CaseResult<()> {
     let [lo, hi] = MODULUS_RANGE;
     if (lo..=hi).contains(&e) {
         Ok(())
     } else {
-        Err(CliError::field(
+        Err(CaseError::field(
             field,
             show(value),
             format!(
@@ -197,12 +197,12 @@ pub fn check_modulus(field: &str, value: &Value, e: f64) -> CliResult<()> {
 }
 
 /// A geometric length `x` (m, its magnitude) within [`LENGTH_RANGE`].
-pub fn check_length(field: &str, value: &Value, x: f64) -> CliResult<()> {
+pub fn check_length(field: &str, value: &Value, x: f64) -> CaseResult<()> {
     let [lo, hi] = LENGTH_RANGE;
     if (lo..=hi).contains(&x.abs()) {
         Ok(())
     } else {
-        Err(CliError::field(
+        Err(CaseError::field(
             field,
             show(value),
             format!(
@@ -215,11 +215,11 @@ pub fn check_length(field: &str, value: &Value, x: f64) -> CliResult<()> {
 
 /// A load measured as a strain (see [`MAX_STRAIN`]), `what` saying which measure, within
 /// [[`MIN_STRAIN`], [`MAX_STRAIN`]].
-pub fn check_strain(field: &str, value: String, strain: f64, what: &str) -> CliResult<()> {
+pub fn check_strain(field: &str, value: String, strain: f64, what: &str) -> CaseResult<()> {
     if (MIN_STRAIN..=MAX_STRAIN).contains(&strain) {
         Ok(())
     } else {
-        Err(CliError::field(
+        Err(CaseError::field(
             field,
             value,
             format!(
@@ -235,8 +235,8 @@ pub fn check_strain(field: &str, value: String, strain: f64, what: &str) -> CliR
 pub fn pair<T>(
     field: &str,
     value: &Value,
-    item: impl Fn(&str, &Value) -> CliResult<T>,
-) -> CliResult<[T; 2]>
+    item: impl Fn(&str, &Value) -> CaseResult<T>,
+) -> CaseResult<[T; 2]>
 where
     T: Clone,
 {
@@ -245,7 +245,7 @@ where
             item(&format!("{field}[0]"), &a[0])?,
             item(&format!("{field}[1]"), &a[1])?,
         ]),
-        Value::Array(a) => Err(CliError::field(
+        Value::Array(a) => Err(CaseError::field(
             field,
             show(value),
             format!(
@@ -261,12 +261,12 @@ where
 }
 
 /// A non-negative integer.
-pub fn count(field: &str, value: &Value) -> CliResult<usize> {
+pub fn count(field: &str, value: &Value) -> CaseResult<usize> {
     match value {
         Value::Integer(i) if *i >= 0 => {
-            usize::try_from(*i).map_err(|_| CliError::field(field, i, "too large"))
+            usize::try_from(*i).map_err(|_| CaseError::field(field, i, "too large"))
         }
-        other => Err(CliError::field(
+        other => Err(CaseError::field(
             field,
             show(other),
             "must be a non-negative integer",

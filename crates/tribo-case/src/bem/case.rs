@@ -16,7 +16,7 @@ use tribo::solvers::bem2d::contact::{ContactOptions, ContactPair, Control};
 use tribo::ElasticMaterial;
 
 use super::template;
-use crate::error::{CliError, CliResult};
+use crate::error::{CaseError, CaseResult};
 use crate::units::{count, number, quantity, show, Dim};
 
 // ---------------------------------------------------------------- raw (serde) layer
@@ -305,12 +305,12 @@ fn bad(
     field: impl Into<String>,
     value: impl std::fmt::Display,
     rule: impl Into<String>,
-) -> CliError {
-    CliError::field(field, value, rule)
+) -> CaseError {
+    CaseError::field(field, value, rule)
 }
 
 /// Parse and validate the text of a `kind = "bem2d"` case.
-pub fn parse(text: &str, source: &str, base_dir: &Path) -> CliResult<BemCase> {
+pub fn parse(text: &str, source: &str, base_dir: &Path) -> CaseResult<BemCase> {
     let (raw, echo) = crate::case::parse_raw::<RawBemCase>(text, source)?;
     validate(raw, source, base_dir, echo)
 }
@@ -320,7 +320,7 @@ fn validate(
     source: &str,
     base_dir: &Path,
     echo: serde_json::Value,
-) -> CliResult<BemCase> {
+) -> CaseResult<BemCase> {
     if raw.kind != "bem2d" {
         return Err(bad(
             "kind",
@@ -382,7 +382,7 @@ fn validate(
         let field = format!("materials.{name}");
         let e = quantity(&format!("{field}.E"), &m.e, Dim::Pressure)?;
         let nu = number(&format!("{field}.nu"), &m.nu)?;
-        let mat = ElasticMaterial::named(&field, e, nu).map_err(CliError::from)?;
+        let mat = ElasticMaterial::named(&field, e, nu).map_err(CaseError::from)?;
         crate::units::check_modulus(&format!("{field}.E"), &m.e, e)?;
         materials.insert(name.clone(), mat);
         if let Some(s) = &m.source {
@@ -664,7 +664,7 @@ fn validate(
                     format!("must be one of {}", known.join(", ")),
                 ));
             };
-            let dim_of = |field: &str, v: &Value| -> CliResult<f64> {
+            let dim_of = |field: &str, v: &Value| -> CaseResult<f64> {
                 match q.unit() {
                     "Pa" => quantity(field, v, Dim::Pressure),
                     _ => number(field, v),
@@ -810,7 +810,7 @@ fn join_keys<T>(m: &BTreeMap<String, T>) -> String {
     }
 }
 
-fn point(field: &str, v: &Value) -> CliResult<[f64; 2]> {
+fn point(field: &str, v: &Value) -> CaseResult<[f64; 2]> {
     match v {
         Value::Array(a) if a.len() == 2 => Ok([
             quantity(&format!("{field}[0]"), &a[0], Dim::Length)?,
@@ -833,7 +833,7 @@ fn parse_loop(
     start: &Value,
     items: &[toml::Table],
     owned: &mut BTreeMap<String, SegmentShape>,
-) -> CliResult<Vec<LoopItem>> {
+) -> CaseResult<Vec<LoopItem>> {
     if items.is_empty() {
         return Err(bad(
             format!("{field}.outline"),
@@ -1037,7 +1037,7 @@ fn parse_loop(
     Ok(out)
 }
 
-fn profile(field: &str, v: &Value, dim: Dim) -> CliResult<ProfileSpec> {
+fn profile(field: &str, v: &Value, dim: Dim) -> CaseResult<ProfileSpec> {
     match v {
         Value::Table(t) => {
             if let Some(l) = t.get("linear") {
@@ -1112,9 +1112,9 @@ fn profile(field: &str, v: &Value, dim: Dim) -> CliResult<ProfileSpec> {
     }
 }
 
-fn bc_spec(field: &str, b: &RawBc) -> CliResult<BcSpec> {
+fn bc_spec(field: &str, b: &RawBc) -> CaseResult<BcSpec> {
     let comp =
-        |name: &str, u: &Option<Value>, t: &Option<Value>| -> CliResult<Option<ComponentSpec>> {
+        |name: &str, u: &Option<Value>, t: &Option<Value>| -> CaseResult<Option<ComponentSpec>> {
             match (u, t) {
             (Some(_), Some(_)) => Err(bad(
                 format!("{field}.{name}"),
@@ -1164,7 +1164,7 @@ fn bc_spec(field: &str, b: &RawBc) -> CliResult<BcSpec> {
     })
 }
 
-fn control(field: &str, t: &toml::Table, force: &str, disp: &str) -> CliResult<Control> {
+fn control(field: &str, t: &toml::Table, force: &str, disp: &str) -> CaseResult<Control> {
     match (t.get(force), t.get(disp)) {
         (Some(f), None) => Ok(Control::Force(quantity(&format!("{field}.{force}"), f, Dim::LineForce)?)),
         (None, Some(u)) => Ok(Control::Displacement(quantity(&format!("{field}.{disp}"), u, Dim::Length)?)),
@@ -1175,7 +1175,7 @@ fn control(field: &str, t: &toml::Table, force: &str, disp: &str) -> CliResult<C
 /// `body_force = { density = 7850, gravity = [gx, gy], angular_velocity = w, center = [x, y] }`:
 /// gravity (m/s^2) and/or rotation (rad/s about the axis through `center`), density in
 /// kg/m^3 (required). The library validates the values and names the region.
-fn body_forces(field: &str, t: &toml::Table) -> CliResult<Vec<BodyForce>> {
+fn body_forces(field: &str, t: &toml::Table) -> CaseResult<Vec<BodyForce>> {
     for key in t.keys() {
         if !["density", "gravity", "angular_velocity", "center"].contains(&key.as_str()) {
             return Err(bad(

@@ -1,7 +1,7 @@
 //! `summary.json`: the result of a run, SI units throughout.
 
-use crate::case::{Case, LoadKind, Window};
-use crate::run::{BackEffect, Outcome};
+use crate::case::{HalfSpaceCase, LoadKind, Window};
+use crate::pipeline::{BackEffect, Outcome};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use tribo::analysis::damage::{CycleDamage, CyclesDamage};
@@ -399,7 +399,7 @@ pub struct BackEffectOperating {
 
 impl BackEffectSummary {
     /// Summarize a computed back effect.
-    pub fn new(case: &Case, b: &BackEffect) -> Option<Self> {
+    pub fn new(case: &HalfSpaceCase, b: &BackEffect) -> Option<Self> {
         let bulk = case.bulk.as_ref()?;
         let shaft = &case.body(bulk.shaft).material;
         let kind = |want: LoadKind| {
@@ -444,10 +444,10 @@ impl BackEffectSummary {
             stress_max: bulk.stress_max,
             points: bulk.points,
             reference_approach: b.reference_approach,
-            reference_approach_from: b.approach_from,
+            reference_approach_from: b.approach_from.text(),
             reference_load: b.reference_load,
             iterations: b.iterations,
-            time_s: b.time.as_secs_f64(),
+            time_s: b.time_s,
             tension_compression: kind(LoadKind::TensionCompression),
             bending: kind(LoadKind::Bending),
             operating,
@@ -497,7 +497,7 @@ impl BackEffectSummary {
 
 impl Summary {
     /// Assemble the summary of a solved case.
-    pub fn new(case: &Case, out: &Outcome, outputs: Vec<String>) -> Self {
+    pub fn new(case: &HalfSpaceCase, out: &Outcome, outputs: Vec<String>) -> Self {
         let p = &out.prepared;
         let s = &out.solution;
         let mat = |b: &crate::case::Body| MaterialInfo {
@@ -553,7 +553,7 @@ impl Summary {
                 method: case.method.name(),
                 tolerance: case.params.tolerance,
                 max_iterations: case.params.max_iterations,
-                time_s: out.solve_time.as_secs_f64(),
+                time_s: out.solve_time_s,
             },
             contact: Contact {
                 control: match case.loading {
@@ -582,7 +582,7 @@ impl Summary {
             damage: out.damage.as_ref().map(DamageSummary::new),
             outputs,
             timings: Timings {
-                solve_s: out.solve_time.as_secs_f64(),
+                solve_s: out.solve_time_s,
                 tangential_s: None,
                 back_effect_s: None,
                 stress_s: None,
@@ -616,211 +616,6 @@ impl Summary {
             _ => true,
         };
         UNITS.iter().copied().filter(|(p, _)| present(p)).collect()
-    }
-
-    /// The human summary printed on stdout.
-    pub fn human(&self, dir: &std::path::Path) -> String {
-        use std::fmt::Write;
-        let c = &self.contact;
-        let mut o = String::new();
-        let _ = writeln!(o, "tribo {}: {}", self.version, self.title);
-        let _ = writeln!(
-            o,
-            "  grid          {} x {} elements over {:.4} x {:.4} mm, E* = {:.2} GPa, solver {}",
-            self.grid.nx,
-            self.grid.ny,
-            2e3 * self.grid.half_width[0],
-            2e3 * self.grid.half_width[1],
-            self.materials.composite_modulus / 1e9,
-            self.solver.method
-        );
-        let h = c.hertz.as_ref();
-        let vs = |x: Option<String>| x.map(|s| format!("   (Hertz {s})")).unwrap_or_default();
-        let _ = writeln!(
-            o,
-            "  normal load   {:.6} N{}",
-            c.normal_load,
-            vs(h.map(|h| format!("{:.6} N", h.normal_load)))
-        );
-        let _ = writeln!(
-            o,
-            "  approach      {:.5e} m{}",
-            c.approach,
-            vs(h.map(|h| format!("{:.5e} m", h.approach)))
-        );
-        let _ = writeln!(
-            o,
-            "  max pressure  {:.5e} Pa{}",
-            c.max_pressure,
-            vs(h.map(|h| format!("p0 {:.5e} Pa", h.p0)))
-        );
-        let _ = writeln!(
-            o,
-            "  contact area  {:.5e} m^2, {} elements{}",
-            c.contact_area,
-            c.contact_elements,
-            vs(h.map(|h| format!(
-                "{:.5e} m^2, a = {:.5e} m, b = {:.5e} m",
-                h.contact_area, h.a, h.b
-            )))
-        );
-        let _ = writeln!(
-            o,
-            "  solver        {} iterations, residual {:.3e}, {:.3} s",
-            c.iterations, c.residual, self.solver.time_s
-        );
-        if let Some(e) = &c.error_vs_hertz {
-            let _ = writeln!(
-                o,
-                "  vs Hertz (17) eps_max {:.3e} (inside the ellipse {:.3e}, vs element-averaged \
-                 Hertz {:.3e}), eps_avg {:.3e}",
-                e.eps_max, e.eps_max_inside, e.eps_max_element_averaged, e.eps_avg
-            );
-        }
-        if let Some(b) = &self.back_effect {
-            let _ = writeln!(
-                o,
-                "  back effect   at the fixed rigid approach delta_0 = {:.5e} m (from {}), \
-                 F_N(0) = {:.6} N, shaft {} R2 = {:e} m, sigma_max = {:e} Pa",
-                b.reference_approach,
-                b.reference_approach_from,
-                b.reference_load,
-                b.shaft,
-                b.shaft_radius,
-                b.stress_max
-            );
-            for (name, k) in [
-                ("tension-compression", &b.tension_compression),
-                ("bending", &b.bending),
-            ] {
-                if let Some(k) = k {
-                    let _ = writeln!(
-                        o,
-                        "    {name:<20} F/F0 - 1 at sigma/sigma_max = -1, +1: {:+.1} %, {:+.1} % \
-                         (Hertz {:+.1} %, {:+.1} %; paper Fig. 2a {:+.0} %, {:+.0} %)",
-                        k.at_minus_one.change_percent,
-                        k.at_plus_one.change_percent,
-                        k.at_minus_one.hertz_change_percent,
-                        k.at_plus_one.hertz_change_percent,
-                        k.paper_fig2a_percent[0],
-                        k.paper_fig2a_percent[1],
-                    );
-                }
-            }
-            if let Some(op) = &b.operating {
-                for (name, v) in [
-                    ("tension-compression", &op.tension_compression),
-                    ("bending", &op.bending),
-                ] {
-                    if let Some(v) = v {
-                        let _ = writeln!(
-                            o,
-                            "    at sigma = {:e} Pa ({name}): F_N = {:.4} N ({:+.1} %, Hertz {:+.1} %)",
-                            op.stress, v.normal_load, v.change_percent, v.hertz_change_percent
-                        );
-                    }
-                }
-            }
-        }
-        if let Some(t) = &self.tangential {
-            let _ = writeln!(
-                o,
-                "  tangential    {} f = {}: Q = [{:.5e}, {:.5e}] N, stick {:.4e} m^2, slip {:.4e} \
-                 m^2, max |q| {:.4e} Pa, {} iterations, residual {:.2e}",
-                t.mode,
-                t.friction,
-                t.tangential_force[0],
-                t.tangential_force[1],
-                t.stick_area,
-                t.slip_area,
-                t.max_traction,
-                t.iterations,
-                t.residual
-            );
-            if let Some(c) = &t.coupling {
-                let _ = writeln!(o, "                coupling {c}");
-            }
-        }
-        if let Some(st) = &self.stress {
-            let loc = |l: [f64; 3]| format!("[{:.3e}, {:.3e}, {:.3e}] m", l[0], l[1], l[2]);
-            let _ = writeln!(
-                o,
-                "  stress ({})  max von Mises {:.4e} Pa at {}, max shear {:.4e} Pa at {}, \
-                 max principal {:.4e} Pa at {}",
-                st.body,
-                st.max_von_mises.value,
-                loc(st.max_von_mises.location),
-                st.max_shear.value,
-                loc(st.max_shear.location),
-                st.max_principal.value,
-                loc(st.max_principal.location)
-            );
-        }
-        if let Some(d) = &self.damage {
-            for c in &d.criteria {
-                let _ = writeln!(
-                    o,
-                    "  damage {:<9} limit {:.4e} {} ({}): psi_max {:.4} at [{:.3e}, {:.3e}, \
-                     {:.3e}] m, V {:.4e} m^3 ({:.2} % of the field), Psi {:.4e} m^3",
-                    c.name,
-                    c.limit,
-                    c.unit,
-                    c.limit_source,
-                    c.psi_max,
-                    c.psi_max_location[0],
-                    c.psi_max_location[1],
-                    c.psi_max_location[2],
-                    c.volume,
-                    100.0 * c.volume_fraction,
-                    c.damageability
-                );
-                if let (Some(one), Some(n)) = (&c.cycle, &c.cycles) {
-                    let _ = writeln!(
-                        o,
-                        "         per cycle ({:.4e} s): mean V {:.4e} m^3, int V dt {:.4e} m^3 s, \
-                         Psi^(V,t) {:.4e} m^3 s, max int psi dt {:.4e} s; over N = {:e}: \
-                         Psi^(V,t) {:.4e} m^3 s",
-                        one.period,
-                        one.mean_volume,
-                        one.volume_time_integral,
-                        one.damageability_time_integral,
-                        one.node_time_integral_max,
-                        n.cycles,
-                        n.damageability_time_integral
-                    );
-                }
-            }
-            if let Some(study) = &d.study {
-                let _ = writeln!(
-                    o,
-                    "  Sec. 6 study  sigma_int,lim = {} p0; changes of V_int, Psi_int vs n \
-                     (paper: n+tau +3 %, +5 %; tension zone +20 %, +22 %; compression zone \
-                     +8 %, +3 %):",
-                    study.limit_over_p0
-                );
-                for r in &study.rows {
-                    let _ = writeln!(
-                        o,
-                        "    sigma_b/p0 = {:<6} n+tau {:+.1} %, {:+.1} %; tension {:+.1} %, \
-                         {:+.1} %; compression {:+.1} %, {:+.1} %",
-                        r.bending_over_p0,
-                        r.friction[0],
-                        r.friction[1],
-                        r.tension[0],
-                        r.tension[1],
-                        r.compression[0],
-                        r.compression[1]
-                    );
-                }
-            }
-        }
-        let _ = writeln!(
-            o,
-            "  wrote         {}/{{{}}}",
-            dir.display(),
-            self.outputs.join(", ")
-        );
-        o
     }
 }
 
@@ -862,17 +657,17 @@ pub struct TangentialSummary {
 
 impl TangentialSummary {
     /// From the run's tangential solution.
-    pub fn new(case: &Case, out: &Outcome, t: &crate::run::Tangential) -> Option<Self> {
+    pub fn new(
+        case: &HalfSpaceCase,
+        out: &Outcome,
+        t: &crate::pipeline::Tangential,
+    ) -> Option<Self> {
         let fr = case.friction.as_ref()?;
         let s = &t.solution;
-        let (stick_semi_major, cm) = match (&fr.loading, case_hertz(out)) {
-            (
-                tribo::solvers::tangential::TangentialLoading::Force { magnitude, .. },
-                Some((a, b, load)),
-            ) => {
-                let c = a * (1.0 - magnitude / (fr.coefficient * load)).max(0.0).cbrt();
+        let (stick_semi_major, cm) = match (t.stick_ratio_cattaneo_mindlin, case_hertz(out)) {
+            (Some(ratio), Some((a, b))) => {
                 let equiv = a * (s.stick_area / (std::f64::consts::PI * a * b)).sqrt();
-                (Some(equiv), Some(c))
+                (Some(equiv), Some(a * ratio))
             }
             _ => (None, None),
         };
@@ -900,7 +695,7 @@ impl TangentialSummary {
                 ),
                 None => format!("neglected (Dundurs beta = {b:.4})"),
             }),
-            time_s: t.time.as_secs_f64(),
+            time_s: t.time_s,
         })
     }
 
@@ -922,15 +717,12 @@ impl TangentialSummary {
     }
 }
 
-/// (a, b, F_N) of the run's Hertz reference (Hertzian gaps).
-fn case_hertz(out: &Outcome) -> Option<(f64, f64, f64)> {
-    out.prepared.hertz.as_ref().map(|h| {
-        (
-            h.contact.semi_major,
-            h.contact.semi_minor,
-            out.solution.normal_load,
-        )
-    })
+/// (a, b) of the run's Hertz reference (Hertzian gaps).
+fn case_hertz(out: &Outcome) -> Option<(f64, f64)> {
+    out.prepared
+        .hertz
+        .as_ref()
+        .map(|h| (h.contact.semi_major, h.contact.semi_minor))
 }
 
 /// A maximum and where it is.
@@ -974,7 +766,7 @@ pub struct StressSummary {
 
 impl StressSummary {
     /// From the run's stress field.
-    pub fn new(st: &crate::run::Stress) -> Self {
+    pub fn new(st: &crate::pipeline::Stress) -> Self {
         let f = &st.field;
         let loc = |(value, location): (f64, [f64; 3])| Located { value, location };
         let m = st.material;
@@ -984,7 +776,7 @@ impl StressSummary {
             points: [f.grid.x.len(), f.grid.y.len(), f.grid.z.len()],
             half_width: half,
             depth: f.grid.z.last().copied().unwrap_or(0.0),
-            method: st.method,
+            method: st.method.text(),
             bulk: st.bulk.map(|(k, s)| (k.name(), s)),
             max_von_mises: loc(f.max_of(|s| s.von_mises())),
             max_shear: loc(f.max_of(|s| s.max_shear())),
@@ -993,7 +785,7 @@ impl StressSummary {
             max_energy_density: loc(
                 f.max_of(|s| tribo::analysis::stress_field::energy_density(s, &m).total)
             ),
-            time_s: st.time.as_secs_f64(),
+            time_s: st.time_s,
         }
     }
 
@@ -1113,7 +905,7 @@ pub const PAPER_SEC6: [f64; 6] = [3.0, 5.0, 20.0, 22.0, 8.0, 3.0];
 
 impl DamageSummary {
     /// From the run's damage.
-    pub fn new(d: &crate::run::Damage) -> Self {
+    pub fn new(d: &crate::pipeline::Damage) -> Self {
         let criteria = d
             .criteria
             .iter()
@@ -1123,7 +915,7 @@ impl DamageSummary {
                     name: c.assessment.name.clone(),
                     unit: c.assessment.unit,
                     limit: c.assessment.limit.value(),
-                    limit_source: c.source,
+                    limit_source: c.source.text(),
                     psi_max: r.psi_max,
                     psi_max_location: r.psi_max_at,
                     volume: r.volume,
@@ -1174,7 +966,7 @@ impl DamageSummary {
             p0: d.p0,
             limit_load: d.limit_load,
             study,
-            time_s: d.time.as_secs_f64(),
+            time_s: d.time_s,
         }
     }
 

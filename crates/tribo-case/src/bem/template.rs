@@ -33,7 +33,7 @@
 use toml::Value;
 
 use super::case::{RawBc, RawPair, RawRegion, RawStep};
-use crate::error::{CliError, CliResult};
+use crate::error::{CaseError, CaseResult};
 use crate::units::{number, quantity, show, Dim};
 
 /// The parameters (SI units).
@@ -113,8 +113,8 @@ pub(super) struct Generated {
     pub steps: Vec<RawStep>,
 }
 
-fn bad(field: &str, value: impl std::fmt::Display, rule: impl Into<String>) -> CliError {
-    CliError::field(format!("clamp_knife_base.{field}"), value, rule)
+fn bad(field: &str, value: impl std::fmt::Display, rule: impl Into<String>) -> CaseError {
+    CaseError::field(format!("clamp_knife_base.{field}"), value, rule)
 }
 
 /// Margin of the knife's contact faces beyond the partner's edge, in units of the knife
@@ -126,7 +126,7 @@ const SLAVE_MARGIN: f64 = 0.0;
 
 impl ClampKnifeBase {
     /// Reads the table (every key optional; defaults above) and checks the geometry.
-    pub fn from_table(t: &toml::Table) -> CliResult<Self> {
+    pub fn from_table(t: &toml::Table) -> CaseResult<Self> {
         let mut p = Self::default();
         for (key, v) in t {
             let length = |v: &Value| quantity(&format!("clamp_knife_base.{key}"), v, Dim::Length);
@@ -173,7 +173,7 @@ impl ClampKnifeBase {
         Ok(p)
     }
 
-    fn check(&self) -> CliResult<()> {
+    fn check(&self) -> CaseResult<()> {
         for (name, v) in [
             ("knife_length", self.knife_length),
             ("knife_thickness", self.knife_thickness),

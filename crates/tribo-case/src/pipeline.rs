@@ -1,15 +1,16 @@
-//! The pipeline of `tribo run`: validated case -> grid and initial gap -> normal contact
+//! The pipeline of a half-space case: validated case -> grid and initial gap -> normal contact
 //! solution -> comparison with Hertz (where the gap is Hertzian) -> the back effect of bulk
 //! loading (where the case has `[bulk]`) -> tangential contact (friction) -> the stress
-//! field (`[field]`) -> volume damageability (`[damage]`).
+//! field (`[field]`) -> the limiting state (a second run at F_lim, where a damage limit comes
+//! from it) -> volume damageability (`[damage]`). Every stage reports to a [`Progress`].
 
 use crate::case::{
-    Case, CycleAmplitude, CycleKind, FieldMethod, FieldPoints, Length, LimitSource, LoadKind,
-    Method, Shape, Window,
+    CycleAmplitude, CycleKind, FieldMethod, FieldPoints, HalfSpaceCase, Length, LimitSource,
+    LoadKind, Method, Shape, Window,
 };
-use crate::error::CliResult;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::time::{Duration, Instant};
+use crate::error::{CaseError, CaseResult};
+use crate::progress::{Progress, WithoutNotes};
+use std::time::Instant;
 use tribo::analysis::damage::{
     accumulate, dangerous_region, faces_reached, relative_damage, roller_shaft_sweep, CycleDamage,
     CyclesDamage, DamageAssessment, DamageMesh, Execution, Limit, RollerShaftStudy, RollingContact,
@@ -23,7 +24,7 @@ use tribo::analysis::stress_field::{
 use tribo::geometry::initial_gap;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
 use tribo::solvers::back_effect::{back_effect_curve_observed, BackEffectPoint};
-use tribo::solvers::coupled::{solve_coupled_with, TangentialModel};
+use tribo::solvers::coupled::{dundurs_beta, solve_coupled_with, TangentialModel};
 use tribo::solvers::tangential::TangentialSolution;
 use tribo::solvers::tangential::{solve_tangential, TangentialParams, TangentialProblem};
 use tribo::solvers::tangential_2d::solve_tangential_2d;
@@ -68,8 +69,8 @@ pub struct Outcome {
     pub hertz_pressure: Option<Vec<f64>>,
     /// Error measures (Hertzian gaps only).
     pub error: Option<PressureErrors>,
-    /// Wall time of the solve.
-    pub solve_time: Duration,
+    /// Wall time of the solve, s.
+    pub solve_time_s: f64,
     /// The back effect of bulk loading (cases with `[bulk]`).
     pub back_effect: Option<BackEffect>,
     /// The tangential solution (cases with `contact.friction`).
@@ -89,8 +90,13 @@ pub struct Tangential {
     pub dundurs_beta: Option<f64>,
     /// The coupled solution's record (dissimilar materials).
     pub coupling: Option<Coupling>,
-    /// Wall time of the solve.
-    pub time: Duration,
+    /// The Cattaneo-Mindlin stick ratio c/a = (1 - Q / (f F_N))^(1/3) (Johnson 1985,
+    /// eq. (7.40); the stick ellipse is the contact ellipse scaled by it), with F_N the
+    /// normal load of the final (coupled) normal solution: Hertzian gaps under partial slip
+    /// only, 0 at and beyond gross slip.
+    pub stick_ratio_cattaneo_mindlin: Option<f64>,
+    /// Wall time of the solve, s.
+    pub time_s: f64,
 }
 
 /// Relative change at which the normal-tangential alternation stops.
@@ -120,10 +126,10 @@ pub struct Stress {
     pub material: ElasticMaterial,
     /// The bulk stress superposed: kind and operating stress, Pa.
     pub bulk: Option<(LoadKind, f64)>,
-    /// How it was computed ("direct sum" or "FFT on the element centres").
-    pub method: &'static str,
-    /// Wall time.
-    pub time: Duration,
+    /// How it was computed.
+    pub method: FieldEvaluation,
+    /// Wall time, s.
+    pub time_s: f64,
 }
 
 /// One damage criterion evaluated on the stress field.
@@ -132,7 +138,7 @@ pub struct DamageCriterion {
     /// The limit used and the dangerous region (22), (24).
     pub assessment: DamageAssessment,
     /// Where the limit came from: "given", "p0 multiple" or "limiting load".
-    pub source: &'static str,
+    pub source: LimitOrigin,
     /// psi_q (21) at every field point.
     pub psi: Vec<f64>,
     /// Accumulation over the load cycle and over N cycles, with `[damage.cycle]`.
@@ -189,22 +195,75 @@ pub struct Damage {
     pub limit_load: Option<f64>,
     /// The Sec. 6 study, one result per sigma_b / p0.
     pub study: Option<Vec<StudyResult>>,
-    /// Wall time.
-    pub time: Duration,
+    /// Wall time, s.
+    pub time_s: f64,
 }
 
-/// Dundurs' second constant beta = [(1-2nu1)/G1 - (1-2nu2)/G2] / (2[(1-nu1)/G1 +
-/// (1-nu2)/G2]) (Johnson 1985, eq. 5.4).
-pub fn dundurs_beta(m1: &ElasticMaterial, m2: &ElasticMaterial) -> f64 {
-    let (n1, g1) = (m1.poisson_ratio(), m1.shear_modulus());
-    let (n2, g2) = (m2.poisson_ratio(), m2.shear_modulus());
-    ((1.0 - 2.0 * n1) / g1 - (1.0 - 2.0 * n2) / g2) / (2.0 * ((1.0 - n1) / g1 + (1.0 - n2) / g2))
+/// Where the fixed rigid approach delta_0 of the back effect comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ApproachFrom {
+    /// Approach control: `contact.approach`.
+    Case,
+    /// Force control: the approach of the normal solution under `contact.load`.
+    Solution,
 }
 
-/// Where the fixed rigid approach of the back effect comes from.
-pub const APPROACH_FROM_CASE: &str = "contact.approach";
-/// Where the fixed rigid approach of the back effect comes from, under force control.
-pub const APPROACH_FROM_SOLUTION: &str = "the normal solution under contact.load";
+impl ApproachFrom {
+    /// The text of `summary.json`.
+    pub fn text(self) -> &'static str {
+        match self {
+            ApproachFrom::Case => "contact.approach",
+            ApproachFrom::Solution => "the normal solution under contact.load",
+        }
+    }
+}
+
+/// How a stress field was computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FieldEvaluation {
+    /// The direct sum of the element kernels at uniform points.
+    DirectSum,
+    /// FFT convolution on the extended contact grid, interpolated to uniform points.
+    FftInterpolated,
+    /// FFT convolution on the contact grid's element centres.
+    FftCentres,
+}
+
+impl FieldEvaluation {
+    /// The text of `summary.json`.
+    pub fn text(self) -> &'static str {
+        match self {
+            FieldEvaluation::DirectSum => "direct sum",
+            FieldEvaluation::FftInterpolated => "FFT on the extended grid + cubic interpolation",
+            FieldEvaluation::FftCentres => "FFT on the element centres",
+        }
+    }
+}
+
+/// Where a damage criterion's limit came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LimitOrigin {
+    /// Given in `[damage.limits]`.
+    Given,
+    /// A multiple of the peak pressure p0 (`damage.limit_over_p0`).
+    P0Multiple,
+    /// The field's extreme at the limiting load F_lim (`damage.limit_load`, the paper's (19)).
+    LimitingLoad,
+}
+
+impl LimitOrigin {
+    /// The text of `summary.json`.
+    pub fn text(self) -> &'static str {
+        match self {
+            LimitOrigin::Given => "given",
+            LimitOrigin::P0Multiple => "p0 multiple",
+            LimitOrigin::LimitingLoad => "limiting load",
+        }
+    }
+}
 
 /// The back effect of bulk loading, the paper's (18) and Fig. 2a: the contact force at a
 /// fixed rigid approach against the bulk stress of the shaft.
@@ -212,8 +271,8 @@ pub const APPROACH_FROM_SOLUTION: &str = "the normal solution under contact.load
 pub struct BackEffect {
     /// The fixed rigid approach delta_0, m.
     pub reference_approach: f64,
-    /// Where delta_0 comes from ([`APPROACH_FROM_CASE`] or [`APPROACH_FROM_SOLUTION`]).
-    pub approach_from: &'static str,
+    /// Where delta_0 comes from.
+    pub approach_from: ApproachFrom,
     /// F_N at delta_0 without bulk load, N.
     pub reference_load: f64,
     /// sigma / sigma_max of the curve points.
@@ -225,11 +284,11 @@ pub struct BackEffect {
     /// CG iterations over all points.
     pub iterations: usize,
     /// Wall time, s.
-    pub time: Duration,
+    pub time_s: f64,
 }
 
 /// Build the grid and the initial gap, and the Hertz reference where the gap is Hertzian.
-pub fn prepare(case: &Case) -> CliResult<Prepared> {
+pub fn prepare(case: &HalfSpaceCase) -> CaseResult<Prepared> {
     let e_star = case.composite_modulus();
     let hertz = match (&case.body1.shape, &case.body2.shape) {
         (
@@ -299,7 +358,7 @@ pub fn prepare(case: &Case) -> CliResult<Prepared> {
         (Window::Extent(e), Some(h)) => [e * h.contact.semi_major; 2],
         (Window::Extent(e), None) => {
             // Validation allows extent only for Hertzian gaps; kept as an error, not a panic.
-            return Err(crate::error::CliError::field(
+            return Err(CaseError::field(
                 "grid.extent",
                 e,
                 "extent needs a Hertzian gap (both bodies given by radii); give grid.half_width",
@@ -355,7 +414,7 @@ fn load_field(loading: NormalLoading) -> (&'static str, String) {
 /// The note of a height map whose node spacing is coarser than the contact grid's elements:
 /// the interpolation (Keys' bicubic, [`tribo::geometry::HeightMap::height`]) then invents the
 /// surface between the nodes, and features shorter than a few node spacings are lost.
-pub fn height_map_note(case: &Case, grid: &SurfaceGrid) -> Option<String> {
+pub fn height_map_note(case: &HalfSpaceCase, grid: &SurfaceGrid) -> Option<String> {
     let notes: Vec<String> = [("body1", &case.body1), ("body2", &case.body2)]
         .into_iter()
         .filter_map(|(name, body)| match &body.shape {
@@ -382,26 +441,21 @@ pub fn height_map_note(case: &Case, grid: &SurfaceGrid) -> Option<String> {
     (!notes.is_empty()).then(|| notes.join("; "))
 }
 
-/// A spinner on stderr while the solver runs (hidden with `quiet` or when stderr is not a
-/// terminal).
-pub fn spinner(quiet: bool, message: String) -> ProgressBar {
-    let pb = if quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr())
-    };
-    if let Ok(style) = ProgressStyle::with_template("{spinner} {msg} [{elapsed}]") {
-        pb.set_style(style);
-    }
-    pb.set_message(message);
-    pb.enable_steady_tick(Duration::from_millis(100));
-    pb
+/// Runs a half-space case: [`prepare`], then [`solve`].
+pub fn run(case: &HalfSpaceCase, progress: &mut dyn Progress) -> CaseResult<Outcome> {
+    let prepared = prepare(case)?;
+    solve(case, prepared, progress)
 }
 
-/// Solve the prepared case with the case's method, and compare with Hertz.
-pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome> {
-    if let (Some(note), false) = (&prepared.gap_note, quiet) {
-        crate::term::note(&format!("note: {note}"));
+/// Solve the prepared case with the case's method, compare with Hertz, and run the stages
+/// the case asks for, reporting each to `progress`.
+pub fn solve(
+    case: &HalfSpaceCase,
+    prepared: Prepared,
+    progress: &mut dyn Progress,
+) -> CaseResult<Outcome> {
+    if let Some(note) = &prepared.gap_note {
+        progress.note(note);
     }
     let problem = NormalContactProblem {
         grid: &prepared.grid,
@@ -409,20 +463,20 @@ pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome>
         composite_modulus: prepared.composite_modulus,
         loading: case.loading,
     };
-    let pb = spinner(
-        quiet,
-        format!(
+    progress.stage(
+        &format!(
             "solving normal contact ({} x {} elements, {})",
             prepared.grid.nx(),
             prepared.grid.ny(),
             case.method.name()
         ),
+        None,
     );
     let start = Instant::now();
     let tolerance = case.params.tolerance;
     let (nx, ny) = (prepared.grid.nx(), prepared.grid.ny());
     let mut report = |iteration: usize, residual: f64| {
-        pb.set_message(format!(
+        progress.status(&format!(
             "solving normal contact ({nx} x {ny} elements, cg): iteration {iteration}, \
              residual {residual:.2e} (tolerance {tolerance:.0e})"
         ));
@@ -431,8 +485,8 @@ pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome>
         Method::Cg => solve_normal_cg_observed(&problem, &case.params, &mut report),
         Method::ActiveSet => solve_normal_active_set(&problem, &case.params),
     };
-    let solve_time = start.elapsed();
-    pb.finish_and_clear();
+    let solve_time_s = start.elapsed().as_secs_f64();
+    progress.finish();
     let solution = result?;
     let (hertz_pressure, error) = match &prepared.hertz {
         Some(h) => {
@@ -447,13 +501,13 @@ pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome>
         solution,
         hertz_pressure,
         error,
-        solve_time,
+        solve_time_s,
         back_effect: None,
         tangential: None,
         stress: None,
         damage: None,
     };
-    outcome.tangential = tangential(case, &outcome, quiet)?;
+    outcome.tangential = tangential(case, &outcome, progress)?;
     if let Some(c) = outcome
         .tangential
         .as_ref()
@@ -469,9 +523,21 @@ pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome>
             ));
         }
     }
-    outcome.back_effect = back_effect(case, &outcome, quiet)?;
-    outcome.stress = stress(case, &outcome, quiet)?;
-    outcome.damage = damage(case, &outcome, quiet)?;
+    if let (Some(t), Some(fr), Some(_)) = (
+        outcome.tangential.as_mut(),
+        &case.friction,
+        &outcome.prepared.hertz,
+    ) {
+        if let tribo::solvers::tangential::TangentialLoading::Force { magnitude, .. } = fr.loading {
+            let load = outcome.solution.normal_load;
+            t.stick_ratio_cattaneo_mindlin =
+                Some((1.0 - magnitude / (fr.coefficient * load)).max(0.0).cbrt());
+        }
+    }
+    outcome.back_effect = back_effect(case, &outcome, progress)?;
+    outcome.stress = stress(case, &outcome, progress)?;
+    let limiting = limiting_state(case, &outcome, progress)?;
+    outcome.damage = damage(case, &outcome, limiting, progress)?;
     Ok(outcome)
 }
 
@@ -479,13 +545,17 @@ pub fn solve(case: &Case, prepared: Prepared, quiet: bool) -> CliResult<Outcome>
 /// the operating stress solved on one FFT operator at the fixed rigid approach, which is
 /// `contact.approach` under approach control and the approach the normal solution found
 /// under force control.
-pub fn back_effect(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<BackEffect>> {
+pub fn back_effect(
+    case: &HalfSpaceCase,
+    out: &Outcome,
+    progress: &mut dyn Progress,
+) -> CaseResult<Option<BackEffect>> {
     let Some(bulk) = &case.bulk else {
         return Ok(None);
     };
     let (reference_approach, approach_from) = match case.loading {
-        NormalLoading::Approach(d) => (d, APPROACH_FROM_CASE),
-        NormalLoading::Force(_) => (out.solution.approach, APPROACH_FROM_SOLUTION),
+        NormalLoading::Approach(d) => (d, ApproachFrom::Case),
+        NormalLoading::Force(_) => (out.solution.approach, ApproachFrom::Solution),
     };
     let ratios = bulk.ratios();
     let mut loads = Vec::new();
@@ -495,21 +565,14 @@ pub fn back_effect(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<
     if let Some(sigma) = bulk.stress {
         loads.extend(bulk.kinds.iter().map(|k| k.load(sigma)));
     }
-    let pb = if quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::with_draw_target(Some(loads.len() as u64 + 1), ProgressDrawTarget::stderr())
-    };
-    if let Ok(style) =
-        ProgressStyle::with_template("{spinner} {msg} [{bar:30}] {pos}/{len} [{elapsed}]")
-    {
-        pb.set_style(style.progress_chars("=> "));
-    }
-    pb.set_message(format!(
-        "back effect of bulk loading ({} contact solutions at delta_0 = {reference_approach:.4e} m)",
-        loads.len() + 1
-    ));
-    pb.enable_steady_tick(Duration::from_millis(100));
+    progress.stage(
+        &format!(
+            "back effect of bulk loading ({} contact solutions at delta_0 = \
+             {reference_approach:.4e} m)",
+            loads.len() + 1
+        ),
+        Some(loads.len() as u64 + 1),
+    );
     let p = &out.prepared;
     let start = Instant::now();
     let result = back_effect_curve_observed(
@@ -521,17 +584,17 @@ pub fn back_effect(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<
         reference_approach,
         &loads,
         &case.params,
-        &mut |done, _| pb.set_position(done as u64),
+        &mut |done, _| progress.advance(done as u64),
     );
-    let time = start.elapsed();
-    pb.finish_and_clear();
+    let time_s = start.elapsed().as_secs_f64();
+    progress.finish();
     let points = result.map_err(|e| match e {
         tribo::Error::ContactReachesWindow { detail } => {
             let (field, value) = match bulk.stress {
                 Some(s) if s.abs() > bulk.stress_max => ("bulk.stress", s),
                 _ => ("bulk.stress_max", bulk.stress_max),
             };
-            crate::error::CliError::field(
+            CaseError::field(
                 field,
                 value,
                 format!(
@@ -569,7 +632,7 @@ pub fn back_effect(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<
         curves,
         operating,
         iterations: points.iter().map(|p| p.iterations).sum(),
-        time,
+        time_s,
     }))
 }
 
@@ -597,7 +660,11 @@ fn rolling_window_note(
 }
 
 /// The tangential problem of a case with friction, for the normal solution's pressure.
-pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Tangential>> {
+pub fn tangential(
+    case: &HalfSpaceCase,
+    out: &Outcome,
+    progress: &mut dyn Progress,
+) -> CaseResult<Option<Tangential>> {
     let Some(fr) = &case.friction else {
         return Ok(None);
     };
@@ -606,36 +673,19 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
         m1.youngs_modulus() != m2.youngs_modulus() || m1.poisson_ratio() != m2.poisson_ratio();
     let dundurs_beta = dissimilar.then(|| dundurs_beta(m1, m2));
     if let Some(beta) = dundurs_beta {
-        if !quiet {
-            crate::term::note(&format!(
-                "note: dissimilar materials (Dundurs beta = {beta:.4}): the normal and \
-                 tangential problems are coupled and solved by alternation"
-            ));
-        }
+        progress.note(&format!(
+            "dissimilar materials (Dundurs beta = {beta:.4}): the normal and tangential \
+             problems are coupled and solved by alternation"
+        ));
     }
-    if let tribo::solvers::tangential::TangentialLoading::Force { magnitude, .. } = fr.loading {
-        // The library's rule, |Q| < (1 - 1e-10) f F_N (PARTIAL_SLIP_LIMIT: within 1e-10 of
-        // f F_N the stick zone carries less than the force tolerance), checked here first.
-        let limit = fr.coefficient * out.solution.normal_load;
-        let largest = tribo::solvers::tangential::PARTIAL_SLIP_LIMIT * limit;
-        if magnitude >= largest {
-            return Err(crate::error::CliError::field(
-                "contact.tangential_load",
-                magnitude,
-                format!(
-                    "partial slip needs |Q| < (1 - 1e-10) f F_N = {largest:.6e} N (f F_N = \
-                     {limit:.6e} N); at or above f F_N the contact slides (use sliding = true)"
-                ),
-            ));
-        }
-    }
+    // |Q| < (1 - 1e-10) f F_N for partial slip: the library's rule (PARTIAL_SLIP_LIMIT),
+    // checked by the solvers themselves with the field name contact.tangential_load.
     let params = TangentialParams {
         tolerance: case.params.tolerance.max(1e-12),
         max_iterations: case.params.max_iterations,
     };
-    let pb = spinner(
-        quiet,
-        format!(
+    progress.stage(
+        &format!(
             "solving tangential contact ({}, f = {}{})",
             fr.mode(),
             fr.coefficient,
@@ -645,6 +695,7 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
                 ""
             }
         ),
+        None,
     );
     let start = Instant::now();
     let (result, coupled) = if dissimilar {
@@ -693,13 +744,15 @@ pub fn tangential(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<T
             (solve_tangential(&problem, &params), None)
         }
     };
-    let time = start.elapsed();
-    pb.finish_and_clear();
+    let time_s = start.elapsed().as_secs_f64();
+    progress.finish();
     Ok(Some(Tangential {
         solution: result?,
         dundurs_beta,
         coupling: coupled,
-        time,
+        // Set by `solve` once the normal solution is final.
+        stick_ratio_cattaneo_mindlin: None,
+        time_s,
     }))
 }
 
@@ -716,7 +769,11 @@ fn resolve(length: Length, a: Option<f64>) -> f64 {
 /// uniform points by the direct sum (exact at any point), on the contact grid's element
 /// centres by FFT convolution (the same kernels, for large grids); plus the bulk stress at
 /// `bulk.stress`.
-pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stress>> {
+pub fn stress(
+    case: &HalfSpaceCase,
+    out: &Outcome,
+    progress: &mut dyn Progress,
+) -> CaseResult<Option<Stress>> {
     let Some(spec) = &case.field else {
         return Ok(None);
     };
@@ -732,27 +789,18 @@ pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stres
         shear_x: qx.as_deref(),
         shear_y: qy.as_deref(),
     };
-    let pb = if quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::with_draw_target(Some(nz as u64), ProgressDrawTarget::stderr())
-    };
-    if let Ok(style) =
-        ProgressStyle::with_template("{spinner} {msg} [{bar:30}] {pos}/{len} [{elapsed}]")
-    {
-        pb.set_style(style.progress_chars("=> "));
-    }
     let method = match (spec.points, spec.method) {
-        (FieldPoints::Uniform, FieldMethod::Direct) => "direct sum",
-        (FieldPoints::Uniform, FieldMethod::Fft) => {
-            "FFT on the extended grid + cubic interpolation"
-        }
-        (FieldPoints::Centres, _) => "FFT on the element centres",
+        (FieldPoints::Uniform, FieldMethod::Direct) => FieldEvaluation::DirectSum,
+        (FieldPoints::Uniform, FieldMethod::Fft) => FieldEvaluation::FftInterpolated,
+        (FieldPoints::Centres, _) => FieldEvaluation::FftCentres,
     };
-    pb.set_message(format!(
-        "stress field ({nx} x {ny} x {nz} points, {method})"
-    ));
-    pb.enable_steady_tick(Duration::from_millis(100));
+    progress.stage(
+        &format!(
+            "stress field ({nx} x {ny} x {nz} points, {})",
+            method.text()
+        ),
+        Some(nz as u64),
+    );
     let start = Instant::now();
     let nu = body.material.poisson_ratio();
     let computed = match spec.points {
@@ -761,18 +809,18 @@ pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stres
             FieldGrid::uniform(nx, ny, nz, half, half, depth).and_then(|grid| {
                 if spec.method == FieldMethod::Fft {
                     return stress_field_interpolated(&tractions, nu, &grid, |done| {
-                        pb.set_position(done as u64)
+                        progress.advance(done as u64)
                     });
                 }
                 let mut stress = Vec::with_capacity(grid.len());
-                for &z in &grid.z {
+                for (k, &z) in grid.z.iter().enumerate() {
                     let layer = FieldGrid {
                         x: grid.x.clone(),
                         y: grid.y.clone(),
                         z: vec![z],
                     };
                     stress.extend(stress_field_direct(&tractions, nu, &layer)?.stress);
-                    pb.inc(1);
+                    progress.advance(k as u64 + 1);
                 }
                 Ok(StressField { grid, stress })
             })
@@ -782,11 +830,11 @@ pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stres
                 .map(|k| depth * k as f64 / (nz - 1) as f64)
                 .collect();
             stress_field_on_centres_observed(&tractions, nu, &depths, |done| {
-                pb.set_position(done as u64)
+                progress.advance(done as u64)
             })
         }
     };
-    pb.finish_and_clear();
+    progress.finish();
     let mut field = computed?;
     let mut bulk_applied = None;
     if let Some(b) = &case.bulk {
@@ -803,7 +851,7 @@ pub fn stress(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Stres
         material: body.material,
         bulk: bulk_applied,
         method,
-        time: start.elapsed(),
+        time_s: start.elapsed().as_secs_f64(),
     }))
 }
 
@@ -828,7 +876,10 @@ const DAMAGE_SECONDS: f64 = 3e-7;
 /// The estimated cost of the `[field]` and `[damage]` stages of `case` on `prepared`'s grid
 /// (for `tribo run --dry-run`): (field, damage). The loaded elements are the Hertz contact's
 /// where the gap is Hertzian, else half the grid.
-pub fn stage_costs(case: &Case, prepared: &Prepared) -> Option<(StageCost, Option<StageCost>)> {
+pub fn stage_costs(
+    case: &HalfSpaceCase,
+    prepared: &Prepared,
+) -> Option<(StageCost, Option<StageCost>)> {
     let spec = case.field.as_ref()?;
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get()) as f64;
     let grid = &prepared.grid;
@@ -907,43 +958,81 @@ pub fn field_tractions(out: &Outcome, body: &str) -> (Option<Vec<f64>>, Option<V
     }
 }
 
+/// The limiting state of a case whose damage limits come from the limiting load F_lim (19):
+/// the same case run again at `damage.limit_load` (no damage, a short back-effect curve), its
+/// stages reported to `progress` (its notes, repeats of the case's own, dropped). None
+/// without `[damage]`, a stress field or a limiting load.
+pub fn limiting_state(
+    case: &HalfSpaceCase,
+    out: &Outcome,
+    progress: &mut dyn Progress,
+) -> CaseResult<Option<LimitingState>> {
+    let (Some(spec), Some(_)) = (&case.damage, &out.stress) else {
+        return Ok(None);
+    };
+    let Some(load) = spec.limit_load else {
+        return Ok(None);
+    };
+    progress.stage(
+        &format!("limiting state: the case at F_lim = {load} N"),
+        None,
+    );
+    let start = Instant::now();
+    let mut lim = case.clone();
+    lim.loading = NormalLoading::Force(load);
+    lim.damage = None;
+    if let Some(b) = &mut lim.bulk {
+        b.points = 3;
+    }
+    let prepared = prepare(&lim)?;
+    let solved = solve(&lim, prepared, &mut WithoutNotes(progress))?;
+    progress.finish();
+    Ok(Some(LimitingState {
+        load,
+        field: solved.stress.map(|s| s.field),
+        time_s: start.elapsed().as_secs_f64(),
+    }))
+}
+
+/// The limiting state: the case's stress field at the limiting load F_lim.
+#[derive(Debug, Clone)]
+pub struct LimitingState {
+    /// F_lim, N.
+    pub load: f64,
+    /// The stress field at F_lim (None where that run has none).
+    pub field: Option<StressField>,
+    /// Wall time of the second run, s.
+    pub time_s: f64,
+}
+
 /// Volume damageability of the case's `[damage]` section on the stress field: psi_q (21) of
 /// each criterion, V_q (22), Psi_q and Psi_q / V_q (24) with the cut cells counted by their
 /// fraction (exact for psi linear on the simplices of the field's cells); limits given,
 /// as multiples of p0, or the extremes of the field of a second run at the limiting load
 /// (19); and the Sec. 6 study where asked for.
-pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damage>> {
+pub fn damage(
+    case: &HalfSpaceCase,
+    out: &Outcome,
+    limiting: Option<LimitingState>,
+    progress: &mut dyn Progress,
+) -> CaseResult<Option<Damage>> {
     let (Some(spec), Some(st)) = (&case.damage, &out.stress) else {
         return Ok(None);
     };
     let start = Instant::now();
-    let pb = spinner(quiet, "volume damageability".into());
+    progress.stage("volume damageability", None);
     let mesh = DamageMesh::from_field_grid(&st.field.grid)?;
     let p0 = out.solution.max_pressure();
-    // The limiting state: the same case at F_lim (no damage, a short back-effect curve).
-    let limiting = match spec.limit_load {
-        Some(load) => {
-            pb.set_message(format!("limiting state: the case at F_lim = {load} N"));
-            let mut lim = case.clone();
-            lim.loading = NormalLoading::Force(load);
-            lim.damage = None;
-            if let Some(b) = &mut lim.bulk {
-                b.points = 3;
-            }
-            let prepared = prepare(&lim)?;
-            let solved = solve(&lim, prepared, true)?;
-            solved.stress.map(|s| s.field)
-        }
-        None => None,
-    };
+    let limiting_time_s = limiting.as_ref().map_or(0.0, |l| l.time_s);
+    let limiting = limiting.and_then(|l| l.field);
     let mut criteria = Vec::new();
     for (quantity, source) in &spec.criteria {
         let (limit, label) = match *source {
-            LimitSource::Given(v) => (Limit::new(*quantity, v)?, "given"),
-            LimitSource::OverP0(r) => (Limit::new(*quantity, r * p0)?, "p0 multiple"),
+            LimitSource::Given(v) => (Limit::new(*quantity, v)?, LimitOrigin::Given),
+            LimitSource::OverP0(r) => (Limit::new(*quantity, r * p0)?, LimitOrigin::P0Multiple),
             LimitSource::LimitingLoad(load) => {
                 let Some(field) = &limiting else {
-                    return Err(crate::error::CliError::field(
+                    return Err(CaseError::field(
                         "damage.limit_load",
                         load,
                         "the limiting run produced no stress field",
@@ -951,7 +1040,7 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
                 };
                 let limit = Limit::from_limiting_field(*quantity, &field.stress, &st.material)
                     .map_err(|e| {
-                        crate::error::CliError::field(
+                        CaseError::field(
                             format!("damage.limits.{}", quantity.name()),
                             "(from damage.limit_load)",
                             format!(
@@ -960,7 +1049,7 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
                             ),
                         )
                     })?;
-                (limit, "limiting load")
+                (limit, LimitOrigin::LimitingLoad)
             }
         };
         let psi = relative_damage(&limit, &st.field.stress, &st.material)?;
@@ -969,21 +1058,21 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
             Some(CycleKind::Rolling { .. }) => rolling_window_note(&st.field.grid, &psi),
             _ => None,
         };
-        if let (Some(note), false) = (&window_note, quiet) {
-            pb.suspend(|| crate::term::note(&format!("note: {}: {note}", quantity.name())));
+        if let Some(note) = &window_note {
+            progress.note(&format!("{}: {note}", quantity.name()));
         }
         let box_faces: Vec<&'static str> = faces_reached(&st.field.grid, &psi)?
             .into_iter()
             .map(|f| f.name())
             .collect();
         let box_note = box_face_note(&box_faces);
-        if let (Some(note), false) = (&box_note, quiet) {
-            pb.suspend(|| crate::term::note(&format!("note: {}: {note}", quantity.name())));
+        if let Some(note) = &box_note {
+            progress.note(&format!("{}: {note}", quantity.name()));
         }
         let cycle = match &spec.cycle {
             None => None,
             Some(c) => {
-                pb.set_message(format!(
+                progress.status(&format!(
                     "{}: accumulation over a cycle ({} steps)",
                     quantity.name(),
                     c.steps
@@ -1043,8 +1132,8 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
         None => None,
         Some(study) => {
             let (Some(hertz), Some(bulk)) = (&out.prepared.hertz, &case.bulk) else {
-                pb.finish_and_clear();
-                return Err(crate::error::CliError::field(
+                progress.finish();
+                return Err(CaseError::field(
                     "damage.study",
                     "given",
                     "needs a Hertzian gap (both bodies given by radii: the field is sized by \
@@ -1063,7 +1152,7 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
                 st.field.grid.y.len(),
                 st.field.grid.z.len(),
             ];
-            pb.set_message(format!(
+            progress.status(&format!(
                 "Sec. 6 study: fields n and n+tau, {} bending stresses",
                 study.bending_over_p0.len()
             ));
@@ -1082,13 +1171,14 @@ pub fn damage(case: &Case, out: &Outcome, quiet: bool) -> CliResult<Option<Damag
             Some(results)
         }
     };
-    pb.finish_and_clear();
+    progress.finish();
     Ok(Some(Damage {
         criteria,
         total_volume: mesh.total_measure(),
         p0,
         limit_load: spec.limit_load,
         study,
-        time: start.elapsed(),
+        // The limiting state's run counts into the damage stage, as it always has.
+        time_s: start.elapsed().as_secs_f64() + limiting_time_s,
     }))
 }

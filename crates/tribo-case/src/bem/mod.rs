@@ -1,0 +1,13 @@
+//! 2D boundary element cases (`kind = "bem2d"`): n bodies of bonded regions, boundary
+//! conditions per named segment in load groups, frictional contact pairs, load steps,
+//! interior fields, damage and a material comparison (the paper's Sec. 7 workflow).
+
+pub mod case;
+pub mod pipeline;
+pub mod template;
+
+/// Whether the case text is a boundary element case (`kind = "bem2d"`); false where the text
+/// is not TOML (the caller's parser reports the error).
+pub fn is_bem_text(text: &str) -> bool {
+    toml::from_str::<toml::Table>(text).is_ok_and(|t| case::is_bem(&t))
+}
