@@ -1,6 +1,6 @@
 //! Case files: TOML in, a validated [`HalfSpaceCase`] out, before any computation.
 //!
-//! The schema (every key; README.md "Case files" is the user's reference):
+//! The schema (every key; docs/user/case-halfspace.md is the user's reference):
 //!
 //! ```toml
 //! title = "..."                    # optional

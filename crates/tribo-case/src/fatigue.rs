@@ -1,6 +1,6 @@
 //! Fatigue from test data and limits: the fatigue CSV parser, the Woehler fits (the paper's
 //! Fig. 3) and the multicriterial limiting-state diagram (Fig. 4), as reports (plain data).
-//! See README.md, "Fatigue".
+//! See docs/user/fatigue.md.
 
 use crate::error::{CaseError, CaseResult};
 use crate::units::{self, Dim};

@@ -154,7 +154,7 @@ pub fn shifted_decimal(num: &str, power: i32) -> Option<f64> {
 //
 // Values that pass the sign and finiteness rules can still be absurd (E = 1e-308 Pa, a load of
 // 1e308 N) and then end deep in a solver as a "numerical failure" that names no field. These
-// ranges refuse them up front, each with its physical reason; README.md ("Ranges") and
+// ranges refuse them up front, each with its physical reason; docs/user/conventions.md ("Ranges") and
 // `tribo run --help` list them.
 
 /// Young's modulus accepted, Pa: from 1e2 (the softest hydrogels and tissues, ~1e2-1e3 Pa;

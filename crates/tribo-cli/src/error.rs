@@ -71,7 +71,7 @@ impl CliError {
         CliError::HalfSpaceCase(CaseError::field(field, value, rule))
     }
 
-    /// The process exit code for this error (see the README, "Exit codes").
+    /// The process exit code for this error (see docs/user/cli.md, "Exit codes").
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::HalfSpaceCase(e) if e.is_bad_input() => EXIT_BAD_INPUT,

@@ -1,5 +1,5 @@
 //! `tribo`: the command line of the tribo suite. Case files in; summaries, fields and plots
-//! out. See README.md and `tribo --help`.
+//! out. See docs/user/cli.md and `tribo --help`.
 
 mod bem;
 mod error;
@@ -47,7 +47,7 @@ Conventions:
 A case file is TOML; `tribo example` lists ready-made ones and `tribo example NAME` prints
 one. A case with `kind = \"bem2d\"` is a 2D boundary element model of n bodies (regions from
 outlines, conditions per named segment, frictional contact pairs, load steps): see
-`tribo example clamp-knife-base` and the README. Exit codes: 0 ok, 2 bad input, 3 solver did not converge, 1 anything else.";
+`tribo example clamp-knife-base` and docs/user/case-bem2d.md. Exit codes: 0 ok, 2 bad input, 3 solver did not converge, 1 anything else.";
 
 const AFTER_HELP: &str = "\
 Examples:

@@ -2,7 +2,7 @@
 //! closed pipe or a full disk (exit 101); everything the command line prints goes through
 //! here instead.
 //!
-//! The contract (README, "Exit codes"): a closed pipe on stdout (`tribo run --json | head`)
+//! The contract (docs/user/cli.md, "Exit codes"): a closed pipe on stdout (`tribo run --json | head`)
 //! ends the command quietly with exit 0, like most command-line tools; any other write error
 //! on stdout (a full disk: `tribo example > /dev/full`) exits 1 with a message on stderr; when
 //! stderr itself cannot be written, the command exits 1 silently. Notes on stderr are best

@@ -1,8 +1,8 @@
 //! The case file of a 2D boundary element model (`kind = "bem2d"`): materials, regions from
 //! outlines of lines and arcs (or gmsh meshes), boundary conditions per named segment and
 //! direction in load groups, contact pairs, rigid (guided) segments, load steps, and the
-//! field, damage and comparison outputs. See `tribo example clamp-knife-base` and the
-//! README's "2D boundary element cases".
+//! field, damage and comparison outputs. See `tribo example clamp-knife-base` and
+//! docs/user/case-bem2d.md.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};

@@ -1,5 +1,5 @@
 //! `tribo fatigue fit` and `tribo fatigue diagram`: Woehler curves from test data (the paper's
-//! Fig. 3) and the multicriterial limiting-state diagram (Fig. 4). See README.md, "Fatigue".
+//! Fig. 3) and the multicriterial limiting-state diagram (Fig. 4). See docs/user/fatigue.md.
 
 pub mod plot;
 
