@@ -261,6 +261,15 @@ fn coupled_rows_pass() {
     assert_rows(&rows);
 }
 
+/// The free-direction partial-slip solver near gross slip against the dense block
+/// Gauss-Seidel (issue 11 item 10).
+#[test]
+fn free_direction_rows_pass() {
+    let rows = validation::free_direction_rows().unwrap();
+    assert_eq!(rows.len(), 4);
+    assert_rows(&rows);
+}
+
 #[test]
 fn sliding_sphere_rows_pass() {
     assert_rows(&validation::sliding_sphere_rows().unwrap());

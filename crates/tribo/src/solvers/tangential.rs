@@ -125,7 +125,9 @@ pub struct TangentialSolution {
     /// Rigid shift W of body 2 relative to body 1 along the load direction, m (partial slip:
     /// the tangential displacement of the stick zone, finite up to gross slip, where it tends
     /// to the displacement of the last sticking element; 0 for full sliding, where no stick
-    /// zone defines it).
+    /// zone defines it). For the free-direction solver ([`crate::solvers::tangential_2d`])
+    /// near gross slip, where no element sticks, the Lagrange multiplier that the slip
+    /// directions fix, which grows without bound as Q -> f F_N.
     pub shift: f64,
     /// Tangential force (Q_x, Q_y) = sum q dA, N.
     pub tangential_force: (f64, f64),
