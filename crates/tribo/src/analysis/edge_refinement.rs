@@ -227,7 +227,7 @@ impl RefinedTractions {
 /// The edge-aware reconstruction of `tractions` ([`EdgeReconstruction`]) sampled at the
 /// element centres of the grid `factor` times finer over the same window (module docs).
 /// Errors: those of [`EdgeReconstruction::new`]; `factor` in [1, 16] and the refined grid
-/// within [`MAX_ELEMENTS_PER_SIDE`] (invalid parameter `field.edge_refinement`).
+/// within [`MAX_ELEMENTS_PER_SIDE`] (invalid parameter `factor`).
 pub fn refine_tractions(
     tractions: &SurfaceTractions<'_>,
     factor: usize,
@@ -238,7 +238,7 @@ pub fn refine_tractions(
         || grid.ny() * factor > MAX_ELEMENTS_PER_SIDE
     {
         return Err(Error::invalid(
-            "field.edge_refinement",
+            "factor",
             factor,
             format!(
                 "must be in [1, 16] with at most {MAX_ELEMENTS_PER_SIDE} refined elements per side"
@@ -388,7 +388,7 @@ mod tests {
         for factor in [0, 17] {
             named(
                 refine_tractions(&pressure_only(&grid, &p), factor),
-                "field.edge_refinement",
+                "factor",
             );
         }
         p[100] = -1.0;
