@@ -9,9 +9,10 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::analysis::edge_refinement::refine_tractions;
 use crate::analysis::hertz_error::pressure_errors;
 use crate::analysis::stress_field::{
-    stress_field_direct, FieldGrid, StressField, SurfaceTractions,
+    stress_field_direct, stress_field_interpolated, FieldGrid, StressField, SurfaceTractions,
 };
 use crate::error::Result;
 use crate::grid::SurfaceGrid;
@@ -1210,6 +1211,7 @@ pub fn sliding_sphere_surface_rows() -> Result<Vec<ValidationRow>> {
         // sqrt(h) (stress_field tests: trailing edge), measured 4.9e-2 - 1.3e-1 p0 here
         // (largest at f = 0.5, points 0.3 element off the edges). Bound 0.15 p0 (the
         // piecewise-constant field is off by O(1) p0 on the element edges).
+        // The edge-aware refined tractions: `sliding_sphere_edge_rows`.
         rows.push(ValidationRow::new(
             &format!("sliding sphere surface incl. contact edge, f = 0 ... 0.5, {label}"),
             "max |sigma_ij - Hamilton| / p0, z = 0, y = 0, all x",
@@ -1230,6 +1232,215 @@ pub fn sliding_sphere_surface_rows() -> Result<Vec<ValidationRow>> {
             source,
         ));
     }
+    Ok(rows)
+}
+
+/// Largest |sigma_ij - Hamilton| / p0 at friction f = 0, 0.1, ..., 0.5 (one entry each) over
+/// the surface points of `field` (z = 0), of the pressure `pressure` on `grid` with
+/// q_x = f p, refined `factor` times ([`refine_tractions`]), by the default FFT path
+/// ([`stress_field_interpolated`], `fft`) or the direct sum, over the points (ix, iy) where
+/// `on` holds (one result per filter). The fields of p alone and of q_x = p are computed once
+/// (linearity).
+#[allow(clippy::too_many_arguments)]
+fn refined_surface_errors(
+    grid: &SurfaceGrid,
+    pressure: &[f64],
+    factor: usize,
+    field: &FieldGrid,
+    fft: bool,
+    a: f64,
+    p0: f64,
+    nu: f64,
+    filters: &[&dyn Fn(usize, usize) -> bool],
+) -> Result<Vec<[f64; 6]>> {
+    let zero = vec![0.0; grid.len()];
+    let refine = |shear: &[f64]| {
+        refine_tractions(
+            &SurfaceTractions {
+                grid,
+                pressure,
+                shear_x: Some(shear),
+                shear_y: None,
+            },
+            factor,
+        )
+    };
+    let evaluate = |shear: &[f64]| -> Result<StressField> {
+        let refined = refine(shear)?;
+        if fft {
+            stress_field_interpolated(&refined.tractions(), nu, field, |_| {})
+        } else {
+            stress_field_direct(&refined.tractions(), nu, field)
+        }
+    };
+    let normal = evaluate(&zero)?;
+    let loaded = evaluate(pressure)?;
+    let g = &field;
+    let mut out = Vec::new();
+    for on in filters {
+        let mut worst = [0.0f64; 6];
+        for (k, w) in worst.iter_mut().enumerate() {
+            let f = 0.1 * k as f64;
+            for iy in 0..g.y.len() {
+                for ix in (0..g.x.len()).filter(|&ix| on(ix, iy)) {
+                    let i = g.index(ix, iy, 0);
+                    // p + f q_x = normal + f (loaded - normal).
+                    let s = normal.stress[i] + (loaded.stress[i] - normal.stress[i]).scale(f);
+                    let r = sliding_sphere_stress(g.x[ix], g.y[iy], 0.0, a, p0, f, nu);
+                    for d in (s - r).to_array() {
+                        *w = w.max(d.abs() / p0);
+                    }
+                }
+            }
+        }
+        out.push(worst);
+    }
+    Ok(out)
+}
+
+/// Rows of the sliding sphere's surface lines through the contact edge (issue 11 item 1),
+/// with the edge-aware tractions refined x8 ([`crate::analysis::edge_refinement`]): 64 x 64
+/// elements over 2.4a, q = f p, the surface stresses along y = 0 and along x = 0 over
+/// [-1.3a, 1.3a] (81 points one element apart: on element edges and 0.3 element off, the
+/// latter 0.033 element from the edge) against Hamilton (1983) at every
+/// point, contact edge included; per f for the element-averaged Hertz pressure by the FFT
+/// path; all f for the solved contact (CG) by the FFT path, and for points within two
+/// elements of x = +-a by the direct sum.
+pub fn sliding_sphere_edge_rows() -> Result<Vec<ValidationRow>> {
+    let mut rows = Vec::new();
+    let source = "Hamilton 1983, Proc. IMechE 197C:53 (explicit equations)";
+    let nu = 0.3;
+    let hertz = HertzContact::circle(0.01, 1.1e11, 1000.0)?;
+    let (a, p0) = (hertz.semi_major, hertz.max_pressure);
+    let grid = SurfaceGrid::centred(64, 64, 1.2 * a, 1.2 * a)?;
+    let (hx, hy) = (0.5 * grid.dx(), 0.5 * grid.dy());
+    let averaged = grid.sample(|x, y| hertz.mean_pressure_over_rectangle(x, y, hx, hy));
+    let gap = grid.sample(|x, y| (x * x + y * y) / (2.0 * 0.01));
+    let solved = solve_normal_cg(
+        &NormalContactProblem {
+            grid: &grid,
+            initial_gap: &gap,
+            composite_modulus: 1.1e11,
+            loading: NormalLoading::Force(1000.0),
+        },
+        &NormalContactParams::default(),
+    )?
+    .pressure;
+    let dx = grid.dx();
+    let line = |shift: f64| -> Vec<f64> {
+        (0..=80)
+            .map(|i| -1.2 * a - 4.0 * dx + dx * i as f64 + shift)
+            .collect()
+    };
+    // The tensor grid of the line's points and 0, both ways: the lines y = 0 and x = 0 and
+    // every surface point between (one FFT evaluation for all).
+    let square = |shift: f64| {
+        let mut coords = line(shift);
+        coords.push(0.0);
+        FieldGrid {
+            x: coords.clone(),
+            y: coords,
+            z: vec![0.0],
+        }
+    };
+    let factor = 8;
+    // The lines: the last coordinate of the square is 0.
+    let cross = |ix: usize, iy: usize| ix == 81 || iy == 81;
+    let everywhere = |_: usize, _: usize| true;
+    let mut per_f = [0.0f64; 6];
+    let (mut solved_lines, mut solved_square) = (0.0f64, 0.0f64);
+    let largest = |e: [f64; 6]| e.iter().fold(0.0f64, |m, &v| m.max(v));
+    // Points on element edges and 0.3 element off (1e-12 m off the edges gives the same to
+    // round-off: the interpolated path is continuous in the point's position, and the direct
+    // path's tractions are continuous; `refined_tractions_meet_the_surface_line_bound`).
+    for shift in [0.0, 0.3 * dx] {
+        let field = square(shift);
+        let e =
+            refined_surface_errors(&grid, &averaged, factor, &field, true, a, p0, nu, &[&cross])?;
+        for (w, e) in per_f.iter_mut().zip(e[0]) {
+            *w = w.max(e);
+        }
+        let filters: [&dyn Fn(usize, usize) -> bool; 2] = [&cross, &everywhere];
+        let e = refined_surface_errors(&grid, &solved, factor, &field, true, a, p0, nu, &filters)?;
+        solved_lines = solved_lines.max(largest(e[0]));
+        solved_square = solved_square.max(largest(e[1]));
+    }
+    // Bilinear tractions between the 64 x 64 centres: 0.119 p0 (along x) at the edge, the
+    // square-root edge rounded over one element. Refined x8: measured 9.2e-3 p0 for every f;
+    // the issue asks for 2e-2 p0 at every point of the lines.
+    for (k, worst) in per_f.iter().enumerate() {
+        rows.push(ValidationRow::new(
+            &format!(
+                "sliding sphere surface lines, f = {:.1}, edge-aware x8, 64x64",
+                0.1 * k as f64
+            ),
+            "max |sigma_ij - Hamilton| / p0, z = 0, y = 0 and x = 0, all points",
+            0.0,
+            *worst,
+            ErrorMeasure::Bound,
+            2e-2,
+            source,
+        ));
+    }
+    // The solved contact's own edge (its edge cells' pressure, 0.090 p0 where Hertz gives
+    // 0.110 p0 at the trailing edge) adds to it: measured 1.25e-2 p0.
+    rows.push(ValidationRow::new(
+        "sliding sphere surface lines, solved contact, f = 0 ... 0.5, edge-aware x8, 64x64",
+        "max |sigma_ij - Hamilton| / p0, z = 0, y = 0 and x = 0, all points",
+        0.0,
+        solved_lines,
+        ErrorMeasure::Bound,
+        2e-2,
+        source,
+    ));
+    // Off the lines (every point of the square |x|, |y| <= 1.3a, same alignments) the edge
+    // crosses the cells obliquely and the solved contact's edge cells are further off Hertz:
+    // measured 4.4e-2 p0, bound 5e-2 p0 (a known gap: the issue's criterion is the lines).
+    // Element-averaged input is not used here: a cell cut by the edge whose centre lies
+    // outside the contact has a positive average, which the reconstruction (of centre
+    // values) reads as load at the centre (0.11 p0 of sigma_zz there).
+    rows.push(ValidationRow::new(
+        "sliding sphere surface square, solved contact, f = 0 ... 0.5, edge-aware x8, 64x64",
+        "max |sigma_ij - Hamilton| / p0, z = 0, |x|, |y| <= 1.3a",
+        0.0,
+        solved_square,
+        ErrorMeasure::Bound,
+        5e-2,
+        source,
+    ));
+    // The direct sum near the edges: every half element within two elements of x = +-a on
+    // y = 0, 0.3 element off the edges; measured 1.5e-2 p0.
+    let k = (0.2 * a / dx).round();
+    let near = FieldGrid {
+        x: (-4..=4)
+            .flat_map(|i| {
+                let offset = (k + 0.5 * i as f64 + 0.3) * dx;
+                [-1.2 * a + offset, 1.2 * a - offset]
+            })
+            .collect(),
+        y: vec![0.0],
+        z: vec![0.0],
+    };
+    let direct = refined_surface_errors(
+        &grid,
+        &averaged,
+        factor,
+        &near,
+        false,
+        a,
+        p0,
+        nu,
+        &[&everywhere],
+    )?;
+    rows.push(ValidationRow::new(
+        "sliding sphere contact edges (direct sum), f = 0 ... 0.5, edge-aware x8, 64x64",
+        "max |sigma_ij - Hamilton| / p0, z = 0, y = 0, ||x| - a| < 2 elements",
+        0.0,
+        largest(direct[0]),
+        ErrorMeasure::Bound,
+        2e-2,
+        source,
+    ));
     Ok(rows)
 }
 
@@ -1772,6 +1983,7 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(stress_rows()?);
     rows.extend(sliding_sphere_rows()?);
     rows.extend(sliding_sphere_surface_rows()?);
+    rows.extend(sliding_sphere_edge_rows()?);
     rows.extend(tangential_rows()?);
     rows.extend(coupled_rows()?);
     rows.extend(free_direction_rows()?);

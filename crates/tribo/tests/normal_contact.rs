@@ -300,3 +300,17 @@ fn sliding_sphere_surface_rows_pass() {
     }
     assert_rows(&rows);
 }
+
+/// Issue 11 item 1, the surface lines through the contact edge with the edge-aware
+/// tractions: six rows (f = 0 ... 0.5, element-averaged Hertz), the solved contact on the
+/// lines and on the whole square (within 5e-2 p0: the off-line gap), the
+/// direct sum at the edges; the line rows within 2e-2 p0 of Hamilton.
+#[test]
+fn sliding_sphere_edge_rows_pass() {
+    let rows = validation::sliding_sphere_edge_rows().unwrap();
+    assert_eq!(rows.len(), 9);
+    for r in &rows {
+        eprintln!("{} | {}: {:.4e}", r.case, r.quantity, r.computed);
+    }
+    assert_rows(&rows);
+}

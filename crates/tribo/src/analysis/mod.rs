@@ -3,6 +3,7 @@
 
 pub mod bem_field;
 pub mod damage;
+pub mod edge_refinement;
 pub mod energy_criterion;
 pub mod hertz_error;
 pub mod limit_diagram;

@@ -18,6 +18,14 @@
 //! surface stresses are logarithmically infinite on the element edges under a shear traction
 //! (docs/theory/HALFSPACE.md 2.4), so it is right only below the surface (z >~ one element).
 //!
+//! At a contact edge the bilinear interpolant rounds the traction's square-root edge off over
+//! one element, so within an element of the edge the surface stresses are off by
+//! O(sqrt(h / a)) p0 (0.12 p0 for a sliding sphere on 64 x 64 elements). For surface stresses
+//! there, [`crate::analysis::edge_refinement::refine_tractions`] resamples the tractions from
+//! an edge-aware reconstruction (p^2 interpolated, the edge at a sub-element position) on a
+//! finer grid, whose field either path below computes (docs/theory/HALFSPACE.md 2.5:
+//! measured within 1e-2 p0 of Hamilton on the surface lines at 8 times finer).
+//!
 //! Two evaluation paths, the same numbers (tested to round-off):
 //! - [`stress_field_direct`]: any points (x, y, z), a direct sum over the loaded elements of
 //!   the tent (or uniform-rectangle, [`crate::kernels::subsurface`]) kernels;
@@ -759,6 +767,8 @@ mod tests {
     /// halving, 1/sqrt(2) = 0.707). Asserted: each halving multiplies it by 0.65 ... 0.75
     /// (order 1/2) and the finest is below 0.13 p0; piecewise-constant tractions give O(1)
     /// there (the edge singularity, point on an element edge), growing under refinement.
+    /// The edge-aware refined tractions reduce it (same order, smaller constant):
+    /// `edge_refinement::tests::refined_trailing_edge_converges`.
     #[test]
     fn trailing_edge_surface_stress_converges() {
         let nu = 0.3;
