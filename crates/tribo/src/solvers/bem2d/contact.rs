@@ -525,7 +525,8 @@ struct FreeBody {
     /// "body [regions]".
     field: String,
     regions: Vec<usize>,
-    /// Arc-length centroid of the boundary, m.
+    /// Arc-length centroid of the boundary in model-local coordinates (relative to
+    /// `BemMesh::origin`), m.
     center: [f64; 2],
     /// Largest distance of a boundary node from the centroid, m (scales the rotation).
     size: f64,
@@ -672,6 +673,7 @@ impl ContactProblem {
         rigid: &[&str],
     ) -> Result<Self> {
         let mesh = &problem.mesh;
+        let origin = mesh.origin;
         // --- validation of names and roles.
         let mut role: HashMap<usize, String> = HashMap::new();
         let mut claim = |name: &str, what: String, field: &str| -> Result<usize> {
@@ -814,10 +816,10 @@ impl ContactProblem {
             .fold(0.0_f64, f64::max);
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for r in &mesh.regions {
-            for n in &r.nodes {
+            for x in &r.local_positions {
                 for d in 0..2 {
-                    lo[d] = lo[d].min(n.position[d]);
-                    hi[d] = hi[d].max(n.position[d]);
+                    lo[d] = lo[d].min(x[d]);
+                    hi[d] = hi[d].max(x[d]);
                 }
             }
         }
@@ -1102,7 +1104,7 @@ impl ContactProblem {
         let mut row0 = 0;
         for fb in &free {
             for &r in &fb.regions {
-                for e in &mesh.regions[r].elements {
+                for e in &mesh.regions[r].local_elements {
                     if mesh.segments[e.segment].partner.is_some() {
                         continue;
                     }
@@ -1139,11 +1141,11 @@ impl ContactProblem {
                 if region.body_force.is_none() {
                     continue;
                 }
-                for e in &region.elements {
+                for e in &region.local_elements {
                     for (&xi, &w) in gx.iter().zip(&gw) {
                         let x = e.point(xi);
                         let (n, jac) = e.normal_jacobian(xi);
-                        let (_, sp) = region.particular_at(x);
+                        let (_, sp) = region.particular_at([x[0] + origin[0], x[1] + origin[1]]);
                         let tp = [sp[0] * n[0] + sp[2] * n[1], sp[2] * n[0] + sp[1] * n[1]];
                         for d in 0..2 {
                             let rr = rigid_row(d, x, fb.center, fb.size);
@@ -1789,7 +1791,8 @@ impl ContactProblem {
                 mode[c] += v[a + k] * m[c];
             }
         }
-        (fb, describe_mode(mode, fb.center, fb.size))
+        let c = to_global(&self.problem.mesh, fb.center);
+        (fb, describe_mode(mode, c, fb.size))
     }
 
     fn friction_of(&self) -> Vec<f64> {
@@ -2287,7 +2290,7 @@ impl ContactProblem {
             let (mut len, mut ru2, mut rxu) = (0.0, 0.0, 0.0);
             let mut um = [0.0; 2];
             for &r in &fb.regions {
-                for e in &mesh.regions[r].elements {
+                for e in &mesh.regions[r].local_elements {
                     if mesh.segments[e.segment].partner.is_some() {
                         continue;
                     }
@@ -2319,11 +2322,11 @@ impl ContactProblem {
                 body: fb.name.clone(),
                 translation: [um[0] / len, um[1] / len],
                 rotation: rxu / ru2.max(f64::MIN_POSITIVE),
-                reference_point: c,
+                reference_point: to_global(mesh, c),
                 free_modes: fb
                     .modes
                     .iter()
-                    .map(|m| describe_mode(*m, fb.center, fb.size))
+                    .map(|m| describe_mode(*m, to_global(mesh, fb.center), fb.size))
                     .collect(),
                 support_force: support,
             });
@@ -2477,6 +2480,12 @@ fn rigid_row(d: usize, p: [f64; 2], c: [f64; 2], size: f64) -> [f64; 3] {
     }
 }
 
+/// A model-local point (relative to [`BemMesh::origin`](crate::operators::bem2d::BemMesh))
+/// in global coordinates, m.
+fn to_global(mesh: &crate::operators::bem2d::BemMesh, x: [f64; 2]) -> [f64; 2] {
+    [x[0] + mesh.origin[0], x[1] + mesh.origin[1]]
+}
+
 fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
@@ -2607,7 +2616,7 @@ fn boundary_centroid(problem: &BemProblem, members: &[usize]) -> ([f64; 2], f64)
     let (gx, gw) = gauss_legendre(8);
     let (mut len, mut sx, mut sy) = (0.0, 0.0, 0.0);
     for &r in members {
-        for e in &mesh.regions[r].elements {
+        for e in &mesh.regions[r].local_elements {
             if mesh.segments[e.segment].partner.is_some() {
                 continue;
             }
@@ -2623,7 +2632,7 @@ fn boundary_centroid(problem: &BemProblem, members: &[usize]) -> ([f64; 2], f64)
     let c = [sx / len, sy / len];
     let mut size = 0.0_f64;
     for &r in members {
-        for e in &mesh.regions[r].elements {
+        for e in &mesh.regions[r].local_elements {
             for g in &e.geometry {
                 size = size.max((g[0] - c[0]).hypot(g[1] - c[1]));
             }
@@ -2636,7 +2645,7 @@ fn boundary_centroid(problem: &BemProblem, members: &[usize]) -> ([f64; 2], f64)
 fn node_weight(problem: &BemProblem, r: usize, o: usize) -> f64 {
     let (gx, gw) = gauss_legendre(8);
     let mut w = 0.0;
-    for e in &problem.mesh.regions[r].elements {
+    for e in &problem.mesh.regions[r].local_elements {
         if let Some(a) = e.nodes.iter().position(|&q| q == o) {
             for (&xi, &wq) in gx.iter().zip(&gw) {
                 let (_, jac) = e.normal_jacobian(xi);
@@ -2664,10 +2673,10 @@ fn free_body(
     let (center, size) = boundary_centroid(problem, members);
     let mut rows = Vec::new();
     for &r in members {
-        for (node, d) in mesh.regions[r].nodes.iter().zip(&dofs[r]) {
+        for (x, d) in mesh.regions[r].local_positions.iter().zip(&dofs[r]) {
             for (dir, dof) in d.iter().enumerate() {
                 if matches!(dof, Dof::T { .. }) {
-                    rows.push((dir, node.position));
+                    rows.push((dir, *x));
                 }
             }
         }
@@ -2683,9 +2692,12 @@ fn free_body(
     let field = format!("body [{}]", names.join(", "));
     let contact: Vec<[f64; 2]> = members
         .iter()
-        .flat_map(|&r| mesh.regions[r].nodes.iter())
-        .filter(|n| role.contains_key(&n.segment))
-        .map(|n| n.position)
+        .flat_map(|&r| {
+            let region = &mesh.regions[r];
+            region.nodes.iter().zip(&region.local_positions)
+        })
+        .filter(|(n, _)| role.contains_key(&n.segment))
+        .map(|(_, x)| *x)
         .collect();
     let mut cand: Vec<(usize, usize, usize, Vec<f64>, f64)> = Vec::new();
     for &r in members {
@@ -2695,11 +2707,12 @@ fn free_body(
             }
             for d in 0..2 {
                 if let Dof::U { .. } = dofs[r][o][d] {
-                    let rr = rigid_row(d, node.position, center, size);
+                    let x = mesh.regions[r].local_positions[o];
+                    let rr = rigid_row(d, x, center, size);
                     let row: Vec<f64> = modes.iter().map(|m| dot3(rr, *m)).collect();
                     let far = contact
                         .iter()
-                        .map(|p| (p[0] - node.position[0]).hypot(p[1] - node.position[1]))
+                        .map(|p| (p[0] - x[0]).hypot(p[1] - x[1]))
                         .fold(f64::INFINITY, f64::min);
                     cand.push((r, o, d, row, far));
                 }
@@ -2730,9 +2743,14 @@ fn free_body(
                 field,
                 format!(
                     "free rigid-body {}",
-                    describe_mode(modes[step.min(modes.len() - 1)], center, size)
+                    describe_mode(
+                        modes[step.min(modes.len() - 1)],
+                        to_global(mesh, center),
+                        size
+                    )
                 ),
-                "the body is held only by contact, and it has no traction-loaded boundary node                  off its contact segments to carry the artificial support of this mode",
+                "the body is held only by contact, and it has no traction-loaded boundary node off \
+                 its contact segments to carry the artificial support of this mode",
             ));
         }
         let mut pick = usize::MAX;
