@@ -25,7 +25,12 @@ pub(super) fn to_global(mesh: &crate::operators::bem2d::BemMesh, x: [f64; 2]) ->
 /// of the constraint matrix (eigenvalues of its Gram matrix below 1e-12 per row, i.e. the
 /// 1e-6 of the BEM restraint check), built from the projections of tx, ty and the rotation in
 /// turn (largest first), so that a single free translation or rotation comes out as itself.
-pub(super) fn free_modes(rows: &[(usize, [f64; 2])], c: [f64; 2], size: f64) -> Vec<[f64; 3]> {
+/// [`Error::Numerical`] where the eigendecomposition fails (non-finite positions).
+pub(super) fn free_modes(
+    rows: &[(usize, [f64; 2])],
+    c: [f64; 2],
+    size: f64,
+) -> Result<Vec<[f64; 3]>> {
     let mut gram = vec![vec![0.0; 3]; 3];
     for (d, p) in rows {
         let r = rigid_row(*d, *p, c, size);
@@ -35,7 +40,7 @@ pub(super) fn free_modes(rows: &[(usize, [f64; 2])], c: [f64; 2], size: f64) -> 
             }
         }
     }
-    let (vals, vecs) = symmetric_eigen(gram);
+    let (vals, vecs) = symmetric_eigen(&gram, "2D BEM contact: free rigid-body modes")?;
     let tol = 1e-12 * rows.len().max(1) as f64;
     let null: Vec<[f64; 3]> = (0..3)
         .filter(|&k| vals[k] <= tol)
@@ -64,7 +69,7 @@ pub(super) fn free_modes(rows: &[(usize, [f64; 2])], c: [f64; 2], size: f64) -> 
         }
         basis.push(best.1);
     }
-    basis
+    Ok(basis)
 }
 
 /// A rigid motion (tx, ty, size * rotation about `c`) in words.
@@ -163,7 +168,7 @@ pub(super) fn free_body(
             }
         }
     }
-    let modes = free_modes(&rows, center, size);
+    let modes = free_modes(&rows, center, size)?;
     if modes.is_empty() {
         return Ok(None);
     }
@@ -289,8 +294,15 @@ impl ContactProblem {
     /// smallest eigenvalue of M^T M, M = the amplitude columns of the gap rows of the nodes in
     /// contact and of the stick rows (f > 0), where its singular value is below 1e-8 (the
     /// entries are dimensionless, O(1): a translation moves every node by its amplitude).
-    pub(super) fn unheld_mode(&self, states: &[ContactState], fric: &[f64]) -> Option<Vec<f64>> {
-        let first = self.free.first()?;
+    /// [`Error::Numerical`] where the eigendecomposition fails (non-finite weights).
+    pub(super) fn unheld_mode(
+        &self,
+        states: &[ContactState],
+        fric: &[f64],
+    ) -> Result<Option<Vec<f64>>> {
+        let Some(first) = self.free.first() else {
+            return Ok(None);
+        };
         let c0 = first.zcol;
         let nz = self.pz.ncols();
         let m = nz - c0;
@@ -315,17 +327,19 @@ impl ContactProblem {
                 add(&|c| self.wt[(i, c)]);
             }
         }
-        let (vals, vecs) = symmetric_eigen(gram);
-        let k = (0..m).min_by(|&a, &b| vals[a].total_cmp(&vals[b]))?;
+        let (vals, vecs) = symmetric_eigen(&gram, "2D BEM contact: free-mode holding")?;
+        let Some(k) = (0..m).min_by(|&a, &b| vals[a].total_cmp(&vals[b])) else {
+            return Ok(None);
+        };
         // Relative to the largest eigenvalue: the smallest of a rank-deficient Gram matrix
         // is round-off of the largest, whose scale is that of the weights (an absolute
         // threshold took a mode held by one node's normal and tangential rows together
         // with another as held, or not, by the rounding of the geometry).
         let largest = vals.iter().cloned().fold(0.0_f64, nan_max);
         if largest.is_nan() || largest <= 0.0 || vals[k].max(0.0).sqrt() < 1e-7 * largest.sqrt() {
-            Some((0..m).map(|i| vecs[i][k]).collect())
+            Ok(Some((0..m).map(|i| vecs[i][k]).collect()))
         } else {
-            None
+            Ok(None)
         }
     }
 

@@ -1,53 +1,39 @@
 //! Small dense linear algebra of the contact solver.
 
+use faer::{Mat, Side};
+
+use crate::error::{Error, Result};
+
 pub(super) fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// Eigenvalues and eigenvectors (columns: `v[i][k]` is component i of vector k) of a small
-/// symmetric matrix by the cyclic Jacobi method (Golub & Van Loan, *Matrix Computations*,
-/// 4th ed., alg. 8.5.3).
-pub(super) fn symmetric_eigen(mut a: Vec<Vec<f64>>) -> (Vec<f64>, Vec<Vec<f64>>) {
+/// Eigenvalues (nondecreasing) and eigenvectors (columns: `v[i][k]` is component i of
+/// vector k, orthonormal) of the small symmetric matrix `a` (rows), by faer's self-adjoint
+/// eigendecomposition of its lower triangle. [`Error::Numerical`] naming `context` where an
+/// entry is not finite or the decomposition does not converge.
+pub(super) fn symmetric_eigen(
+    a: &[Vec<f64>],
+    context: &'static str,
+) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
     let m = a.len();
-    let mut v: Vec<Vec<f64>> = (0..m)
-        .map(|i| (0..m).map(|j| if i == j { 1.0 } else { 0.0 }).collect())
-        .collect();
-    let norm: f64 = a.iter().flatten().map(|x| x * x).sum::<f64>().sqrt();
-    for _ in 0..60 {
-        let off: f64 = (0..m)
-            .flat_map(|i| (0..m).filter(move |&j| j != i).map(move |j| (i, j)))
-            .map(|(i, j)| a[i][j] * a[i][j])
-            .sum::<f64>()
-            .sqrt();
-        if off <= 1e-15 * norm || off == 0.0 {
-            break;
-        }
-        for p in 0..m {
-            for q in p + 1..m {
-                if a[p][q] == 0.0 {
-                    continue;
-                }
-                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-                let c = 1.0 / (t * t + 1.0).sqrt();
-                let s = t * c;
-                for k in 0..m {
-                    let (akp, akq) = (a[k][p], a[k][q]);
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
-                }
-                for k in 0..m {
-                    let (apk, aqk) = (a[p][k], a[q][k]);
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
-                }
-                for k in 0..m {
-                    let (vkp, vkq) = (v[k][p], v[k][q]);
-                    v[k][p] = c * vkp - s * vkq;
-                    v[k][q] = s * vkp + c * vkq;
-                }
-            }
-        }
+    if a.iter().flatten().any(|x| !x.is_finite()) {
+        return Err(Error::Numerical {
+            context,
+            detail: format!("the {m} x {m} symmetric matrix has non-finite entries"),
+        });
     }
-    ((0..m).map(|i| a[i][i]).collect(), v)
+    let evd = Mat::from_fn(m, m, |i, j| a[i][j])
+        .self_adjoint_eigen(Side::Lower)
+        .map_err(|e| Error::Numerical {
+            context,
+            detail: format!("the {m} x {m} symmetric eigendecomposition failed ({e:?})"),
+        })?;
+    let s = evd.S().column_vector();
+    let u = evd.U();
+    let vals = (0..m).map(|k| s[k]).collect();
+    let vecs = (0..m)
+        .map(|i| (0..m).map(|k| u[(i, k)]).collect())
+        .collect();
+    Ok((vals, vecs))
 }

@@ -221,7 +221,7 @@ impl ContactProblem {
             // none can, the mode is held by neither contact nor friction: a clear error.
             if !self.free.is_empty() {
                 let mut checked = false;
-                while let Some(v) = self.unheld_mode(&states, &fric) {
+                while let Some(v) = self.unheld_mode(&states, &fric)? {
                     let c0 = self.free[0].zcol;
                     let (g, _) = evaluate(&z);
                     let weight = |i: usize, w: &Mat<f64>| -> f64 {
