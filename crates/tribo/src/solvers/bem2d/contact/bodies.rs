@@ -427,28 +427,6 @@ impl ContactProblem {
     }
 }
 
-/// The body of every region (regions joined by bonded interfaces): the root region of its
-/// union-find tree.
-pub(super) fn body_of_regions(mesh: &BemMesh) -> Vec<usize> {
-    let nr = mesh.regions.len();
-    let mut parent: Vec<usize> = (0..nr).collect();
-    fn find(b: &mut [usize], i: usize) -> usize {
-        let mut i = i;
-        while b[i] != i {
-            b[i] = b[b[i]];
-            i = b[i];
-        }
-        i
-    }
-    for seg in &mesh.segments {
-        if let Some((pr, _)) = &seg.partner {
-            let (a, b) = (find(&mut parent, seg.owner), find(&mut parent, *pr));
-            parent[a] = b;
-        }
-    }
-    (0..nr).map(|r| find(&mut parent, r)).collect()
-}
-
 /// Restraint: a body in no contact pair must be restrained by its displacement conditions
 /// (an error otherwise); a body in a pair may leave rigid modes free, held by contact: its
 /// free modes and artificial supports ([`free_body`]), the supports made displacement DOFs

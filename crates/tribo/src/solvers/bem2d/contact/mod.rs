@@ -639,7 +639,7 @@ mod linalg;
 mod setup;
 mod step;
 
-use bodies::{body_of_regions, find_free_bodies, free_body_equilibrium};
+use bodies::{find_free_bodies, free_body_equilibrium};
 use condense::BodyAssembly;
 use linalg::{dot3, symmetric_eigen};
 use setup::{
@@ -687,7 +687,7 @@ impl ContactProblem {
     ) -> Result<Self> {
         let mesh = &problem.mesh;
         let roles = claim_roles(mesh, bcs, pairs, rigid)?;
-        let body_of = body_of_regions(mesh);
+        let body_of = super::region_bodies(mesh);
         check_pair_bodies(mesh, pairs, &roles.pair_segs, &body_of)?;
         let (mut dofs, ncol) = classify_dofs(&problem, bcs, &roles)?;
         let (groups, seg_group) = load_groups(mesh, bcs)?;
