@@ -678,7 +678,7 @@ impl ContactProblem {
     /// As [`ContactProblem::new`], from an assembled problem. The phases, in order: roles of
     /// the named segments, bodies, DOF classification, load groups, free bodies and their
     /// supports, pair geometry, parameters, free-body equilibrium, load scales, the body
-    /// factorizations, then the condensation ([`ContactProblem::condense`]).
+    /// factorizations, then the condensation (see "Condensation" in the module docs).
     pub fn from_problem(
         problem: BemProblem,
         bcs: &BoundaryConditions,
