@@ -448,33 +448,13 @@ impl BemProblem {
     }
 
     /// The bodies (regions joined by bonded interfaces), each as its sorted member regions,
-    /// ordered by their union-find roots.
+    /// ordered by their union-find roots ([`region_bodies`]).
     fn bodies(&self) -> Vec<Vec<usize>> {
-        let mesh = &self.mesh;
-        let nr = mesh.regions.len();
-        let mut body: Vec<usize> = (0..nr).collect();
-        fn find(b: &mut [usize], i: usize) -> usize {
-            let mut i = i;
-            while b[i] != i {
-                b[i] = b[b[i]];
-                i = b[i];
-            }
-            i
-        }
-        for seg in &mesh.segments {
-            if let Some((pr, _)) = &seg.partner {
-                let (a, b) = (find(&mut body, seg.owner), find(&mut body, *pr));
-                body[a] = b;
-            }
-        }
-        let mut out = Vec::new();
-        for root in 0..nr {
-            if find(&mut body, root) != root {
-                continue;
-            }
-            out.push((0..nr).filter(|&r| find(&mut body, r) == root).collect());
-        }
-        out
+        let body = region_bodies(&self.mesh);
+        (0..body.len())
+            .filter(|&root| body[root] == root)
+            .map(|root| (0..body.len()).filter(|&r| body[r] == root).collect())
+            .collect()
     }
 
     /// Rigid-body check: every body (regions joined by interfaces) must have prescribed
@@ -1095,6 +1075,29 @@ fn nearest_xi(e: &Element, p: [f64; 2]) -> f64 {
         }
     }
     xi
+}
+
+/// The body of every region of `mesh` (regions joined by bonded interfaces): the root region
+/// of its tree in a union-find over the interfaces (path halving), the one grouping that
+/// [`BemProblem`]'s restraint check and the contact solver's bodies share.
+pub(crate) fn region_bodies(mesh: &BemMesh) -> Vec<usize> {
+    fn find(b: &mut [usize], i: usize) -> usize {
+        let mut i = i;
+        while b[i] != i {
+            b[i] = b[b[i]];
+            i = b[i];
+        }
+        i
+    }
+    let nr = mesh.regions.len();
+    let mut parent: Vec<usize> = (0..nr).collect();
+    for seg in &mesh.segments {
+        if let Some((pr, _)) = &seg.partner {
+            let (a, b) = (find(&mut parent, seg.owner), find(&mut parent, *pr));
+            parent[a] = b;
+        }
+    }
+    (0..nr).map(|r| find(&mut parent, r)).collect()
 }
 
 pub mod contact;

@@ -1195,8 +1195,9 @@ fn bad_load_groups_are_reported() {
     assert!(e.contains("blk_top") && e.contains("group"), "{e}");
 }
 
-/// The Jacobi eigen-solver used for the free-mode analysis: A v = lambda v to round-off on a
-/// symmetric 4 x 4 matrix with a double eigenvalue.
+/// The eigen-solver used for the free-mode analysis (faer's self-adjoint decomposition):
+/// A v = lambda v to round-off on a symmetric 4 x 4 matrix, orthonormal vectors, and a
+/// double eigenvalue.
 #[test]
 fn small_symmetric_eigen() {
     let a = vec![
@@ -1205,15 +1206,20 @@ fn small_symmetric_eigen() {
         vec![-2.0, 0.0, 5.0, -1.0],
         vec![0.5, 1.0, -1.0, 2.0],
     ];
-    let (vals, vecs) = symmetric_eigen(a.clone());
+    let (vals, vecs) = symmetric_eigen(&a, "test").unwrap();
     for k in 0..4 {
         for i in 0..4 {
             let av: f64 = (0..4).map(|j| a[i][j] * vecs[j][k]).sum();
             assert!((av - vals[k] * vecs[i][k]).abs() < 1e-12);
         }
+        for l in 0..4 {
+            let dot: f64 = (0..4).map(|i| vecs[i][k] * vecs[i][l]).sum();
+            assert!((dot - if k == l { 1.0 } else { 0.0 }).abs() < 1e-12);
+        }
     }
-    let (vals, _) = symmetric_eigen(vec![vec![1.0, 0.0], vec![0.0, 1.0]]);
+    let (vals, _) = symmetric_eigen(&[vec![1.0, 0.0], vec![0.0, 1.0]], "test").unwrap();
     assert_eq!(vals, vec![1.0, 1.0]);
+    assert!(symmetric_eigen(&[vec![f64::NAN]], "test").is_err());
 }
 
 /// Two bodies held only by contact in a chain (a clamp plate pressed by a uniform "bolt"

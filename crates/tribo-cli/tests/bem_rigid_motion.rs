@@ -1,0 +1,621 @@
+//! Rigid-motion invariance of 2D BEM cases through the command line (issue 11 item 2): an
+//! outline model without contact (a graded, holed plate under gravity and a pressure), two
+//! outline contact models (a block pressed on a base by a displacement, and the README's
+//! block held only by contact and friction) and the shipped gmsh Hertz example, each moved
+//! by translations of up to 1e3 times the model size and by rotations, then run through the
+//! binary; summary.json and interfaces.csv of the moved run are compared with the run at
+//! rest: scalars (contact length, maximum pressure and shear, sigma_int and eps_int maxima,
+//! node states) equal, vectors (forces, translations, node positions) rotated, moments about
+//! the origin shifted by s x F.
+//!
+//! *Exact motions*: the models' defining points (outline points, gmsh nodes) are snapped to
+//! the grid of 2^-40 m, so that translations on that grid (|s| < 2^12 m) and quarter turns
+//! move them without rounding: the moved model is the same model, and every value must
+//! agree to 1e-9 relative (measured: at most 5e-12 for the contact tractions, 1.4e-12 for
+//! the field maxima; the gmsh run is bit-identical under translation).
+//!
+//! The field maxima (sigma_int, eps_int) are sampled at the nodes of a triangulation of
+//! each region in global coordinates: a node at (20, -13) m carries the rounding of that
+//! position (ulp/2 = 1.8e-15 m), and near the stress singularity at the block's corners
+//! this moves sigma_int max by 2.9e-9 (exact translation, both block cases); they take the
+//! bound of the inexact motions below. (Triangulating in model-local coordinates does not
+//! remove this, the points being global, and it changes the shipped clamp-knife-base
+//! maxima by 0.2 % through a different triangulation, so it is not done.)
+//!
+//! *Inexact motions* (any angle, with a translation that rounds the moved points): the
+//! points are rounded independently by up to ulp(|s|)/2, a perturbation of the model that
+//! the contact tractions amplify by about 7e5 per metre of input error (measured in the
+//! library, `solvers::bem2d::rigid_motion_tests::inexact_bound`): the bound is
+//! 1e-9 + 5e-10 |s|/m relative there, 1e-9 elsewhere.
+
+mod common;
+use common::tribo;
+use serde_json::Value;
+use std::collections::HashMap;
+use std::f64::consts::FRAC_PI_2;
+use std::path::Path;
+
+/// Grid of the exact motions: 2^-40 m (0.9 pm).
+fn snap(x: f64) -> f64 {
+    let g = (-40f64).exp2();
+    (x / g).round() * g
+}
+
+/// A rigid motion x' = R x + shift; `quarter` = Some(k) for an exact turn by k * 90 deg.
+#[derive(Debug, Clone, Copy)]
+struct Motion {
+    quarter: Option<i32>,
+    theta: f64,
+    shift: [f64; 2],
+}
+
+impl Motion {
+    fn exact(quarter: i32, shift: [f64; 2]) -> Self {
+        Motion {
+            quarter: Some(quarter),
+            theta: quarter as f64 * FRAC_PI_2,
+            shift: [snap(shift[0]), snap(shift[1])],
+        }
+    }
+    fn inexact(theta: f64, shift: [f64; 2]) -> Self {
+        Motion {
+            quarter: None,
+            theta,
+            shift,
+        }
+    }
+    fn rot(&self, v: [f64; 2]) -> [f64; 2] {
+        match self.quarter {
+            Some(k) => {
+                let mut p = v;
+                for _ in 0..k.rem_euclid(4) {
+                    p = [-p[1], p[0]];
+                }
+                p
+            }
+            None => {
+                let (s, c) = self.theta.sin_cos();
+                [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+            }
+        }
+    }
+    /// The moved point of `p` (snapped first: the model at rest is the snapped model).
+    fn point(&self, p: [f64; 2]) -> [f64; 2] {
+        let r = self.rot([snap(p[0]), snap(p[1])]);
+        [r[0] + self.shift[0], r[1] + self.shift[1]]
+    }
+    /// TOML array of the moved point.
+    fn toml(&self, p: [f64; 2]) -> String {
+        let q = self.point(p);
+        format!("[{:?}, {:?}]", q[0], q[1])
+    }
+    /// The relative tolerance of the contact tractions (module docs).
+    fn tol(&self) -> f64 {
+        match self.quarter {
+            Some(_) => 1e-9,
+            None => self.rounding_tol(),
+        }
+    }
+    /// 1e-9 + 5e-10 |s|/m: the bound where the shift's rounding enters (module docs).
+    fn rounding_tol(&self) -> f64 {
+        1e-9 + 5e-10 * self.shift[0].hypot(self.shift[1])
+    }
+    /// The tolerance of quantity `q`: the field maxima are sampled at points in global
+    /// coordinates, which carry the rounding of the shift even where the model moves
+    /// exactly (module docs); the rest as [`Motion::tol`].
+    fn tol_of(&self, q: &str) -> f64 {
+        if q.starts_with("sigma_int") || q.starts_with("eps_int") {
+            self.rounding_tol()
+        } else {
+            self.tol()
+        }
+    }
+    fn at_rest() -> Self {
+        Motion::exact(0, [0.0, 0.0])
+    }
+}
+
+/// The motions of every case: exact translations up to 1e3 times the 20-40 mm models,
+/// quarter turns with and without them.
+fn exact_motions() -> Vec<Motion> {
+    vec![
+        Motion::exact(0, [0.25, 0.125]),
+        Motion::exact(0, [0.2, 0.1]),
+        Motion::exact(0, [20.0, -13.0]),
+        Motion::exact(1, [0.0, 0.0]),
+        Motion::exact(2, [-17.3, 4.1]),
+        Motion::exact(3, [20.0, -13.0]),
+    ]
+}
+
+/// Runs `case` (TOML text, written to `dir/case.toml`) and returns summary.json and the
+/// rows of interfaces.csv (none without contact).
+fn run(dir: &Path, case: &str) -> (Value, Vec<HashMap<String, String>>) {
+    std::fs::create_dir_all(dir).unwrap();
+    let path = dir.join("case.toml");
+    std::fs::write(&path, case).unwrap();
+    let out = dir.join("out");
+    let o = tribo(
+        &["run", path.to_str().unwrap(), "-o", out.to_str().unwrap()],
+        None,
+    );
+    assert!(
+        o.status.success(),
+        "{}\n{}",
+        String::from_utf8_lossy(&o.stderr),
+        case
+    );
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let mut rows = Vec::new();
+    if let Ok(text) = std::fs::read_to_string(out.join("interfaces.csv")) {
+        let mut lines = text.lines();
+        let head: Vec<String> = lines
+            .next()
+            .unwrap()
+            .split(',')
+            .map(str::to_string)
+            .collect();
+        for l in lines {
+            rows.push(
+                head.iter()
+                    .cloned()
+                    .zip(l.split(',').map(str::to_string))
+                    .collect(),
+            );
+        }
+    }
+    (summary, rows)
+}
+
+fn f(v: &Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+fn vec2(v: &Value) -> [f64; 2] {
+    [f(&v[0]), f(&v[1])]
+}
+
+/// Collects the largest relative differences by quantity name.
+#[derive(Default)]
+struct Errors(Vec<(String, f64)>);
+
+impl Errors {
+    fn add(&mut self, name: &str, a: f64, b: f64, scale: f64) {
+        let e = if a == b { 0.0 } else { (a - b).abs() / scale };
+        assert!(e.is_finite(), "{name}: {a} vs {b} (scale {scale})");
+        self.0.push((name.to_string(), e));
+    }
+    fn add_vec(&mut self, name: &str, want: [f64; 2], got: [f64; 2], scale: f64) {
+        self.add(&format!("{name}.x"), want[0], got[0], scale);
+        self.add(&format!("{name}.y"), want[1], got[1], scale);
+    }
+    fn check(&self, what: &str, tol: impl Fn(&str) -> f64) {
+        let bad: Vec<_> = self.0.iter().filter(|(n, e)| *e > tol(n)).collect();
+        let worst =
+            self.0
+                .iter()
+                .cloned()
+                .fold((String::new(), 0.0), |w, x| if x.1 > w.1 { x } else { w });
+        assert!(bad.is_empty(), "{what}: {bad:?}");
+        eprintln!("{what}: largest {:.2e} ({})", worst.1, worst.0);
+    }
+}
+
+/// Compares the moved run (`s1`, `r1`) with the run at rest (`s0`, `r0`); `size` is the
+/// model size (m, the scale of positions).
+fn compare(
+    m: &Motion,
+    size: f64,
+    s0: &Value,
+    r0: &[HashMap<String, String>],
+    s1: &Value,
+    r1: &[HashMap<String, String>],
+) -> Errors {
+    let mut e = Errors::default();
+    let steps0 = s0["steps"].as_array().unwrap();
+    let steps1 = s1["steps"].as_array().unwrap();
+    assert_eq!(steps0.len(), steps1.len());
+    for (a, b) in steps0.iter().zip(steps1) {
+        for (p, q) in a["pairs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(b["pairs"].as_array().unwrap())
+        {
+            for k in ["nodes_in_contact", "stick_nodes", "slip_nodes"] {
+                assert_eq!(p[k], q[k], "{m:?}: {k}");
+            }
+            let pmax = f(&p["max_pressure"]["value"]);
+            e.add("pressure max", pmax, f(&q["max_pressure"]["value"]), pmax);
+            e.add(
+                "shear max",
+                f(&p["max_abs_shear"]["value"]),
+                f(&q["max_abs_shear"]["value"]),
+                pmax,
+            );
+            let len = f(&p["contact_length_m"]);
+            e.add("contact length", len, f(&q["contact_length_m"]), len);
+            let fs = vec2(&p["slave_force_n_per_m"]);
+            let fmag = fs[0].hypot(fs[1]);
+            e.add_vec(
+                "slave force",
+                m.rot(fs),
+                vec2(&q["slave_force_n_per_m"]),
+                fmag,
+            );
+        }
+        for (p, q) in a["rigid"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(b["rigid"].as_array().unwrap())
+        {
+            let t = vec2(&p["translation_m"]);
+            e.add_vec(
+                "rigid translation",
+                m.rot(t),
+                vec2(&q["translation_m"]),
+                t[0].hypot(t[1]),
+            );
+        }
+        for (p, q) in a["free_bodies"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(b["free_bodies"].as_array().unwrap())
+        {
+            let t = vec2(&p["translation_m"]);
+            e.add_vec(
+                "free-body translation",
+                m.rot(t),
+                vec2(&q["translation_m"]),
+                t[0].hypot(t[1]),
+            );
+        }
+        for (p, q) in a["regions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(b["regions"].as_array().unwrap())
+        {
+            for k in ["sigma_int_max", "eps_int_max"] {
+                let v = f(&p[k]["value"]);
+                e.add(k, v, f(&q[k]["value"]), v);
+            }
+        }
+        // Segment resultants rotate; moments about the origin gain s x F.
+        let fscale = a["segment_forces"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| {
+                let v = vec2(&p["force_n_per_m"]);
+                v[0].hypot(v[1])
+            })
+            .fold(0.0_f64, f64::max);
+        for (p, q) in a["segment_forces"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(b["segment_forces"].as_array().unwrap())
+        {
+            let f0 = vec2(&p["force_n_per_m"]);
+            let rf = m.rot(f0);
+            e.add_vec("segment force", rf, vec2(&q["force_n_per_m"]), fscale);
+            let s = m.shift;
+            let want = f(&p["moment_about_origin_n"]) + s[0] * rf[1] - s[1] * rf[0];
+            let mscale = fscale * (size + s[0].hypot(s[1]));
+            e.add(
+                "segment moment",
+                want,
+                f(&q["moment_about_origin_n"]),
+                mscale,
+            );
+        }
+    }
+    assert_eq!(r0.len(), r1.len(), "{m:?}: interfaces.csv rows");
+    if !r0.is_empty() {
+        let num = |r: &HashMap<String, String>, k: &str| -> f64 { r[k].parse().unwrap() };
+        let scale = |k: &str| r0.iter().map(|r| num(r, k).abs()).fold(0.0_f64, f64::max);
+        let pmax = scale("pressure_Pa");
+        // Gaps relative to the model size (as positions): in a conforming contact every
+        // node is closed and its gap is round-off.
+        let (gmax, smax) = (scale("gap_m").max(size), scale("slip_m"));
+        for (a, b) in r0.iter().zip(r1) {
+            assert_eq!(a["state"], b["state"], "{m:?}: node state");
+            let want = m.rot([num(a, "x_m"), num(a, "y_m")]);
+            let want = [want[0] + m.shift[0], want[1] + m.shift[1]];
+            e.add_vec("csv position", want, [num(b, "x_m"), num(b, "y_m")], size);
+            e.add("csv s", num(a, "s_m"), num(b, "s_m"), size);
+            e.add(
+                "csv pressure",
+                num(a, "pressure_Pa"),
+                num(b, "pressure_Pa"),
+                pmax,
+            );
+            e.add("csv shear", num(a, "shear_Pa"), num(b, "shear_Pa"), pmax);
+            e.add("csv gap", num(a, "gap_m"), num(b, "gap_m"), gmax);
+            e.add(
+                "csv slip",
+                num(a, "slip_m"),
+                num(b, "slip_m"),
+                smax.max(f64::MIN_POSITIVE),
+            );
+        }
+    }
+    e
+}
+
+/// A 20 mm x 10 mm plate with a hole (r = 3 mm), every outer segment graded 1:50 toward both
+/// ends, under gravity (turned with the model), the left face fixed and a tension on the
+/// right face.
+fn plate(m: &Motion) -> String {
+    let p = |x: f64, y: f64| m.toml([x, y]);
+    let g = m.rot([2e5, -9e5]);
+    format!(
+        r#"kind = "bem2d"
+plane = "strain"
+[materials.steel]
+E = 206e9
+nu = 0.3
+[[regions]]
+name = "plate"
+material = "steel"
+start = {}
+outline = [
+  {{ name = "bottom", to = {}, elements = 10, grading = {{ both = 50 }} }},
+  {{ name = "right", to = {}, elements = 6, grading = {{ both = 50 }} }},
+  {{ name = "top", to = {}, elements = 10, grading = {{ both = 50 }} }},
+  {{ name = "left", to = {}, elements = 6, grading = {{ both = 50 }} }},
+]
+holes = [{{ start = {}, outline = [
+  {{ name = "hole_a", to = {}, center = {}, clockwise = true, elements = 8 }},
+  {{ name = "hole_b", to = {}, center = {}, clockwise = true, elements = 8 }},
+] }}]
+body_force = {{ density = 7800, gravity = [{:?}, {:?}] }}
+[[bc]]
+segment = "left"
+ux = 0
+uy = 0
+[[bc]]
+segment = "right"
+pressure = -40e6
+[field]
+size = 0.5e-3
+"#,
+        p(-0.01, -0.005),
+        p(0.01, -0.005),
+        p(0.01, 0.005),
+        p(-0.01, 0.005),
+        p(-0.01, -0.005),
+        p(0.003, 0.0),
+        p(-0.003, 0.0),
+        p(0.0, 0.0),
+        p(0.003, 0.0),
+        p(0.0, 0.0),
+        g[0],
+        g[1],
+    )
+}
+
+/// The README's block on a base (40 x 10 mm base fixed below, 20 x 10 mm block, f = 0.2).
+/// `pressed_by`: Some(d) presses the block's top down by the displacement d (m, turned with
+/// the model: both components prescribed, so the block is restrained); None loads it with
+/// 50 MPa pressure, leaving it held only by contact and friction (a free body).
+fn block_on_base(m: &Motion, pressed_by: Option<f64>) -> String {
+    let p = |x: f64, y: f64| m.toml([x, y]);
+    let top = match pressed_by {
+        Some(d) => {
+            let u = m.rot([0.0, -d]);
+            format!("ux = {:?}\nuy = {:?}", u[0], u[1])
+        }
+        None => "pressure = 50e6".to_string(),
+    };
+    format!(
+        r#"kind = "bem2d"
+plane = "strain"
+[materials.steel]
+E = 206e9
+nu = 0.3
+[[regions]]
+name = "base"
+material = "steel"
+start = {}
+outline = [
+  {{ name = "base_bottom", to = {}, size = 1e-3 }},
+  {{ name = "base_right", to = {}, elements = 8 }},
+  {{ name = "base_top", to = {}, size = 0.5e-3, grading = {{ both = 4 }} }},
+  {{ name = "base_left", to = {}, elements = 8 }},
+]
+[[regions]]
+name = "block"
+material = "steel"
+start = {}
+outline = [
+  {{ name = "block_bottom", to = {}, size = 0.25e-3 }},
+  {{ name = "block_right", to = {}, elements = 8 }},
+  {{ name = "block_top", to = {}, elements = 16 }},
+  {{ name = "block_left", to = {}, elements = 8 }},
+]
+[[bc]]
+segment = "base_bottom"
+ux = 0
+uy = 0
+[[bc]]
+segment = "block_top"
+{top}
+[[contact]]
+slave = "block_bottom"
+master = "base_top"
+friction = 0.2
+[field]
+size = 0.5e-3
+"#,
+        p(0.0, -0.01),
+        p(0.04, -0.01),
+        p(0.04, 0.0),
+        p(0.0, 0.0),
+        p(0.0, -0.01),
+        p(0.01, 0.0),
+        p(0.03, 0.0),
+        p(0.03, 0.01),
+        p(0.01, 0.01),
+        p(0.01, 0.0),
+    )
+}
+
+fn gmsh_dir() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/gmsh")
+}
+
+/// The shipped gmsh Hertz example moved by `m`: a copy of hertz-cylinder.msh with every
+/// node moved (format 4.1: the coordinates follow the tags of each $Nodes block) written to
+/// `dir`, and its case with the rigid face's controls turned with the model (quarter turns
+/// only: the face's x motion is held and its y force given).
+fn gmsh_case(m: &Motion, dir: &Path) -> String {
+    let text = std::fs::read_to_string(gmsh_dir().join("hertz-cylinder.msh")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let start = lines.iter().position(|l| l == "$Nodes").unwrap();
+    let blocks: usize = lines[start + 1]
+        .split_whitespace()
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    let mut q = start + 2;
+    for _ in 0..blocks {
+        let head: Vec<usize> = lines[q]
+            .split_whitespace()
+            .map(|x| x.parse().unwrap())
+            .collect();
+        assert_eq!(head[2], 0, "parametric nodes");
+        let n = head[3];
+        q += 1 + n;
+        for line in &mut lines[q..q + n] {
+            let c: Vec<f64> = line
+                .split_whitespace()
+                .map(|x| x.parse().unwrap())
+                .collect();
+            let p = m.point([c[0], c[1]]);
+            *line = format!("{:?} {:?} 0", p[0], p[1]);
+        }
+        q += n;
+    }
+    std::fs::create_dir_all(dir).unwrap();
+    std::fs::write(dir.join("moved.msh"), lines.join("\n") + "\n").unwrap();
+    let case = std::fs::read_to_string(gmsh_dir().join("hertz-cylinder.toml")).unwrap();
+    let control = match m.quarter.expect("quarter turns only").rem_euclid(4) {
+        0 => "{ ux = 0, fy = -1e5 }",
+        1 => "{ uy = 0, fx = 1e5 }",
+        2 => "{ ux = 0, fy = 1e5 }",
+        _ => "{ uy = 0, fx = -1e5 }",
+    };
+    let out = case
+        .replace("hertz-cylinder.msh", "moved.msh")
+        .replace("{ ux = 0, fy = -1e5 }", control);
+    assert_ne!(out, case);
+    out
+}
+
+/// Runs `make(motion)` at rest and moved by each motion, comparing as [`compare`] does with
+/// the tolerance `tol(motion, quantity)`.
+fn check_case(
+    name: &str,
+    size: f64,
+    motions: &[Motion],
+    make: impl Fn(&Motion, &Path) -> String,
+    tol: impl Fn(&Motion, &str) -> f64,
+) {
+    let tmp = tempfile::tempdir().unwrap();
+    let rest = Motion::at_rest();
+    let d0 = tmp.path().join("rest");
+    let (s0, r0) = run(&d0, &make(&rest, &d0));
+    for (k, m) in motions.iter().enumerate() {
+        let d = tmp.path().join(format!("moved{k}"));
+        let (s1, r1) = run(&d, &make(m, &d));
+        compare(m, size, &s0, &r0, &s1, &r1).check(&format!("{name} {m:?}"), |q| tol(m, q));
+    }
+}
+
+/// Without contact: the plate, exact motions and random-looking inexact ones, all to 1e-9
+/// (no contact to amplify the rounding of the moved points: measured 1.3e-11 at 0.3 rad and
+/// (20, -13) m).
+#[test]
+fn outline_plate_is_invariant_under_rigid_motions() {
+    let mut motions = exact_motions();
+    motions.push(Motion::inexact(0.3, [0.0, 0.0]));
+    motions.push(Motion::inexact(2.1, [20.0, -13.0]));
+    check_case("plate", 0.02, &motions, |m, _| plate(m), |_, _| 1e-9);
+}
+
+/// Contact, the block restrained (pressed by a displacement): exact motions to 1e-9, inexact
+/// ones to [`Motion::tol`].
+#[test]
+fn outline_contact_is_invariant_under_rigid_motions() {
+    let mut motions = exact_motions();
+    motions.push(Motion::inexact(0.3, [0.0, 0.0]));
+    motions.push(Motion::inexact(2.1, [20.0, -13.0]));
+    check_case(
+        "pressed block",
+        0.04,
+        &motions,
+        |m, _| block_on_base(m, Some(2e-6)),
+        |m, q| m.tol_of(q),
+    );
+}
+
+/// Contact, the block held only by contact and friction (the README's case): exact motions
+/// to 1e-9. A translation on the grid leaves every model-local coordinate of this
+/// line-only model bit-identical, so the contact tractions repeat to the last bit: before
+/// the free-body integrals (equilibrium rows, supports, centroid) were formed in model-local
+/// coordinates they differed by 3.5e-12 of p_max at (0.25, 0.125) m.
+#[test]
+fn outline_free_body_contact_is_invariant_under_exact_rigid_motions() {
+    check_case(
+        "free block",
+        0.04,
+        &exact_motions(),
+        |m, _| block_on_base(m, None),
+        |m, q| {
+            let traction = q.starts_with("csv pressure") || q.starts_with("csv shear");
+            if m.quarter == Some(0) && traction {
+                1e-15
+            } else {
+                m.tol_of(q)
+            }
+        },
+    );
+}
+
+/// The shipped gmsh Hertz example, its mesh file moved: exact motions to 1e-9.
+#[test]
+fn gmsh_hertz_is_invariant_under_exact_rigid_motions() {
+    check_case("gmsh hertz", 0.02, &exact_motions(), gmsh_case, |m, q| {
+        m.tol_of(q)
+    });
+}
+
+/// Known defect, not fixed: a body held only by contact and friction, turned by an angle
+/// that is not a multiple of 90 deg, gives contact tractions that differ by up to 2.7e-4 of
+/// the maximum pressure (1.2e-5 per radian at small angles; exact motions: 0). The
+/// artificial supports of a free body pin node components along the global x and y axes,
+/// and their reactions (the BEM's equilibrium defect, `FreeBodyResult::support_force`) then
+/// act along directions that do not turn with the model. A covariant support (one node's
+/// full displacement plus the component normal to the line to a second node) needs a
+/// constraint along a rotated direction, which the DOF classification cannot express yet.
+#[test]
+#[ignore = "known defect: free-body supports act along global axes (see the doc comment)"]
+fn outline_free_body_contact_is_invariant_under_any_rotation() {
+    let motions = [
+        Motion::inexact(0.3, [0.0, 0.0]),
+        Motion::inexact(2.1, [20.0, -13.0]),
+    ];
+    check_case(
+        "free block",
+        0.04,
+        &motions,
+        |m, _| block_on_base(m, None),
+        |m, q| m.tol_of(q),
+    );
+}
