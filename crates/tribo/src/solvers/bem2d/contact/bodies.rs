@@ -14,6 +14,33 @@ pub(super) fn rigid_row(d: usize, p: [f64; 2], c: [f64; 2], size: f64) -> [f64; 
     }
 }
 
+/// [`rigid_row`] of the component along direction `frame[j]` (global axis j where `frame`
+/// is None).
+pub(super) fn local_rigid_row(
+    frame: Option<[[f64; 2]; 2]>,
+    j: usize,
+    p: [f64; 2],
+    c: [f64; 2],
+    size: f64,
+) -> [f64; 3] {
+    match frame {
+        None => rigid_row(j, p, c, size),
+        Some(f) => {
+            let (r0, r1) = (rigid_row(0, p, c, size), rigid_row(1, p, c, size));
+            [0, 1, 2].map(|i| f[j][0] * r0[i] + f[j][1] * r1[i])
+        }
+    }
+}
+
+/// The component frame of node `o` of region `r` ([`Pin::frame`]): None where its
+/// components are along the global axes.
+pub(super) fn node_frame(free: &[FreeBody], r: usize, o: usize) -> Option<[[f64; 2]; 2]> {
+    free.iter()
+        .flat_map(|fb| &fb.pins)
+        .find(|p| p.region == r && p.node == o)
+        .and_then(|p| p.frame)
+}
+
 /// A model-local point (relative to [`BemMesh::origin`](crate::operators::bem2d::BemMesh))
 /// in global coordinates, m.
 pub(super) fn to_global(mesh: &crate::operators::bem2d::BemMesh, x: [f64; 2]) -> [f64; 2] {
@@ -186,6 +213,156 @@ pub(super) fn free_body(
         .filter(|(n, _)| role.contains_key(&n.segment))
         .map(|(_, x)| *x)
         .collect();
+    let covariant = if modes.len() == 3 {
+        covariant_pins(
+            problem, dofs, members, role, seg_group, &contact, &modes, center, size,
+        )
+    } else {
+        None
+    };
+    let pins = match covariant {
+        Some(pins) => pins,
+        None => pivoted_pins(
+            problem, dofs, members, role, seg_group, &contact, &modes, center, size, &field,
+        )?,
+    };
+    Ok(Some(FreeBody {
+        name: mesh.regions[members[0]].name.clone(),
+        field,
+        regions: members.to_vec(),
+        center,
+        size,
+        modes,
+        zcol: 0,
+        param0: 0,
+        pins,
+    }))
+}
+
+/// The supports of a body with all three rigid modes free, chosen so that they turn with the
+/// body: node A supported in both components (its whole displacement, a frame-free
+/// condition) and node B along the normal to AB (a direction fixed in the body), so that the
+/// supports' reactions (the BEM's equilibrium defect, see the module docs) act along the
+/// same body directions wherever the model is turned (supports along the global axes made
+/// the contact tractions of a turned model differ by up to 2.7e-4 of p_max). A and B are the
+/// pair of traction-loaded nodes off the contact, rigid and interface segments that
+/// maximizes far(A) far(B) |AB| (far: distance from the nearest contact node; the first
+/// pair in node order within 1e-9 of the maximum, so that near ties of symmetric bodies are
+/// broken the same way at any position). B's two DOFs are taken in the frame (normal,
+/// along AB) ([`Pin::frame`]). None where no such pair exists (then [`pivoted_pins`]
+/// reports the unsupported mode).
+#[allow(clippy::too_many_arguments)]
+fn covariant_pins(
+    problem: &BemProblem,
+    dofs: &mut [Vec<[Dof; 2]>],
+    members: &[usize],
+    role: &HashMap<usize, String>,
+    seg_group: &[usize],
+    contact: &[[f64; 2]],
+    modes: &[[f64; 3]],
+    center: [f64; 2],
+    size: f64,
+) -> Option<Vec<Pin>> {
+    let mesh = &problem.mesh;
+    // (region, node, position, far, prescribed traction, columns)
+    let mut cand = Vec::new();
+    for &r in members {
+        for (o, node) in mesh.regions[r].nodes.iter().enumerate() {
+            if role.contains_key(&node.segment) || mesh.segments[node.segment].partner.is_some() {
+                continue;
+            }
+            let (Dof::U { col: c0, t: t0 }, Dof::U { col: c1, t: t1 }) =
+                (dofs[r][o][0], dofs[r][o][1])
+            else {
+                continue;
+            };
+            let x = mesh.regions[r].local_positions[o];
+            let far = contact
+                .iter()
+                .map(|p| (p[0] - x[0]).hypot(p[1] - x[1]))
+                .fold(f64::INFINITY, f64::min);
+            if !far.is_finite() {
+                continue;
+            }
+            cand.push((r, o, x, far, [t0, t1], [c0, c1]));
+        }
+    }
+    let score = |i: usize, j: usize| {
+        let (a, b) = (&cand[i], &cand[j]);
+        a.3 * b.3 * (b.2[0] - a.2[0]).hypot(b.2[1] - a.2[1])
+    };
+    let mut best = 0.0_f64;
+    for i in 0..cand.len() {
+        for j in i + 1..cand.len() {
+            best = best.max(score(i, j));
+        }
+    }
+    if !(best > 0.0 && best.is_finite()) {
+        return None;
+    }
+    let (ia, ib) = (0..cand.len())
+        .flat_map(|i| (i + 1..cand.len()).map(move |j| (i, j)))
+        .find(|&(i, j)| score(i, j) >= (1.0 - 1e-9) * best)?;
+    let (ra, oa, xa, _, ta, ca) = cand[ia];
+    let (rb, ob, xb, _, tb, cb) = cand[ib];
+    let len = (xb[0] - xa[0]).hypot(xb[1] - xa[1]);
+    let s = [(xb[0] - xa[0]) / len, (xb[1] - xa[1]) / len];
+    let nrm = [-s[1], s[0]];
+    let frame = [nrm, s];
+    let row_of = |frame: Option<[[f64; 2]; 2]>, d: usize, x: [f64; 2]| -> Vec<f64> {
+        let rr = local_rigid_row(frame, d, x, center, size);
+        modes.iter().map(|m| dot3(rr, *m)).collect()
+    };
+    let mut pins = Vec::new();
+    for d in 0..2 {
+        dofs[ra][oa][d] = Dof::T { col: ca[d], u: 0.0 };
+        pins.push(Pin {
+            region: ra,
+            node: oa,
+            d,
+            t: ta[d],
+            group: seg_group[mesh.regions[ra].nodes[oa].segment],
+            row: row_of(None, d, xa),
+            weight: node_weight(problem, ra, oa),
+            frame: None,
+        });
+    }
+    dofs[rb][ob][0] = Dof::T { col: cb[0], u: 0.0 };
+    dofs[rb][ob][1] = Dof::U {
+        col: cb[1],
+        t: tb[0] * s[0] + tb[1] * s[1],
+    };
+    pins.push(Pin {
+        region: rb,
+        node: ob,
+        d: 0,
+        t: tb[0] * nrm[0] + tb[1] * nrm[1],
+        group: seg_group[mesh.regions[rb].nodes[ob].segment],
+        row: row_of(Some(frame), 0, xb),
+        weight: node_weight(problem, rb, ob),
+        frame: Some(frame),
+    });
+    Some(pins)
+}
+
+/// The supports by pivoting (bodies with one or two free modes, whose free modes are set by
+/// displacement conditions along the global axes): for each free mode one traction-type
+/// node component off the contact and rigid segments, along a global axis, chosen by
+/// pivoting (see [`free_body`]).
+#[allow(clippy::too_many_arguments)]
+fn pivoted_pins(
+    problem: &BemProblem,
+    dofs: &mut [Vec<[Dof; 2]>],
+    members: &[usize],
+    role: &HashMap<usize, String>,
+    seg_group: &[usize],
+    contact: &[[f64; 2]],
+    modes: &[[f64; 3]],
+    center: [f64; 2],
+    size: f64,
+    field: &str,
+) -> Result<Vec<Pin>> {
+    let mesh = &problem.mesh;
     let mut cand: Vec<PinCandidate> = Vec::new();
     for &r in members {
         for (o, node) in mesh.regions[r].nodes.iter().enumerate() {
@@ -233,7 +410,7 @@ pub(super) fn free_body(
         let best = norms.iter().cloned().fold(0.0_f64, f64::max);
         if best < 1e-6 {
             return Err(Error::invalid(
-                field,
+                field.to_string(),
                 format!(
                     "free rigid-body {}",
                     describe_mode(
@@ -273,19 +450,10 @@ pub(super) fn free_body(
             group: seg_group[mesh.regions[r].nodes[o].segment],
             row,
             weight: node_weight(problem, r, o),
+            frame: None,
         });
     }
-    Ok(Some(FreeBody {
-        name: mesh.regions[members[0]].name.clone(),
-        field,
-        regions: members.to_vec(),
-        center,
-        size,
-        modes,
-        zcol: 0,
-        param0: 0,
-        pins,
-    }))
+    Ok(pins)
 }
 
 impl ContactProblem {
@@ -408,7 +576,10 @@ impl ContactProblem {
             }
             let mut support = [0.0; 2];
             for (q, pin) in fb.pins.iter().enumerate() {
-                support[pin.d] += pin.weight * (pin_traction[f][q] - lamv[pin.group] * pin.t);
+                let reaction = pin.weight * (pin_traction[f][q] - lamv[pin.group] * pin.t);
+                let dir = pin.direction();
+                support[0] += reaction * dir[0];
+                support[1] += reaction * dir[1];
             }
             out.push(FreeBodyResult {
                 body: fb.name.clone(),
@@ -488,8 +659,9 @@ pub(super) fn free_body_equilibrium(
                     let nsh = e.field_shape(xi);
                     for a in 0..3 {
                         let o = e.nodes[a];
+                        let frame = node_frame(free, r, o);
                         for d in 0..2 {
-                            let rr = rigid_row(d, x, fb.center, fb.size);
+                            let rr = local_rigid_row(frame, d, x, fb.center, fb.size);
                             for (k, mode) in fb.modes.iter().enumerate() {
                                 let wk = w * jac * nsh[a] * dot3(rr, *mode);
                                 if let Some(&(f, q)) = prm.pin_of.get(&(r, o, d)) {

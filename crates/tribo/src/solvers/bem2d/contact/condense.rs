@@ -264,9 +264,23 @@ impl BodyAssembly<'_> {
             let ops = &problem.operators[r];
             let n2 = ops.h.nrows();
             for (node, d) in dofs[r].iter().enumerate() {
+                // Columns of the node's components: the global axes, or the directions of
+                // a support's frame (H u = H_x u_x + H_y u_y with u = sum_j u_j f_j).
+                let frame = node_frame(free, r, node);
                 for (dir, dof) in d.iter().enumerate() {
                     let c = 2 * node + dir;
-                    let (hc, gc) = (ops.h.col(c), ops.g.col(c));
+                    let column = |m: &Mat<f64>| -> Vec<f64> {
+                        match frame {
+                            None => (0..n2).map(|row| m[(row, c)]).collect(),
+                            Some(f) => (0..n2)
+                                .map(|row| {
+                                    f[dir][0] * m[(row, 2 * node)]
+                                        + f[dir][1] * m[(row, 2 * node + 1)]
+                                })
+                                .collect(),
+                        }
+                    };
+                    let (hc, gc) = (column(&ops.h), column(&ops.g));
                     let seg = self_segment(problem, r, node);
                     let grp = self.seg_group[seg];
                     match *dof {

@@ -72,10 +72,17 @@
 //! (threshold: the 1e-6 of the BEM restraint check); u_x = 0 on a vertical face leaves y free,
 //! no condition leaves all three. For each free mode one traction-type boundary node
 //! component off the contact and rigid segments becomes an *artificial support*: its
-//! displacement is a parameter u_pin = R_pin a with a the body's free-mode amplitudes, chosen
-//! by pivoting (the component whose rigid-mode row has the largest part orthogonal to the rows
-//! already chosen; among near ties the one farthest from the contact), i.e. a statically
-//! determinate set of supports far apart. With the supports the body's BEM system is regular
+//! displacement is a parameter u_pin = R_pin a with a the body's free-mode amplitudes, a
+//! statically determinate set of supports far apart. Where all three modes are free, the
+//! supports turn with the body: the whole displacement of a node A and the component of a
+//! node B normal to AB (the pair of nodes that maximizes far(A) far(B) |AB|, far = distance
+//! from the contact; B's two DOFs taken along that normal and along AB), so that results do
+//! not depend on how the model is turned (supports along the global axes made the contact
+//! tractions of a turned model differ by up to 2.7e-4 of p_max). Where one or two modes
+//! are free (displacement conditions along the global axes), the supports are node components
+//! along the global axes chosen by pivoting (the component whose rigid-mode row has the
+//! largest part orthogonal to the rows already chosen; among near ties the one farthest from
+//! the contact). With the supports the body's BEM system is regular
 //! (one LU as before) and a joins z. The equations that determine a are the free body's
 //! equilibrium in each free mode k, the virtual work of all its boundary tractions on r_k,
 //!
@@ -168,6 +175,7 @@
 //! | free plate on free knife on base (chain) | p, rigid y motions | 1.6e-10 p, < 1e-7 |
 //! | Hertz, cylinder held only by contact (face load), f = 0 (y, rotation free) / 0.3 (all free) | b, p0, max abs(p - p_H)/p0; support force | -0.09 %, +0.02 %, 0.21 % / 0.18 %; 8e-5 / 6e-6 P |
 //! | free block pushed sideways, f = 0.3, Q = 0.6 f P (groups bolt, cut) | Coulomb at every node; force, moment | round-off; 1e-16, 5e-16 |
+//! | free cylinder (f = 0.3, all free) turned by 0.3, 2.1, -1 rad (`rigid_motion_tests.rs`) | p, q; motion | 6.6e-11, 1.7e-12 p_max; 1.7e-11 (supports along global axes: 1.5e-8 q, 1.9e-7 motion at 0.3 rad) |
 //! | free mode that nothing holds (f = 0 pushed sideways or not; f = 0.3, Q = 1.1 f P) | error naming body and mode | yes |
 //! | load groups, f = 0: two steps vs one, and unloading a group | p, u | identical (0) |
 //! | load groups, f = 0.3: bulk load applied and removed vs never applied | locked-in q | 0.37 f p0 (p within 0.5 % p0) |
@@ -515,6 +523,22 @@ struct Pin {
     row: Vec<f64>,
     /// int N ds of the node, m.
     weight: f64,
+    /// Directions of the node's two components `d` = 0, 1 (rows, unit vectors) where they
+    /// are not the global axes: the support along the normal to the line between two
+    /// supported nodes (see [`bodies::free_body`]). Both DOFs of such a node are in this
+    /// frame (the other component keeps its prescribed traction along its direction).
+    frame: Option<[[f64; 2]; 2]>,
+}
+
+impl Pin {
+    /// Global direction of the supported component (unit vector).
+    fn direction(&self) -> [f64; 2] {
+        match self.frame {
+            Some(f) => f[self.d],
+            None if self.d == 0 => [1.0, 0.0],
+            None => [0.0, 1.0],
+        }
+    }
 }
 
 /// A body whose displacement conditions leave rigid-body modes free.
@@ -639,7 +663,7 @@ mod linalg;
 mod setup;
 mod step;
 
-use bodies::{find_free_bodies, free_body_equilibrium};
+use bodies::{find_free_bodies, free_body_equilibrium, node_frame};
 use condense::BodyAssembly;
 use linalg::{dot3, symmetric_eigen};
 use setup::{

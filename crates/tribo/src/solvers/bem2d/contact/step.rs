@@ -740,6 +740,17 @@ impl ContactProblem {
                         }
                     }
                 }
+                if let Some(f) = node_frame(&self.free, r, node) {
+                    // Components along the support's frame directions back to global axes.
+                    let glob = |v: [f64; 2]| {
+                        [
+                            v[0] * f[0][0] + v[1] * f[1][0],
+                            v[0] * f[0][1] + v[1] * f[1][1],
+                        ]
+                    };
+                    un = glob(un);
+                    tn = glob(tn);
+                }
                 u.push(un);
                 t.push(tn);
             }
