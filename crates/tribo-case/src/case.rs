@@ -47,6 +47,9 @@
 //!                                  #   or "direct" (the exact direct sum, slow)
 //! # points = "centres"             # instead of n and extent: x, y at the contact grid's
 //! # layers = 20                    # element centres (FFT, for large grids), `layers` depths
+//! # edge_refinement = 8            # 1 ... 16 (default 1, off): the field from the edge-aware
+//!                                  #   tractions on a grid this many times finer (surface
+//!                                  #   stresses near the contact edge)
 //! ```
 
 use crate::error::{CaseError, CaseResult};
@@ -187,6 +190,7 @@ struct RawField {
     depth: Option<Value>,
     depth_m: Option<Value>,
     body: Option<Value>,
+    edge_refinement: Option<Value>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -378,6 +382,10 @@ pub const MAX_FIELD_N: usize = 512;
 pub const MAX_FIELD_POINTS: usize = 2_000_000;
 /// Default field half width and depth in units of the Hertz long semi-axis.
 pub const DEFAULT_FIELD_EXTENT: f64 = 1.5;
+/// Largest `[field] edge_refinement`: the limit of
+/// `tribo::analysis::edge_refinement::refine_tractions` (the refined grid has factor^2 times
+/// the elements).
+pub const MAX_EDGE_REFINEMENT: usize = 16;
 
 /// A length given in units of the Hertz long semi-axis a, or in m.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -426,6 +434,13 @@ pub struct FieldSpec {
     pub depth: Length,
     /// The body the field is computed in ("body1" or "body2").
     pub body: &'static str,
+    /// `edge_refinement`: 1 (the default) evaluates the field of the element tractions
+    /// interpolated bilinearly; N > 1 of the edge-aware reconstruction of the tractions (a
+    /// square-root contact edge at a sub-element position) sampled on a grid N times finer per
+    /// side, [`tribo::analysis::edge_refinement::refine_tractions`] (docs/theory/HALFSPACE.md
+    /// 2.5). In 1 ..= [`MAX_EDGE_REFINEMENT`], with N times the contact grid's elements per
+    /// side within [`MAX_ELEMENTS_PER_SIDE`].
+    pub edge_refinement: usize,
 }
 
 /// Where a damage criterion's limit phi_q^lim comes from ((19)-(20)).
@@ -1719,6 +1734,35 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CaseResult<
             ))
         }
     };
+    let edge_refinement = match &f.edge_refinement {
+        None => 1,
+        Some(v) => {
+            let factor = count("field.edge_refinement", v)?;
+            let finest = contact_n[0].max(contact_n[1]);
+            if !(1..=MAX_EDGE_REFINEMENT).contains(&factor) {
+                return Err(CaseError::field(
+                    "field.edge_refinement",
+                    factor,
+                    format!(
+                        "must be an integer in 1 ... {MAX_EDGE_REFINEMENT} (1: the bilinear \
+                         element tractions; N: the edge-aware tractions on a grid N times finer)"
+                    ),
+                ));
+            }
+            if finest * factor > MAX_ELEMENTS_PER_SIDE {
+                return Err(CaseError::field(
+                    "field.edge_refinement",
+                    factor,
+                    format!(
+                        "the refined grid would have {} elements per side ({finest} x {factor}); \
+                         at most {MAX_ELEMENTS_PER_SIDE}",
+                        finest * factor
+                    ),
+                ));
+            }
+            factor
+        }
+    };
     Ok(FieldSpec {
         points,
         method,
@@ -1726,6 +1770,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CaseResult<
         half_width,
         depth,
         body,
+        edge_refinement,
     })
 }
 

@@ -16,6 +16,7 @@ use tribo::analysis::damage::{
     CyclesDamage, DamageAssessment, DamageMesh, Execution, Limit, RollerShaftStudy, RollingContact,
     RotatingBentShaft, StudyResult,
 };
+use tribo::analysis::edge_refinement::{refine_tractions, RefinedTractions};
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
 use tribo::analysis::stress_field::{
     stress_field_direct, stress_field_interpolated, stress_field_on_centres_observed, FieldGrid,
@@ -128,6 +129,9 @@ pub struct Stress {
     pub bulk: Option<(LoadKind, f64)>,
     /// How it was computed.
     pub method: FieldEvaluation,
+    /// The tractions' refinement factor (`field.edge_refinement`): 1, the element tractions
+    /// interpolated bilinearly; N > 1, the edge-aware tractions on a grid N times finer.
+    pub edge_refinement: usize,
     /// Wall time, s.
     pub time_s: f64,
 }
@@ -783,26 +787,51 @@ pub fn stress(
     let body = case.body(spec.body);
     // q acts on body 1; body 2 carries -q (in the mirrored frame, z into body 2).
     let (qx, qy) = field_tractions(out, spec.body);
-    let tractions = SurfaceTractions {
+    let element_tractions = SurfaceTractions {
         grid: &out.prepared.grid,
         pressure: &out.solution.pressure,
         shear_x: qx.as_deref(),
         shear_y: qy.as_deref(),
     };
+    let factor = spec.edge_refinement;
     let method = match (spec.points, spec.method) {
         (FieldPoints::Uniform, FieldMethod::Direct) => FieldEvaluation::DirectSum,
         (FieldPoints::Uniform, FieldMethod::Fft) => FieldEvaluation::FftInterpolated,
+        // Refined tractions: FFT on the refined grid, interpolated to the element centres.
+        (FieldPoints::Centres, _) if factor > 1 => FieldEvaluation::FftInterpolated,
         (FieldPoints::Centres, _) => FieldEvaluation::FftCentres,
+    };
+    let refined_text = if factor > 1 {
+        format!(", edge-aware tractions refined x{factor}")
+    } else {
+        String::new()
     };
     progress.stage(
         &format!(
-            "stress field ({nx} x {ny} x {nz} points, {})",
+            "stress field ({nx} x {ny} x {nz} points, {}{refined_text})",
             method.text()
         ),
         Some(nz as u64),
     );
     let start = Instant::now();
     let nu = body.material.poisson_ratio();
+    // With field.edge_refinement = N > 1 every path below evaluates the field of the
+    // edge-aware tractions on the grid N times finer (docs/theory/HALFSPACE.md 2.5).
+    let refined: Option<RefinedTractions> = if factor > 1 {
+        match refine_tractions(&element_tractions, factor) {
+            Ok(r) => Some(r),
+            Err(e) => {
+                progress.finish();
+                return Err(e.into());
+            }
+        }
+    } else {
+        None
+    };
+    let tractions = match &refined {
+        Some(r) => r.tractions(),
+        None => element_tractions,
+    };
     let computed = match spec.points {
         FieldPoints::Uniform => {
             let half = resolve(spec.half_width, a);
@@ -829,9 +858,24 @@ pub fn stress(
             let depths: Vec<f64> = (0..nz)
                 .map(|k| depth * k as f64 / (nz - 1) as f64)
                 .collect();
-            stress_field_on_centres_observed(&tractions, nu, &depths, |done| {
-                progress.advance(done as u64)
-            })
+            if refined.is_some() {
+                // The points stay the contact grid's element centres; the refined grid's
+                // centres are not among them for even N, so FFT on the refined grid and
+                // cubic interpolation to them (the uniform points' default path).
+                let g = &out.prepared.grid;
+                let grid = FieldGrid {
+                    x: (0..g.nx()).map(|i| g.x(i)).collect(),
+                    y: (0..g.ny()).map(|j| g.y(j)).collect(),
+                    z: depths,
+                };
+                stress_field_interpolated(&tractions, nu, &grid, |done| {
+                    progress.advance(done as u64)
+                })
+            } else {
+                stress_field_on_centres_observed(&tractions, nu, &depths, |done| {
+                    progress.advance(done as u64)
+                })
+            }
         }
     };
     progress.finish();
@@ -851,6 +895,7 @@ pub fn stress(
         material: body.material,
         bulk: bulk_applied,
         method,
+        edge_refinement: factor,
         time_s: start.elapsed().as_secs_f64(),
     }))
 }
@@ -872,10 +917,16 @@ const KERNEL_SECONDS: f64 = 2e-6;
 const FFT_SECONDS: f64 = 4e-9;
 /// Seconds per field point and damage criterion, one core.
 const DAMAGE_SECONDS: f64 = 3e-7;
+/// Seconds per refined element of the edge-aware reconstruction's sampling
+/// (`field.edge_refinement`), one core: one bilinear interpolation of three nodal arrays and
+/// a square root.
+const RECONSTRUCTION_SECONDS: f64 = 5e-8;
 
 /// The estimated cost of the `[field]` and `[damage]` stages of `case` on `prepared`'s grid
 /// (for `tribo run --dry-run`): (field, damage). The loaded elements are the Hertz contact's
-/// where the gap is Hertzian, else half the grid.
+/// where the gap is Hertzian, else half the grid. With `field.edge_refinement` = N > 1 the
+/// field's traction grid is the contact grid N times finer per side (N^2 times the loaded
+/// elements and the FFT grid), plus the reconstruction's samples.
 pub fn stage_costs(
     case: &HalfSpaceCase,
     prepared: &Prepared,
@@ -884,23 +935,29 @@ pub fn stage_costs(
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get()) as f64;
     let grid = &prepared.grid;
     let a = prepared.hertz.as_ref().map(|h| h.contact.semi_major);
+    let factor = spec.edge_refinement;
+    let refinement = (factor * factor) as f64;
+    // The traction grid of the field: elements, and per side the count and the step.
+    let elements = grid.len() as f64 * refinement;
+    let (tnx, tny) = (grid.nx() * factor, grid.ny() * factor);
+    let (tdx, tdy) = (grid.dx() / factor as f64, grid.dy() / factor as f64);
     let loaded = match &prepared.hertz {
         Some(h) => (std::f64::consts::PI * h.contact.semi_major * h.contact.semi_minor
             / grid.element_area())
         .min(grid.len() as f64),
         None => 0.5 * grid.len() as f64,
-    };
+    } * refinement;
     let directions = if case.friction.is_some() { 3.0 } else { 1.0 };
     let [nx, ny, nz] = spec.n.map(|n| n as f64);
     let points = nx * ny * nz;
-    // The extended grid of the FFT paths: the contact grid, widened to the field box.
+    // The extended grid of the FFT paths: the traction grid, widened to the field box.
     let (hx, hy) = grid.half_widths();
     let half = resolve(spec.half_width, a);
     let widen =
         |h: f64, step: f64, n: usize| n as f64 + 2.0 * ((half - h) / step + 2.5).ceil().max(0.0);
     let wide = match spec.points {
-        FieldPoints::Centres => grid.len() as f64,
-        FieldPoints::Uniform => widen(hx, grid.dx(), grid.nx()) * widen(hy, grid.dy(), grid.ny()),
+        FieldPoints::Centres => elements,
+        FieldPoints::Uniform => widen(hx, tdx, tnx) * widen(hy, tdy, tny),
     };
     let fft = |n: f64| {
         let size = 4.0 * n;
@@ -908,21 +965,25 @@ pub fn stage_costs(
             + (6.0 + 2.0 * directions) * size * size.log2() * FFT_SECONDS)
             / cores
     };
-    let seconds = match (spec.points, spec.method) {
+    let mut seconds = match (spec.points, spec.method) {
         (FieldPoints::Uniform, FieldMethod::Direct) => {
             points * loaded * directions * KERNEL_SECONDS / cores
         }
         // stress_field_interpolated takes the direct sum for a box far beyond the grid.
-        (FieldPoints::Uniform, FieldMethod::Fft)
-            if wide > (4.0 * grid.len() as f64).max(512.0 * 512.0) =>
-        {
+        (FieldPoints::Uniform, FieldMethod::Fft) if wide > (4.0 * elements).max(512.0 * 512.0) => {
             points * loaded * directions * KERNEL_SECONDS / cores
         }
         (FieldPoints::Uniform, FieldMethod::Fft) => fft(wide),
-        (FieldPoints::Centres, _) => fft(grid.len() as f64),
+        (FieldPoints::Centres, _) => fft(elements),
     };
     // The stress tensors, the 22 output arrays, and the FFT buffers of one depth.
-    let bytes = points * (48.0 + 22.0 * 8.0) + (10.0 + directions) * 4.0 * wide * 16.0;
+    let mut bytes = points * (48.0 + 22.0 * 8.0) + (10.0 + directions) * 4.0 * wide * 16.0;
+    if factor > 1 {
+        // The reconstruction sampled at every refined centre (one core), and its arrays:
+        // the samples [p, q_x, q_y] and the refined tractions, 6 doubles per element.
+        seconds += elements * RECONSTRUCTION_SECONDS;
+        bytes += elements * 6.0 * 8.0;
+    }
     let field = StageCost { seconds, bytes };
     let damage = case.damage.as_ref().map(|d| {
         let criteria = d.criteria.len().max(1) as f64;

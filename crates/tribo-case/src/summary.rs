@@ -145,6 +145,7 @@ pub const UNITS: &[(&str, &str)] = &[
     ("stress.points[]", "1"),
     ("stress.half_width", "m"),
     ("stress.depth", "m"),
+    ("stress.edge_refinement", "1"),
     ("stress.bulk[]", "Pa"),
     ("stress.max_von_mises.value", "Pa"),
     ("stress.max_shear.value", "Pa"),
@@ -604,6 +605,10 @@ impl Summary {
         let present = |path: &str| match path.split('.').next().unwrap_or("") {
             "back_effect" => self.back_effect.is_some(),
             "tangential" => self.tangential.is_some(),
+            "stress" if path == "stress.edge_refinement" => self
+                .stress
+                .as_ref()
+                .is_some_and(|st| st.edge_refinement.is_some()),
             "stress" => self.stress.is_some(),
             "damage" if path.starts_with("damage.study") => {
                 self.damage.as_ref().is_some_and(|d| d.study.is_some())
@@ -747,6 +752,10 @@ pub struct StressSummary {
     pub depth: f64,
     /// "direct sum".
     pub method: &'static str,
+    /// `field.edge_refinement` where it is > 1: the field is that of the edge-aware tractions
+    /// on a grid this many times finer per side (absent: the element tractions, bilinear).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub edge_refinement: Option<usize>,
     /// The bulk stress superposed (kind, operating stress Pa), if any.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bulk: Option<(&'static str, f64)>,
@@ -777,6 +786,7 @@ impl StressSummary {
             half_width: half,
             depth: f.grid.z.last().copied().unwrap_or(0.0),
             method: st.method.text(),
+            edge_refinement: (st.edge_refinement > 1).then_some(st.edge_refinement),
             bulk: st.bulk.map(|(k, s)| (k.name(), s)),
             max_von_mises: loc(f.max_of(|s| s.von_mises())),
             max_shear: loc(f.max_of(|s| s.max_shear())),

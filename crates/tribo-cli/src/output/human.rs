@@ -140,6 +140,9 @@ pub fn human(summary: &Summary, dir: &std::path::Path) -> String {
             st.max_principal.value,
             loc(st.max_principal.location)
         );
+        if let Some(n) = st.edge_refinement {
+            let _ = writeln!(o, "                edge-aware tractions refined x{n}");
+        }
     }
     if let Some(d) = &summary.damage {
         for c in &d.criteria {
