@@ -161,6 +161,28 @@ pub const UNITS: &[(&str, &str)] = &[
     ("damage.criteria[].volume_fraction", "1"),
     ("damage.criteria[].damageability", "m^3"),
     ("damage.criteria[].average", "1"),
+    ("damage.criteria[].cycle.period", "s"),
+    ("damage.criteria[].cycle.states[].time", "s"),
+    ("damage.criteria[].cycle.states[].volume", "m^3"),
+    ("damage.criteria[].cycle.states[].damageability", "m^3"),
+    ("damage.criteria[].cycle.states[].psi_max", "1"),
+    ("damage.criteria[].cycle.volume_time_integral", "m^3 s"),
+    ("damage.criteria[].cycle.mean_volume", "m^3"),
+    (
+        "damage.criteria[].cycle.damageability_time_integral",
+        "m^3 s",
+    ),
+    ("damage.criteria[].cycle.average", "s"),
+    ("damage.criteria[].cycle.node_time_integral_max", "s"),
+    ("damage.criteria[].cycle.node_time_integral_max_at[]", "m"),
+    ("damage.criteria[].cycles.cycles", "1"),
+    ("damage.criteria[].cycles.volume_time_integral", "m^3 s"),
+    (
+        "damage.criteria[].cycles.damageability_time_integral",
+        "m^3 s",
+    ),
+    ("damage.criteria[].cycles.average", "s"),
+    ("damage.criteria[].cycles.node_time_integral_max", "s"),
     ("damage.field_volume", "m^3"),
     ("damage.p0", "Pa"),
     ("damage.limit_load", "N"),
@@ -613,6 +635,10 @@ impl Summary {
             "damage" if path.starts_with("damage.study") => {
                 self.damage.as_ref().is_some_and(|d| d.study.is_some())
             }
+            "damage" if path.starts_with("damage.criteria[].cycle") => self
+                .damage
+                .as_ref()
+                .is_some_and(|d| d.criteria.iter().any(|c| c.cycle.is_some())),
             "damage" => self.damage.is_some(),
             "contact" if path.starts_with("contact.hertz") => self.contact.hertz.is_some(),
             "contact" if path.starts_with("contact.error_vs_hertz") => {

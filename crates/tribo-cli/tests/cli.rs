@@ -1063,6 +1063,34 @@ fn the_sec6_study_runs_and_has_the_papers_signs() {
     let csv = std::fs::read_to_string(out.join("sec6.csv")).unwrap();
     assert_eq!(csv.lines().count(), 3);
     assert!(out.join("sec6.png").is_file());
+    // Every number under damage.criteria (the cycle accumulation included) has its unit in
+    // the summary's units table (array indices written `[]`); fails without the cycle rows.
+    fn leaves(v: &serde_json::Value, path: String, found: &mut Vec<String>) {
+        match v {
+            serde_json::Value::Object(m) => {
+                for (k, x) in m {
+                    leaves(x, format!("{path}.{k}"), found);
+                }
+            }
+            serde_json::Value::Array(a) => {
+                for x in a {
+                    leaves(x, format!("{path}[]"), found);
+                }
+            }
+            serde_json::Value::Number(_) => found.push(path),
+            _ => {}
+        }
+    }
+    let mut found = Vec::new();
+    leaves(
+        &s["damage"]["criteria"],
+        "damage.criteria".into(),
+        &mut found,
+    );
+    assert!(found.iter().any(|p| p.contains(".cycle.")), "{found:?}");
+    for path in found {
+        assert!(s["units"][&path].is_string(), "no unit for {path}");
+    }
 }
 
 #[test]
