@@ -170,6 +170,21 @@ pub(super) fn node_weight(problem: &BemProblem, r: usize, o: usize) -> f64 {
     w
 }
 
+/// What both support searches of a free body ([`covariant_pins`], [`pivoted_pins`]) read: the
+/// body's regions, the segment roles and load groups, its contact nodes (model-local
+/// positions, m), its free rigid modes, and the centre (m) and size (m) the modes are scaled by.
+#[derive(Clone, Copy)]
+struct PinSearch<'a> {
+    problem: &'a BemProblem,
+    members: &'a [usize],
+    role: &'a HashMap<usize, String>,
+    seg_group: &'a [usize],
+    contact: &'a [[f64; 2]],
+    modes: &'a [[f64; 3]],
+    center: [f64; 2],
+    size: f64,
+}
+
 /// The free rigid-body modes of a body that takes part in a contact pair, and its artificial
 /// supports: for each free mode one traction-type node component off the contact and rigid
 /// segments, chosen by pivoting (the component whose rigid-mode row has the largest part
@@ -213,18 +228,24 @@ pub(super) fn free_body(
         .filter(|(n, _)| role.contains_key(&n.segment))
         .map(|(_, x)| *x)
         .collect();
+    let search = PinSearch {
+        problem,
+        members,
+        role,
+        seg_group,
+        contact: &contact,
+        modes: &modes,
+        center,
+        size,
+    };
     let covariant = if modes.len() == 3 {
-        covariant_pins(
-            problem, dofs, members, role, seg_group, &contact, &modes, center, size,
-        )
+        covariant_pins(&search, dofs)
     } else {
         None
     };
     let pins = match covariant {
         Some(pins) => pins,
-        None => pivoted_pins(
-            problem, dofs, members, role, seg_group, &contact, &modes, center, size, &field,
-        )?,
+        None => pivoted_pins(&search, dofs, &field)?,
     };
     Ok(Some(FreeBody {
         name: mesh.regions[members[0]].name.clone(),
@@ -251,18 +272,17 @@ pub(super) fn free_body(
 /// broken the same way at any position). B's two DOFs are taken in the frame (normal,
 /// along AB) ([`Pin::frame`]). None where no such pair exists (then [`pivoted_pins`]
 /// reports the unsupported mode).
-#[allow(clippy::too_many_arguments)]
-fn covariant_pins(
-    problem: &BemProblem,
-    dofs: &mut [Vec<[Dof; 2]>],
-    members: &[usize],
-    role: &HashMap<usize, String>,
-    seg_group: &[usize],
-    contact: &[[f64; 2]],
-    modes: &[[f64; 3]],
-    center: [f64; 2],
-    size: f64,
-) -> Option<Vec<Pin>> {
+fn covariant_pins(search: &PinSearch<'_>, dofs: &mut [Vec<[Dof; 2]>]) -> Option<Vec<Pin>> {
+    let PinSearch {
+        problem,
+        members,
+        role,
+        seg_group,
+        contact,
+        modes,
+        center,
+        size,
+    } = *search;
     let mesh = &problem.mesh;
     // (region, node, position, far, prescribed traction, columns)
     let mut cand = Vec::new();
@@ -349,19 +369,21 @@ fn covariant_pins(
 /// displacement conditions along the global axes): for each free mode one traction-type
 /// node component off the contact and rigid segments, along a global axis, chosen by
 /// pivoting (see [`free_body`]).
-#[allow(clippy::too_many_arguments)]
 fn pivoted_pins(
-    problem: &BemProblem,
+    search: &PinSearch<'_>,
     dofs: &mut [Vec<[Dof; 2]>],
-    members: &[usize],
-    role: &HashMap<usize, String>,
-    seg_group: &[usize],
-    contact: &[[f64; 2]],
-    modes: &[[f64; 3]],
-    center: [f64; 2],
-    size: f64,
     field: &str,
 ) -> Result<Vec<Pin>> {
+    let PinSearch {
+        problem,
+        members,
+        role,
+        seg_group,
+        contact,
+        modes,
+        center,
+        size,
+    } = *search;
     let mesh = &problem.mesh;
     let mut cand: Vec<PinCandidate> = Vec::new();
     for &r in members {
