@@ -1,7 +1,7 @@
 //! tribo cases as a library: the case model between a case file (or a program) and the
 //! physics of the `tribo` library.
 //!
-//! - [`case`]: the half-space case (two elastic bodies in contact, friction, bulk loading,
+//! - [`halfspace`] (also reachable as [`case`]): the half-space case (two elastic bodies in contact, friction, bulk loading,
 //!   the subsurface stress field, damage), parsed from TOML and validated with errors that
 //!   name the field and the rule;
 //! - [`builder`]: a half-space case built in code, validated by the same rules;
@@ -25,9 +25,11 @@ pub mod case;
 pub mod error;
 pub mod examples;
 pub mod fatigue;
+pub mod halfspace;
 pub mod memory;
 pub mod pipeline;
 pub mod progress;
+mod schema;
 pub mod summary;
 pub mod units;
 

@@ -1,4 +1,12 @@
 //! Numbers in case files: plain SI numbers, or strings with a unit (`"201 GPa"`, `"10 mm"`).
+//!
+//! [`Quantity`] is the typed form (a number of a [`Dimension`], parsed by serde from a case
+//! file); the functions below convert a TOML value where the dimension is known only at run
+//! time (damage limits, fatigue data, the BEM case's hand-parsed tables).
+
+mod quantity;
+
+pub use quantity::{Dimension, Dimensionless, Force, Length, LineForce, Pressure, Quantity};
 
 use crate::error::{CaseError, CaseResult};
 use toml::Value;
@@ -38,6 +46,16 @@ impl Dim {
         }
     }
 
+    /// The dimension's name in messages ("a pressure").
+    fn name(self) -> &'static str {
+        match self {
+            Dim::Pressure => "a pressure",
+            Dim::Length => "a length",
+            Dim::Force => "a force",
+            Dim::LineForce => "a force per unit length",
+        }
+    }
+
     fn si(self) -> &'static str {
         match self {
             Dim::Pressure => "Pa",
@@ -64,40 +82,43 @@ pub fn show(value: &Value) -> String {
 /// floats are refused here, for every field; the one field where infinity means something (a
 /// flat direction's radius of curvature) handles it before calling this.
 pub fn number(field: &str, value: &Value) -> CaseResult<f64> {
+    number_of(value).map_err(|rule| CaseError::field(field, show(value), rule))
+}
+
+/// [`number`] without the field: the number, or the rule it breaks.
+pub(crate) fn number_of(value: &Value) -> Result<f64, String> {
     match value {
-        Value::Float(f) if !f.is_finite() => Err(CaseError::field(
-            field,
-            show(value),
-            "must be a finite number (TOML inf and nan are not accepted here)",
-        )),
+        Value::Float(f) if !f.is_finite() => {
+            Err("must be a finite number (TOML inf and nan are not accepted here)".into())
+        }
         Value::Float(f) => Ok(*f),
         Value::Integer(i) => Ok(*i as f64),
-        other => Err(CaseError::field(field, show(other), "must be a number")),
+        _ => Err("must be a number".into()),
     }
 }
 
 /// A quantity of dimension `dim`, returned in SI units: a number (taken as SI) or a string
 /// `"<number> <unit>"` (the space is optional).
 pub fn quantity(field: &str, value: &Value, dim: Dim) -> CaseResult<f64> {
+    quantity_of(value, dim).map_err(|rule| CaseError::field(field, show(value), rule))
+}
+
+/// [`quantity`] without the field: the value in SI units, or the rule it breaks (naming the
+/// dimension and its accepted units).
+pub(crate) fn quantity_of(value: &Value, dim: Dim) -> Result<f64, String> {
+    let expected = || {
+        let units: Vec<&str> = dim.units().iter().map(|u| u.0).collect();
+        format!(
+            "must be {}: a number in {} or a string \"<number> <unit>\" with unit one of {}",
+            dim.name(),
+            dim.si(),
+            units.join(", ")
+        )
+    };
     match value {
-        Value::Float(_) | Value::Integer(_) => number(field, value),
-        Value::String(s) => parse_with_unit(s, dim).ok_or_else(|| {
-            let units: Vec<&str> = dim.units().iter().map(|u| u.0).collect();
-            CaseError::field(
-                field,
-                show(value),
-                format!(
-                    "must be a number in {} or a string \"<number> <unit>\" with unit one of {}",
-                    dim.si(),
-                    units.join(", ")
-                ),
-            )
-        }),
-        other => Err(CaseError::field(
-            field,
-            show(other),
-            format!("must be a number in {}", dim.si()),
-        )),
+        Value::Float(_) | Value::Integer(_) => number_of(value),
+        Value::String(s) => parse_with_unit(s, dim).ok_or_else(expected),
+        _ => Err(expected()),
     }
 }
 
@@ -179,15 +200,15 @@ pub const MAX_STRAIN: f64 = 0.1;
 /// the solution is rounding noise.
 pub const MIN_STRAIN: f64 = 1e-15;
 
-/// `E` (Pa) of the field `field` within [`MODULUS_RANGE`].
-pub fn check_modulus(field: &str, value: &Value, e: f64) -> CaseResult<()> {
+/// `E` (Pa) of the field `field` (written as `value`) within [`MODULUS_RANGE`].
+pub fn check_modulus(field: &str, value: impl std::fmt::Display, e: f64) -> CaseResult<()> {
     let [lo, hi] = MODULUS_RANGE;
     if (lo..=hi).contains(&e) {
         Ok(())
     } else {
         Err(CaseError::field(
             field,
-            show(value),
+            value,
             format!(
                 "Young's modulus must be in [{lo:e}, {hi:e}] Pa (soft hydrogels ~1e2 Pa to \
                  diamond 1.2e12 Pa); a value outside is a unit mistake"
@@ -196,15 +217,15 @@ pub fn check_modulus(field: &str, value: &Value, e: f64) -> CaseResult<()> {
     }
 }
 
-/// A geometric length `x` (m, its magnitude) within [`LENGTH_RANGE`].
-pub fn check_length(field: &str, value: &Value, x: f64) -> CaseResult<()> {
+/// A geometric length `x` (m, its magnitude; written as `value`) within [`LENGTH_RANGE`].
+pub fn check_length(field: &str, value: impl std::fmt::Display, x: f64) -> CaseResult<()> {
     let [lo, hi] = LENGTH_RANGE;
     if (lo..=hi).contains(&x.abs()) {
         Ok(())
     } else {
         Err(CaseError::field(
             field,
-            show(value),
+            value,
             format!(
                 "a length of the geometry must be in [{lo:e}, {hi:e}] m in magnitude (below \
                  1 nm a continuum model does not apply)"
@@ -262,15 +283,14 @@ where
 
 /// A non-negative integer.
 pub fn count(field: &str, value: &Value) -> CaseResult<usize> {
+    count_of(value).map_err(|rule| CaseError::field(field, show(value), rule))
+}
+
+/// [`count`] without the field: the integer, or the rule it breaks.
+pub(crate) fn count_of(value: &Value) -> Result<usize, String> {
     match value {
-        Value::Integer(i) if *i >= 0 => {
-            usize::try_from(*i).map_err(|_| CaseError::field(field, i, "too large"))
-        }
-        other => Err(CaseError::field(
-            field,
-            show(other),
-            "must be a non-negative integer",
-        )),
+        Value::Integer(i) if *i >= 0 => usize::try_from(*i).map_err(|_| "too large".into()),
+        _ => Err("must be a non-negative integer".into()),
     }
 }
 
