@@ -61,6 +61,9 @@ mod model;
 mod schema;
 mod validate;
 
+#[cfg(test)]
+mod hostile;
+
 pub use model::*;
 pub use validate::read_height_csv;
 
