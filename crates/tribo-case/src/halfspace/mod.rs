@@ -296,6 +296,19 @@ extent = 1.5
             "radii = [0.005, 0.05]\nangle_deg = 30",
         );
         assert!(err(&t).starts_with("body1.angle_deg"));
+        // An angle with its unit is the same f64 as the plain number of degrees.
+        let deg = PAPER.replace(
+            "radii = [-0.01, 0.01]",
+            "radii = [-0.01, 0.01]\nangle_deg = \"30 deg\"",
+        );
+        assert!(
+            matches!(parse(&deg).unwrap().body2.shape, Shape::Radii { angle, .. } if angle == 30f64.to_radians())
+        );
+        let e = err(&deg.replace("30 deg", "30 rad"));
+        assert!(
+            e.starts_with("body2.angle_deg = \"30 rad\": must be an angle"),
+            "{e}"
+        );
         let big = PAPER.replace("n = 21", "n = 128") + "[solver]\nmethod = \"active_set\"\n";
         assert!(err(&big).starts_with("solver.method"));
         assert!(
@@ -423,7 +436,27 @@ half_width = [0.0056, 0.0003]
         let e = err(&ROLLER.replace("kind = \"roller\"", "kind = \"roller\"\ncolour = 1"));
         assert!(e.contains("colour"), "{e}");
         let e = err(&ROLLER.replace("kind = \"roller\"", "kind = \"cone\""));
-        assert!(e.contains("cone"), "{e}");
+        assert!(
+            e.starts_with("body1.surface.kind = \"cone\": must be"),
+            "{e}"
+        );
+        // The keys of the other kind of surface, and a roller's required keys.
+        let e = err(&ROLLER.replace("radius = 0.005", "radius = 0.005\nscale = 2"));
+        assert_eq!(
+            e,
+            "body1.surface.scale = 2: does not apply to kind = \"roller\""
+        );
+        let e = err(&ROLLER.replace("radius = 0.005", ""));
+        assert!(
+            e.starts_with("body1.surface.radius = (missing): required"),
+            "{e}"
+        );
+        // A type error deep in the schema names the full path.
+        let e = err(&ROLLER.replace("crown_drop = 1e-5", "crown_drop = \"10 GPa\""));
+        assert!(
+            e.starts_with("body1.surface.crown_drop = \"10 GPa\": must be a length"),
+            "{e}"
+        );
         let e = err(&ROLLER.replace(
             "radii = [\"inf\", 0.02]",
             "radii = [\"inf\", 0.02]\n[body2.surface]\nkind = \"roller\"\nradius = 1\nlength = 1",

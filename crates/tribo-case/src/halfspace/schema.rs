@@ -8,7 +8,7 @@ use super::model::{FieldMethod, FieldPoints, Method};
 use crate::schema::{
     items, leaf_deserialize, Choice, Choices, Count, Flag, FromToml, Pair, Refusal,
 };
-use crate::units::{self, Dimensionless, Force, Pressure, Quantity};
+use crate::units::{self, Angle, Dimensionless, Force, Pressure, Quantity};
 use serde::Deserialize;
 use toml::Value;
 
@@ -16,6 +16,8 @@ use toml::Value;
 pub(super) type Number = Quantity<Dimensionless>;
 /// A length, m.
 pub(super) type Metres = Quantity<units::Length>;
+/// An angle, deg.
+pub(super) type Degrees = Quantity<Angle>;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -38,7 +40,7 @@ pub(super) struct RawBody {
     pub e: Quantity<Pressure>,
     pub nu: Number,
     pub radii: Option<Radii>,
-    pub angle_deg: Option<Number>,
+    pub angle_deg: Option<Degrees>,
     pub surface: Option<RawSurface>,
 }
 
@@ -94,9 +96,9 @@ pub(super) struct RawContact {
     pub approach: Option<Metres>,
     pub friction: Option<Number>,
     pub tangential_load: Option<Quantity<Force>>,
-    pub tangential_angle_deg: Option<Number>,
+    pub tangential_angle_deg: Option<Degrees>,
     pub sliding: Option<Flag>,
-    pub sliding_angle_deg: Option<Number>,
+    pub sliding_angle_deg: Option<Degrees>,
     pub traction_direction: Option<Choice<TractionDirection>>,
 }
 

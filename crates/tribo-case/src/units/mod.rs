@@ -6,7 +6,7 @@
 
 mod quantity;
 
-pub use quantity::{Dimension, Dimensionless, Force, Length, LineForce, Pressure, Quantity};
+pub use quantity::{Angle, Dimension, Dimensionless, Force, Length, LineForce, Pressure, Quantity};
 
 use crate::error::{CaseError, CaseResult};
 use toml::Value;
@@ -23,6 +23,8 @@ pub enum Dim {
     /// Force per unit length (a line load, or a 2D model's force per unit thickness):
     /// N/m, kN/m, MN/m, N/mm.
     LineForce,
+    /// Angle in degrees (the keys `*_angle_deg`): a plain number, or `"30 deg"`.
+    Angle,
 }
 
 impl Dim {
@@ -43,6 +45,7 @@ impl Dim {
             ],
             Dim::Force => &[("kN", 3), ("MN", 6), ("mN", -3), ("N", 0)],
             Dim::LineForce => &[("kN/m", 3), ("MN/m", 6), ("N/mm", 3), ("N/m", 0)],
+            Dim::Angle => &[("deg", 0)],
         }
     }
 
@@ -53,6 +56,7 @@ impl Dim {
             Dim::Length => "a length",
             Dim::Force => "a force",
             Dim::LineForce => "a force per unit length",
+            Dim::Angle => "an angle",
         }
     }
 
@@ -62,6 +66,7 @@ impl Dim {
             Dim::Length => "m",
             Dim::Force => "N",
             Dim::LineForce => "N/m",
+            Dim::Angle => "deg",
         }
     }
 }
@@ -370,7 +375,13 @@ mod tests {
     /// All units of all dimensions with their SI powers of ten, and the SI unit's own name.
     fn all_units() -> Vec<(Dim, &'static str, i32)> {
         let mut v = Vec::new();
-        for d in [Dim::Pressure, Dim::Length, Dim::Force, Dim::LineForce] {
+        for d in [
+            Dim::Pressure,
+            Dim::Length,
+            Dim::Force,
+            Dim::LineForce,
+            Dim::Angle,
+        ] {
             for &(u, p) in d.units() {
                 v.push((d, u, p));
             }

@@ -15,8 +15,8 @@ pub trait Dimension {
 }
 
 macro_rules! dimension {
-    ($(#[$doc:meta] $name:ident => $dim:expr;)*) => {$(
-        #[$doc]
+    ($($(#[$doc:meta])* $name:ident => $dim:expr;)*) => {$(
+        $(#[$doc])*
         #[derive(Debug, Clone, Copy, PartialEq, Eq)]
         pub struct $name;
 
@@ -35,7 +35,10 @@ dimension! {
     Force => Some(Dim::Force);
     /// Force per unit length, N/m (also kN/m, MN/m, N/mm).
     LineForce => Some(Dim::LineForce);
-    /// A plain number (a ratio, a count of cycles, an angle in degrees): no unit strings.
+    /// Angle, deg: a plain number is in degrees, as the keys `*_angle_deg` say (also
+    /// `"30 deg"`; [`Quantity::si`] is then in degrees).
+    Angle => Some(Dim::Angle);
+    /// A plain number (a ratio, a coefficient, a number of cycles): no unit strings.
     Dimensionless => None;
 }
 
@@ -54,7 +57,7 @@ pub struct Quantity<D> {
 }
 
 impl<D: Dimension> Quantity<D> {
-    /// The value in SI units.
+    /// The value in SI units (for [`Angle`], in degrees).
     pub fn si(&self) -> f64 {
         self.si
     }
@@ -122,6 +125,12 @@ mod tests {
         assert_eq!(q::<Force>("2000").unwrap().si(), 2000.0);
         assert_eq!(q::<LineForce>("\"3 N/mm\"").unwrap().si(), 3000.0);
         assert_eq!(q::<Dimensionless>("0.3").unwrap().si(), 0.3);
+        assert_eq!(
+            q::<Angle>("\"30 deg\"").unwrap().si().to_bits(),
+            30f64.to_bits()
+        );
+        assert_eq!(q::<Angle>("12.5").unwrap().si(), 12.5);
+        assert!(q::<Angle>("\"30 rad\"").unwrap_err().contains("an angle"));
     }
 
     #[test]

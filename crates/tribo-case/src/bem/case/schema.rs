@@ -5,7 +5,7 @@
 //! segment); their rules are in `outline.rs` and `conditions.rs`.
 
 use crate::schema::{Choice, Choices, Count};
-use crate::units::{Dimensionless, Length, Pressure, Quantity};
+use crate::units::{Angle, Dimensionless, Length, Pressure, Quantity};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -79,7 +79,7 @@ pub(in crate::bem) struct RawMesh {
     pub file: PathBuf,
     pub materials: BTreeMap<String, String>,
     pub body_forces: Option<BTreeMap<String, toml::Table>>,
-    pub corner_angle_deg: Option<Number>,
+    pub corner_angle_deg: Option<Quantity<Angle>>,
 }
 
 #[derive(Debug, Deserialize, Clone, Default)]

@@ -4,7 +4,7 @@
 use super::positive;
 use crate::error::{CaseError, CaseResult};
 use crate::halfspace::model::Friction;
-use crate::halfspace::schema::{Number, RawContact, TractionDirection};
+use crate::halfspace::schema::{Degrees, RawContact, TractionDirection};
 use tribo::solvers::tangential::TangentialLoading;
 use tribo::solvers::NormalLoading;
 
@@ -35,7 +35,7 @@ pub(super) fn loading(c: &RawContact) -> CaseResult<NormalLoading> {
 }
 
 /// An angle in degrees from the x axis (default 0), in rad.
-fn angle_deg(v: Option<&Number>) -> f64 {
+fn angle_deg(v: Option<&Degrees>) -> f64 {
     v.map_or(0.0, |d| d.si().to_radians())
 }
 
