@@ -1,6 +1,7 @@
 //! Hostile input: random TOML documents built from the schema's keys, with wrong types,
 //! out-of-range and non-finite values, huge numbers, empty tables and removed keys, over
-//! every embedded half-space example. Parsing never panics, and every error names a key.
+//! every embedded half-space example and the 2D BEM bases (the clamp-knife-base template, the
+//! outline case of docs/user/case-bem2d.md). Parsing never panics, and every error names a key.
 
 use crate::error::CaseError;
 use crate::examples::EXAMPLES;
@@ -8,8 +9,11 @@ use proptest::prelude::*;
 use std::path::Path;
 use toml::{Table, Value};
 
-/// Every table of the schema with its keys.
-const SCHEMA: &[(&str, &[&str])] = &[
+/// A schema: every table with its keys.
+type Schema = &'static [(&'static str, &'static [&'static str])];
+
+/// Every table of the half-space schema with its keys.
+const SCHEMA: Schema = &[
     ("", &["title"]),
     ("body1", &["E", "nu", "radii", "angle_deg"]),
     ("body2", &["E", "nu", "radii", "angle_deg"]),
@@ -106,6 +110,46 @@ const SCHEMA: &[(&str, &[&str])] = &[
     ),
 ];
 
+/// The 2D BEM schema's tables with their keys (the arrays of tables are replaced whole).
+const BEM_SCHEMA: Schema = &[
+    (
+        "",
+        &[
+            "kind", "title", "plane", "rigid", "regions", "bc", "steps", "contact", "mesh",
+        ],
+    ),
+    ("materials.steel", &["E", "nu", "source"]),
+    (
+        "clamp_knife_base",
+        &[
+            "knife_length",
+            "knife_thickness",
+            "bevel_length",
+            "edge_thickness",
+            "cutting_length",
+            "base_left",
+            "base_thickness",
+            "clamp_left",
+            "clamp_thickness",
+            "bolt_center",
+            "bolt_width",
+            "bolt_pressure",
+            "cutting_load",
+            "friction",
+            "contact_element_size",
+            "element_size",
+            "knife_material",
+            "clamp_material",
+            "base_material",
+        ],
+    ),
+    ("solver", &["max_iterations", "tolerance"]),
+    ("field", &["size", "regions"]),
+    ("damage", &["region", "quantity", "limit", "step"]),
+    ("damage.sweep", &["from", "to", "points"]),
+    ("compare", &["region", "materials"]),
+];
+
 /// Values a key may be given: wrong types, out of range, non-finite, huge, empty.
 fn hostile(k: usize) -> Value {
     let texts = [
@@ -188,10 +232,13 @@ fn table_at<'a>(root: &'a mut Table, path: &str) -> &'a mut Table {
     t
 }
 
+/// Which mutation, of which table, key and value.
+type Mutation = (usize, usize, usize, usize);
+
 /// Mutation `op` of the document: set a key to a hostile value, remove it, or empty or
 /// replace its table.
-fn mutate(doc: &mut Table, op: usize, table: usize, key: usize, value: usize) {
-    let (path, keys) = SCHEMA[table % SCHEMA.len()];
+fn mutate(doc: &mut Table, schema: Schema, (op, table, key, value): Mutation) {
+    let (path, keys) = schema[table % schema.len()];
     let key = keys[key % keys.len()];
     match op % 6 {
         0..=2 => {
@@ -213,7 +260,26 @@ fn mutate(doc: &mut Table, op: usize, table: usize, key: usize, value: usize) {
 
 /// The top-level tables and keys an error may start with.
 const ROOTS: &[&str] = &[
-    "title", "body1", "body2", "contact", "grid", "solver", "bulk", "field", "damage",
+    "title",
+    "body1",
+    "body2",
+    "contact",
+    "grid",
+    "solver",
+    "bulk",
+    "field",
+    "damage",
+    // 2D BEM
+    "kind",
+    "plane",
+    "materials",
+    "clamp_knife_base",
+    "regions",
+    "mesh",
+    "bc",
+    "rigid",
+    "steps",
+    "compare",
 ];
 
 fn names_a_key(e: &CaseError) -> bool {
@@ -243,32 +309,67 @@ fn half_space_examples() -> Vec<Table> {
         .collect()
 }
 
+fn bem_bases() -> Vec<Table> {
+    let doc = include_str!("../../../../docs/user/case-bem2d.md");
+    let outline = doc
+        .split("```toml\n")
+        .nth(1)
+        .and_then(|b| b.split("```").next())
+        .expect("a TOML block in case-bem2d.md");
+    let knife = EXAMPLES
+        .iter()
+        .find(|e| e.name == "clamp-knife-base")
+        .expect("the clamp-knife-base example");
+    [outline, knife.text]
+        .iter()
+        .map(|t| toml::from_str::<Table>(t).expect("a BEM base"))
+        .collect()
+}
+
+/// Parses the mutated document: no panic, and an error names a key.
+fn check(
+    bases: &[Table],
+    schema: Schema,
+    base: usize,
+    ops: Vec<Mutation>,
+) -> Result<(), TestCaseError> {
+    let mut doc = bases[base % bases.len()].clone();
+    for m in ops {
+        mutate(&mut doc, schema, m);
+    }
+    let text = toml::to_string(&doc).expect("serialize");
+    if let Err(e) = crate::Case::from_toml(&text, "hostile.toml", Path::new("/nonexistent")) {
+        prop_assert!(names_a_key(&e), "{e}\n--- case:\n{text}");
+    }
+    Ok(())
+}
+
+fn mutations() -> impl Strategy<Value = Vec<Mutation>> {
+    proptest::collection::vec((0usize..64, 0usize..64, 0usize..64, 0usize..256), 1..5)
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(3000))]
     #[test]
-    fn hostile_documents_never_panic_and_errors_name_a_key(
-        base in 0usize..64,
-        ops in proptest::collection::vec((0usize..64, 0usize..64, 0usize..64, 0usize..256), 1..5),
-    ) {
-        let bases = half_space_examples();
-        let mut doc = bases[base % bases.len()].clone();
-        for (op, table, key, value) in ops {
-            mutate(&mut doc, op, table, key, value);
-        }
-        let text = toml::to_string(&doc).expect("serialize");
-        match crate::Case::from_toml(&text, "hostile.toml", Path::new("/nonexistent")) {
-            Ok(_) => {}
-            Err(e) => prop_assert!(names_a_key(&e), "{e}\n--- case:\n{text}"),
-        }
+    fn hostile_documents_never_panic_and_errors_name_a_key(base in 0usize..64, ops in mutations()) {
+        check(&half_space_examples(), SCHEMA, base, ops)?;
+    }
+
+    #[test]
+    fn hostile_bem_documents_never_panic_and_errors_name_a_key(base in 0usize..64, ops in mutations()) {
+        check(&bem_bases(), BEM_SCHEMA, base, ops)?;
     }
 }
 
 #[test]
-fn the_bases_are_the_half_space_examples() {
+fn the_bases_are_valid_cases() {
     let bases = half_space_examples();
     assert!(bases.len() >= 4, "{}", bases.len());
-    for b in &bases {
+    for b in bases.iter().chain(&bem_bases()) {
         let text = toml::to_string(b).unwrap();
-        assert!(crate::Case::from_toml(&text, "t", Path::new(".")).is_ok());
+        assert!(
+            crate::Case::from_toml(&text, "t", Path::new(".")).is_ok(),
+            "{text}"
+        );
     }
 }
