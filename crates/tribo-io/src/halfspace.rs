@@ -195,7 +195,8 @@ fn stress_vti_arrays(out: &Outcome, st: &Stress) -> IoResult<Vec<(String, Vec<f6
 }
 
 /// The data files (CSV, VTK) of a run, built and checked before anything is written, and
-/// what the plots draw beside the results.
+/// what the plots draw beside the results (unread without the feature `png`).
+#[cfg_attr(not(feature = "png"), allow(dead_code))]
 pub(crate) struct DataFiles {
     /// (file name, content) in the order of writing.
     pub(crate) files: Vec<(&'static str, Vec<u8>)>,
