@@ -12,16 +12,20 @@
 //! - [`memory`]: a case's estimated peak memory;
 //! - [`pipeline`] and [`bem::pipeline`]: the runs, reporting to a [`Progress`];
 //! - [`summary`]: the summary of a half-space run (`summary.json`), a pure function of the
-//!   case and its results;
+//!   case and its results; [`bem::summary`] likewise for a 2D case;
+//! - [`derived`]: the quantities the outputs show beside the results (the Hertz back-effect
+//!   curve, the Cattaneo-Mindlin traction, the stress field's derived arrays);
 //! - [`error`]: [`CaseError`], the errors of all of these.
 //!
-//! No command-line parsing, progress bars or plotting live here; the `tribo` binary
-//! (crates/tribo-cli) is one front end over this crate.
+//! No command-line parsing, progress bars, files or plotting live here: the writers are the
+//! crate `tribo-io` (crates/tribo-io), and the `tribo` binary (crates/tribo-cli) is one
+//! front end over both.
 #![warn(missing_docs)]
 
 pub mod bem;
 pub mod builder;
 pub mod case;
+pub mod derived;
 pub mod error;
 pub mod examples;
 pub mod fatigue;

@@ -141,6 +141,18 @@ pub fn bem(dof: usize, interior: usize) -> Estimate {
     ])
 }
 
+/// The estimate of a 2D case over its boundary mesh: [`bem`] with the interior points of
+/// the default triangle size (1/40 of the model's extent), about 3200 per region and step.
+pub fn bem_case(
+    case: &crate::bem::case::BemCase,
+    mesh: &tribo::operators::bem2d::BemMesh,
+) -> Estimate {
+    bem(
+        mesh.dof(),
+        3200 * mesh.regions.len() * case.steps.len().max(1),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,21 +1,16 @@
 //! `tribo`: the command line of the tribo suite. Case files in; summaries, fields and plots
 //! out. See docs/user/cli.md and `tribo --help`.
 
-mod bem;
-mod error;
-mod fatigue;
+mod cmd;
+mod exit;
+mod human;
 mod memory;
-mod output;
 mod progress;
 mod term;
-mod validate;
-
-use tribo_case::{case, examples, pipeline as run};
 
 use clap::{Parser, Subcommand};
-use error::{CliError, CliResult, EXIT_OK, EXIT_OTHER, EXIT_VALIDATION_FAILED};
-use std::io::Read;
-use std::path::{Path, PathBuf};
+use exit::{EXIT_OK, EXIT_OTHER};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 const ABOUT: &str =
@@ -157,7 +152,7 @@ Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3
     },
     /// Fatigue curves from test data and the limiting-state diagram (paper Figs. 3, 4).
     #[command(subcommand)]
-    Fatigue(fatigue::FatigueCommand),
+    Fatigue(cmd::fatigue::FatigueCommand),
     /// Run the verification suite and print its table (exit 1 if a row fails).
     Validate {
         /// Print the rows as JSON.
@@ -202,10 +197,17 @@ fn main() -> ExitCode {
             quiet,
             dry_run,
             max_memory,
-        } => cmd_run(case.as_deref(), &out, json, quiet, dry_run, max_memory),
-        Command::Example { name } => cmd_example(name.as_deref()),
-        Command::Validate { json } => cmd_validate(json),
-        Command::Fatigue(cmd) => fatigue::run(cmd),
+        } => cmd::run::run(&cmd::run::RunArgs {
+            case,
+            out,
+            json,
+            quiet,
+            dry_run,
+            max_memory,
+        }),
+        Command::Example { name } => cmd::example::run(name.as_deref()),
+        Command::Validate { json } => cmd::validate::run(json),
+        Command::Fatigue(c) => cmd::fatigue::run(c),
     };
     match result {
         Ok(code) => ExitCode::from(code),
@@ -213,181 +215,11 @@ fn main() -> ExitCode {
     }
 }
 
-/// The case text, its name for errors, and the folder relative paths resolve against.
-fn read_case(case: Option<&Path>) -> CliResult<(String, String, PathBuf)> {
-    match case {
-        None => {
-            let ex = examples::find(examples::DEFAULT).ok_or_else(|| CliError::UnknownExample {
-                name: examples::DEFAULT.into(),
-                known: examples::names(),
-            })?;
-            Ok((
-                ex.text.to_string(),
-                format!("<embedded {}>", ex.name),
-                PathBuf::from("."),
-            ))
-        }
-        Some(p) if p.as_os_str() == "-" => Ok((
-            read_bounded(std::io::stdin().lock(), p)?,
-            "<stdin>".into(),
-            PathBuf::from("."),
-        )),
-        Some(p) => {
-            let unreadable = |source| tribo_case::CaseError::Unreadable {
-                field: "case".into(),
-                path: p.to_path_buf(),
-                source,
-            };
-            let text = read_bounded(std::fs::File::open(p).map_err(unreadable)?, p)?;
-            let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
-            Ok((text, p.display().to_string(), base))
-        }
+/// How the command line writes its files: plots on, and the temporary being written
+/// removed on SIGINT/SIGTERM/SIGHUP.
+pub fn write_options() -> tribo_io::WriteOptions {
+    tribo_io::WriteOptions {
+        plots: true,
+        remove_temporary_on_signal: true,
     }
-}
-
-/// A case file's text, refused before reading beyond [`memory::MAX_CASE_FILE_BYTES`] (the
-/// parser needs ~80 times the file's size).
-fn read_bounded(reader: impl Read, path: &Path) -> CliResult<String> {
-    let limit = memory::MAX_CASE_FILE_BYTES;
-    let mut bytes = Vec::new();
-    reader
-        .take(limit + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|source| tribo_case::CaseError::Unreadable {
-            field: "case".into(),
-            path: path.to_path_buf(),
-            source,
-        })?;
-    if bytes.len() as u64 > limit {
-        return Err(CliError::field(
-            "case",
-            path.display(),
-            format!(
-                "the case file is larger than {} (a case is a few hundred lines; height maps \
-                 and meshes go in their own files)",
-                memory::human(limit)
-            ),
-        ));
-    }
-    let text = String::from_utf8(bytes).map_err(|e| tribo_case::CaseError::Unreadable {
-        field: "case".into(),
-        path: path.to_path_buf(),
-        source: std::io::Error::new(std::io::ErrorKind::InvalidData, e),
-    })?;
-    Ok(text)
-}
-
-fn cmd_run(
-    case: Option<&Path>,
-    out: &Path,
-    json: bool,
-    quiet: bool,
-    dry_run: bool,
-    max_memory: Option<u64>,
-) -> CliResult<u8> {
-    let (text, source, base_dir) = read_case(case)?;
-    if bem::is_bem_text(&text) {
-        let Some(summary) =
-            bem::run_text(&text, &source, &base_dir, out, quiet, dry_run, max_memory)?
-        else {
-            return Ok(EXIT_OK);
-        };
-        return print_summary(&summary, &summary.human(out), json);
-    }
-    let case = case::parse_case(&text, &source, &base_dir)?;
-    let prepared = run::prepare(&case)?;
-    let estimate = memory::half_space(&case);
-    if dry_run {
-        term::outln(&format!("memory: {}", estimate.describe()))?;
-    }
-    memory::check(&estimate, max_memory)?;
-    if dry_run {
-        let g = &prepared.grid;
-        let (hx, hy) = g.half_widths();
-        term::outln(&format!(
-            "{}: valid; {} x {} elements over |x| <= {hx:e} m, |y| <= {hy:e} m; E* = {:e} Pa; solver {}",
-            case.title,
-            g.nx(),
-            g.ny(),
-            prepared.composite_modulus,
-            case.method.name()
-        ))?;
-        if let Some((field, damage)) = run::stage_costs(&case, &prepared) {
-            let mib = |b: f64| b / f64::from(1u32 << 20);
-            term::outln(&format!(
-                "field stage: about {:.1} s, {:.0} MiB (rough estimate, within a factor of ~3)",
-                field.seconds,
-                mib(field.bytes)
-            ))?;
-            if let Some(d) = damage {
-                term::outln(&format!(
-                    "damage stage: about {:.1} s, {:.0} MiB (rough estimate)",
-                    d.seconds,
-                    mib(d.bytes)
-                ))?;
-            }
-        }
-        return Ok(EXIT_OK);
-    }
-    let outcome = run::solve(&case, prepared, &mut progress::Bars::new(quiet))?;
-    let summary = output::write_all(out, &case, &outcome)?;
-    print_summary(&summary, &output::human::human(&summary, out), json)
-}
-
-/// Prints the summary: as JSON with `json`, else the human text.
-fn print_summary(summary: &impl serde::Serialize, human: &str, json: bool) -> CliResult<u8> {
-    if json {
-        let text = serde_json::to_string_pretty(summary).map_err(|e| CliError::Output {
-            what: "summary".into(),
-            detail: e.to_string(),
-        })?;
-        term::outln(&text)?;
-    } else {
-        term::out(human)?;
-    }
-    Ok(EXIT_OK)
-}
-
-fn cmd_example(name: Option<&str>) -> CliResult<u8> {
-    match name {
-        None => {
-            let width = examples::EXAMPLES
-                .iter()
-                .map(|e| e.name.len())
-                .max()
-                .unwrap_or(0);
-            let mut text = String::from("Example cases (print one with `tribo example NAME`, run it with `tribo example NAME | tribo run -`):\n");
-            for e in examples::EXAMPLES {
-                text.push_str(&format!("  {:<width$}  {}\n", e.name, e.description));
-            }
-            term::out(&text)?;
-            Ok(EXIT_OK)
-        }
-        Some(n) => {
-            let ex = examples::find(n).ok_or_else(|| CliError::UnknownExample {
-                name: n.into(),
-                known: examples::names(),
-            })?;
-            term::out(ex.text)?;
-            Ok(EXIT_OK)
-        }
-    }
-}
-
-fn cmd_validate(json: bool) -> CliResult<u8> {
-    let rows = validate::run_suite()?;
-    if json {
-        let text = serde_json::to_string_pretty(&rows).map_err(|e| CliError::Output {
-            what: "validation rows".into(),
-            detail: e.to_string(),
-        })?;
-        term::outln(&text)?;
-    } else {
-        term::out(&validate::table(&rows))?;
-    }
-    Ok(if rows.iter().all(|r| r.passed) {
-        EXIT_OK
-    } else {
-        EXIT_VALIDATION_FAILED
-    })
 }

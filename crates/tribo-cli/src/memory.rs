@@ -2,8 +2,9 @@
 //! the refusal (exit 2, nothing written) when the case's estimate
 //! ([`tribo_case::memory`]) would not fit.
 
-use crate::error::{CliError, CliResult};
+use crate::exit::{CliError, CliResult};
 pub use tribo_case::memory::*;
+use tribo_case::CaseError;
 
 /// The memory this process may use, bytes, and where the figure comes from: the smaller of
 /// `/proc/meminfo`'s MemAvailable and the cgroup's limit (`/sys/fs/cgroup/memory.max` less
@@ -78,7 +79,7 @@ pub fn check(estimate: &Estimate, max: Option<u64>) -> CliResult<()> {
     if estimate.bytes <= limit {
         return Ok(());
     }
-    Err(CliError::field(
+    Err(CliError::Case(CaseError::field(
         "memory",
         estimate.describe(),
         format!(
@@ -86,7 +87,7 @@ pub fn check(estimate: &Estimate, max: Option<u64>) -> CliResult<()> {
              or the mesh (or raise --max-memory)",
             human(limit)
         ),
-    ))
+    )))
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@
 //! stderr itself cannot be written, the command exits 1 silently. Notes on stderr are best
 //! effort: a failing stderr never stops a run.
 
-use crate::error::{CliError, CliResult};
+use crate::exit::{CliError, CliResult};
 use std::io::Write;
 
 /// Writes `text` to stdout and flushes it.
@@ -38,12 +38,12 @@ pub fn note(text: &str) {
 pub fn report(error: &CliError) -> u8 {
     if let CliError::Stdout { source } = error {
         if source.kind() == std::io::ErrorKind::BrokenPipe {
-            return crate::error::EXIT_OK;
+            return crate::exit::EXIT_OK;
         }
     }
     let mut e = std::io::stderr().lock();
     match writeln!(e, "error: {error}").and_then(|()| e.flush()) {
         Ok(()) => error.exit_code(),
-        Err(_) => crate::error::EXIT_OTHER,
+        Err(_) => crate::exit::EXIT_OTHER,
     }
 }

@@ -4,6 +4,7 @@
 
 pub mod case;
 pub mod pipeline;
+pub mod summary;
 pub mod template;
 
 /// Whether the case text is a boundary element case (`kind = "bem2d"`); false where the text

@@ -1,11 +1,11 @@
 //! The plots of `tribo fatigue`: the S-N diagram (log-log) and the limiting-state diagram.
 
-use super::{DiagramReport, FitReport};
-use crate::output::canvas::Canvas;
-use crate::output::plot::{register_font, title_size};
+use super::canvas::Canvas;
+use super::style::{register_font, title_size};
 use plotters::prelude::*;
 use std::path::Path;
 use tribo::analysis::woehler::{Life, Load};
+use tribo_case::fatigue::{DiagramReport, FitReport};
 
 const FAMILY: &str = "sans-serif";
 const BLUE: RGBColor = RGBColor(31, 119, 180);

@@ -2,16 +2,23 @@
 //! (Fig. 7a, 8a), interface tractions along x for each step (Fig. 7b), the damage sweep
 //! (Fig. 8b) and the material comparison.
 
-use crate::output::canvas::Canvas;
+use super::canvas::Canvas;
+use crate::atomic::draw_atomic;
+use crate::bem::{file_name, psi_file};
+use crate::error::{IoError, IoResult};
 use plotters::prelude::*;
 use std::path::Path;
+use tribo::solvers::bem2d::contact::{ContactNode, ContactState};
+use tribo_case::bem::case::BemCase;
+use tribo_case::bem::pipeline::{BemOutcome, DamageOutcome, Variant};
+use tribo_case::bem::summary::{stress_intensity, BemSummary, DamageSummary, Dangerous};
 
-use crate::output::plot::{
+use super::style::{
     axis_range, densify, e, legend_avoiding, log_ticks, map_chart, register_font, sig, styled_axes,
     tick, viridis, FAMILY,
 };
 
-pub use crate::output::plot::diverging;
+pub use super::style::diverging;
 
 /// One triangulated region with nodal values.
 pub struct MapPart<'a> {
@@ -316,7 +323,11 @@ pub fn contact_view(lines: &[Line]) -> Option<(f64, f64)> {
 /// ticks from [`log_ticks`] so that a range of less than a decade is labelled too). Constant
 /// data (the shear of a frictionless contact) gets a valid axis ([`axis_range`]); legends go
 /// to the corner with the least data.
-pub fn panels(path: &Path, panels: &[Panel], x_desc: &str, log_y: bool) -> Result<(), String> {
+pub fn panels_plot(path: &Path, panels: &[Panel], x_desc: &str, log_y: bool) -> Result<(), String> {
+    // One function, ~150 lines (moved whole from the command line): plotters' chart type
+    // differs between the linear and the logarithmic y axis, so the two branches draw the
+    // same panel twice over; splitting them apart would pass the shared layout (ranges,
+    // tick labels, legend placement) through a dozen arguments.
     register_font()?;
     let rows = panels.len().max(1);
     let root = Canvas::new(path, (1100, 360 * rows as u32)).into_drawing_area();
@@ -359,10 +370,7 @@ pub fn panels(path: &Path, panels: &[Panel], x_desc: &str, log_y: bool) -> Resul
         };
         let mut builder = ChartBuilder::on(area);
         builder
-            .caption(
-                title,
-                (FAMILY, crate::output::plot::title_size(title, 18.0, 1100)),
-            )
+            .caption(title, (FAMILY, super::style::title_size(title, 18.0, 1100)))
             .margin(12)
             .x_label_area_size(45)
             .y_label_area_size(80);
@@ -423,9 +431,9 @@ pub fn panels(path: &Path, panels: &[Panel], x_desc: &str, log_y: bool) -> Resul
                 .map(|p| (p.0, p.1.ln()))
                 .collect();
             let px = chart.plotting_area().dim_in_pixel();
-            let frac = crate::output::plot::legend_frac(&labels, 14.0, px);
+            let frac = super::style::legend_frac(&labels, 14.0, px);
             let (corner, _) =
-                crate::output::plot::emptiest_corner(&lin, (x0, x1), (y0.ln(), y1.ln()), frac);
+                super::style::emptiest_corner(&lin, (x0, x1), (y0.ln(), y1.ln()), frac);
             chart
                 .configure_series_labels()
                 .position(corner)
@@ -555,6 +563,248 @@ pub fn change_bars(
         .map_err(e)?;
     root.present().map_err(e)?;
     Ok(())
+}
+
+/// Draws every plot of a 2D run into `dir` (the data files and checks are
+/// [`crate::bem::write_bem`]'s).
+pub(crate) fn write_plots(
+    dir: &Path,
+    case: &BemCase,
+    out: &BemOutcome,
+    summary: &BemSummary,
+) -> IoResult<()> {
+    let v = &out.main;
+    if v.steps.iter().any(|s| !s.pairs.is_empty()) {
+        let panels = interface_panels(v);
+        draw_atomic(dir, "interfaces.png", |p| {
+            panels_plot(p, &panels, "x, mm", false)
+        })?;
+    }
+    if !v.fields.is_empty() {
+        for (k, st) in v.steps.iter().enumerate() {
+            field_maps(dir, case, v, k, &st.name)?;
+        }
+    }
+    if let (Some(d), Some(ds)) = (&v.damage, &summary.damage) {
+        damage_plots(dir, v, d, ds)?;
+    }
+    if let Some(c) = &summary.compare {
+        let series: Vec<(String, Vec<f64>)> = c
+            .rows
+            .iter()
+            .skip(1)
+            .map(|r| {
+                (
+                    format!("{} vs {}", r.material, c.rows[0].material),
+                    r.change_percent.clone(),
+                )
+            })
+            .collect();
+        draw_atomic(dir, "compare.png", |p| {
+            change_bars(
+                p,
+                &c.metrics,
+                &series,
+                c.paper_change_percent.as_deref(),
+                &format!(
+                    "{}: {} against {} (step {})",
+                    c.region,
+                    c.rows
+                        .iter()
+                        .skip(1)
+                        .map(|r| r.material.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    c.rows[0].material,
+                    c.step
+                ),
+            )
+        })?;
+    }
+    Ok(())
+}
+
+/// The panels of `interfaces.png`: per pair the contact pressure and the tangential
+/// traction along x, one line per step.
+fn interface_panels(v: &Variant) -> Vec<Panel> {
+    let mut panels = Vec::new();
+    let npairs = v.steps[0].pairs.len();
+    for p in 0..npairs {
+        let pair = &v.steps[0].pairs[p];
+        let mut pl = Vec::new();
+        let mut ql = Vec::new();
+        for (k, st) in v.steps.iter().enumerate() {
+            let nodes = &st.pairs[p].nodes;
+            let pts = |g: &dyn Fn(&ContactNode) -> f64| -> Vec<(f64, f64)> {
+                let mut v: Vec<(f64, f64)> = nodes
+                    .iter()
+                    .filter(|n| n.state != ContactState::Outside)
+                    .map(|n| (1e3 * n.position[0], g(n)))
+                    .collect();
+                v.sort_by(|a, b| a.0.total_cmp(&b.0));
+                v
+            };
+            pl.push(Line {
+                label: st.name.clone(),
+                points: pts(&|n| n.pressure / 1e6),
+                colour: palette(k),
+                dashed: false,
+            });
+            ql.push(Line {
+                label: st.name.clone(),
+                points: pts(&|n| n.shear / 1e6),
+                colour: palette(k),
+                dashed: false,
+            });
+        }
+        // Both panels of a pair show its contact zone (with context) where that is a
+        // small part of the interface (the gmsh Hertz example: 0.2 mm of 20 mm).
+        let view = contact_view(&pl);
+        panels.push((
+            format!("contact pressure, {} on {}", pair.slave, pair.master),
+            "p, MPa".to_string(),
+            pl,
+            view,
+        ));
+        panels.push((
+            format!("tangential traction, {} on {}", pair.slave, pair.master),
+            "q, MPa".to_string(),
+            ql,
+            view,
+        ));
+    }
+    panels
+}
+
+/// The maps of sigma_xx and sigma_int over every sampled region in step `k`.
+fn field_maps(dir: &Path, case: &BemCase, v: &Variant, k: usize, step: &str) -> IoResult<()> {
+    let name = file_name(step);
+    let sxx: Vec<Vec<f64>> = v
+        .fields
+        .iter()
+        .map(|f| f.samples[k].iter().map(|x| x.stress.xx / 1e6).collect())
+        .collect();
+    let sint: Vec<Vec<f64>> = v
+        .fields
+        .iter()
+        .map(|f| {
+            f.samples[k]
+                .iter()
+                .map(|x| stress_intensity(f, x) / 1e6)
+                .collect()
+        })
+        .collect();
+    for (values, key, title, scale) in [
+        (&sxx, "sigma_xx", "sigma_xx", Scale::Diverging),
+        (
+            &sint,
+            "sigma_int",
+            "stress intensity sigma_int",
+            Scale::Sequential,
+        ),
+    ] {
+        let parts: Vec<MapPart> = v
+            .fields
+            .iter()
+            .zip(values)
+            .map(|(f, vals)| MapPart {
+                nodes: &f.nodes,
+                triangles: &f.triangles,
+                values: vals,
+            })
+            .collect();
+        draw_atomic(dir, &format!("{key}_{name}.png"), |p| {
+            field_map(
+                p,
+                &parts,
+                scale,
+                &format!("{title}, step {step}: {}", case.title),
+                "MPa",
+            )
+        })?;
+    }
+    Ok(())
+}
+
+/// The psi map of the damaged region and the sweep's three panels.
+fn damage_plots(dir: &Path, v: &Variant, d: &DamageOutcome, ds: &DamageSummary) -> IoResult<()> {
+    let f = v
+        .fields
+        .iter()
+        .find(|f| f.region == d.region)
+        .ok_or_else(|| IoError::Shape {
+            what: "damage".into(),
+            detail: "no field of the region".into(),
+        })?;
+    let parts = [MapPart {
+        nodes: &f.nodes,
+        triangles: &f.triangles,
+        values: &d.psi,
+    }];
+    let limit_text = if d.unit == "Pa" {
+        format!("{:.4} MPa", d.limit / 1e6)
+    } else {
+        format!("{:.4e} {}", d.limit, d.unit)
+    };
+    draw_atomic(dir, &psi_file(&d.quantity), |p| {
+        field_map(
+            p,
+            &parts,
+            Scale::Damage,
+            &format!(
+                "psi = {} / {limit_text} over {} (grey: psi < 1), step {}",
+                d.quantity, d.region, d.step
+            ),
+            "psi",
+        )
+    })?;
+    let sweep = &ds.sweep;
+    if sweep.is_empty() {
+        return Ok(());
+    }
+    let scale = if d.unit == "Pa" { 1e-6 } else { 1.0 };
+    let unit = if d.unit == "Pa" { "MPa" } else { d.unit };
+    let series = |g: &dyn Fn(&Dangerous) -> f64| -> Vec<(f64, f64)> {
+        sweep.iter().map(|s| (s.limit * scale, g(s))).collect()
+    };
+    let panels = vec![
+        (
+            format!("dangerous area V ({}), {}", d.quantity, d.region),
+            "V, mm^2".to_string(),
+            vec![Line {
+                label: "V".into(),
+                points: series(&|s| s.dangerous_area_m2 * 1e6),
+                colour: palette(0),
+                dashed: false,
+            }],
+            None,
+        ),
+        (
+            format!("damageability Psi ({}), {}", d.quantity, d.region),
+            "Psi, mm^2".to_string(),
+            vec![Line {
+                label: "Psi".into(),
+                points: series(&|s| s.damageability_m2 * 1e6),
+                colour: palette(1),
+                dashed: false,
+            }],
+            None,
+        ),
+        (
+            "largest damage psi_max".to_string(),
+            "psi_max".to_string(),
+            vec![Line {
+                label: "psi_max".into(),
+                points: series(&|s| s.psi_max),
+                colour: palette(2),
+                dashed: false,
+            }],
+            None,
+        ),
+    ];
+    draw_atomic(dir, "damage_sweep.png", |p| {
+        panels_plot(p, &panels, &format!("limit, {unit}"), true)
+    })
 }
 
 #[cfg(test)]

@@ -19,7 +19,7 @@ use std::sync::OnceLock;
 /// The shipped font, parsed once.
 fn font() -> Option<&'static FontRef<'static>> {
     static FONT: OnceLock<Option<FontRef<'static>>> = OnceLock::new();
-    FONT.get_or_init(|| FontRef::try_from_slice(super::plot::FONT_BYTES).ok())
+    FONT.get_or_init(|| FontRef::try_from_slice(super::style::FONT_BYTES).ok())
         .as_ref()
 }
 
@@ -285,7 +285,7 @@ mod tests {
     /// 14 px to 10 px.
     #[test]
     fn clamping_is_drawn_with_the_fonts_spacing() {
-        crate::output::plot::register_font().unwrap();
+        super::super::style::register_font().unwrap();
         let text = "clamping";
         let size = 100.0;
         let cols = ink_columns(|buf, dim| {
@@ -293,7 +293,7 @@ mod tests {
             root.draw(&Text::new(
                 text,
                 (20, 20),
-                (crate::output::plot::FAMILY, size)
+                (super::super::style::FAMILY, size)
                     .into_font()
                     .color(&BLACK),
             ))
@@ -338,10 +338,10 @@ mod tests {
     /// so.
     #[test]
     fn plotters_own_text_drops_the_left_bearings() {
-        crate::output::plot::register_font().unwrap();
+        super::super::style::register_font().unwrap();
         let gap = |canvas: bool| {
             let cols = ink_columns(|buf, dim| {
-                let style = (crate::output::plot::FAMILY, 100.0)
+                let style = (super::super::style::FAMILY, 100.0)
                     .into_font()
                     .color(&BLACK);
                 if canvas {
@@ -369,12 +369,12 @@ mod tests {
     /// end to the start of the line.
     #[test]
     fn rotated_text_stays_inside_its_box() {
-        crate::output::plot::register_font().unwrap();
+        super::super::style::register_font().unwrap();
         let (w, h) = (200u32, 600u32);
         let mut buf = vec![255u8; (w * h * 3) as usize];
         {
             let root = Canvas::with_buffer(&mut buf, (w, h)).into_drawing_area();
-            let style = (crate::output::plot::FAMILY, 30)
+            let style = (super::super::style::FAMILY, 30)
                 .into_font()
                 .transform(FontTransform::Rotate270)
                 .color(&BLACK);

@@ -1,9 +1,10 @@
 //! The command line's errors and their exit codes: the case's own errors
-//! ([`tribo_case::CaseError`]) and those of the front end (writing, stdout, names).
+//! ([`tribo_case::CaseError`]), the writers' ([`tribo_io::IoError`]) and those of the front
+//! end (stdout, names).
 
-use std::path::PathBuf;
 use thiserror::Error;
 use tribo_case::CaseError;
+use tribo_io::IoError;
 
 /// Exit code: success.
 pub const EXIT_OK: u8 = 0;
@@ -22,22 +23,17 @@ pub const EXIT_VALIDATION_FAILED: u8 = 1;
 pub enum CliError {
     /// An error of the case: bad input, or the library failing while running it.
     #[error(transparent)]
-    HalfSpaceCase(#[from] CaseError),
-    /// Writing an output failed.
-    #[error("cannot write {}: {source}", path.display())]
-    Write {
-        /// The file or directory.
-        path: PathBuf,
-        /// Why.
-        source: std::io::Error,
-    },
+    Case(#[from] CaseError),
+    /// Writing the outputs failed.
+    #[error(transparent)]
+    Io(#[from] IoError),
     /// Writing to standard output failed (a closed pipe ends quietly, see `term`).
     #[error("cannot write to standard output: {source}")]
     Stdout {
         /// Why.
         source: std::io::Error,
     },
-    /// An output would contain a non-finite number, or a plot failed.
+    /// Printing an output failed (its JSON could not be made).
     #[error("output {what}: {detail}")]
     Output {
         /// Which output.
@@ -57,30 +53,22 @@ pub enum CliError {
 
 impl From<tribo::Error> for CliError {
     fn from(e: tribo::Error) -> Self {
-        CliError::HalfSpaceCase(CaseError::Library(e))
+        CliError::Case(CaseError::Library(e))
     }
 }
 
 impl CliError {
-    /// A field error of the case.
-    pub fn field(
-        field: impl Into<String>,
-        value: impl std::fmt::Display,
-        rule: impl Into<String>,
-    ) -> Self {
-        CliError::HalfSpaceCase(CaseError::field(field, value, rule))
-    }
-
     /// The process exit code for this error (see docs/user/cli.md, "Exit codes").
     pub fn exit_code(&self) -> u8 {
-        match self {
-            CliError::HalfSpaceCase(e) if e.is_bad_input() => EXIT_BAD_INPUT,
-            CliError::HalfSpaceCase(e) if e.is_not_converged() => EXIT_NOT_CONVERGED,
-            CliError::UnknownExample { .. } => EXIT_BAD_INPUT,
-            CliError::HalfSpaceCase(_)
-            | CliError::Write { .. }
-            | CliError::Stdout { .. }
-            | CliError::Output { .. } => EXIT_OTHER,
+        let case = match self {
+            CliError::Case(e) | CliError::Io(IoError::Case(e)) => Some(e),
+            _ => None,
+        };
+        match (self, case) {
+            (_, Some(e)) if e.is_bad_input() => EXIT_BAD_INPUT,
+            (_, Some(e)) if e.is_not_converged() => EXIT_NOT_CONVERGED,
+            (CliError::UnknownExample { .. }, _) => EXIT_BAD_INPUT,
+            _ => EXIT_OTHER,
         }
     }
 }
@@ -94,7 +82,10 @@ mod tests {
 
     #[test]
     fn exit_codes() {
-        assert_eq!(CliError::field("a", 1, "r").exit_code(), EXIT_BAD_INPUT);
+        assert_eq!(
+            CliError::from(CaseError::field("a", 1, "r")).exit_code(),
+            EXIT_BAD_INPUT
+        );
         let nc = tribo::Error::NotConverged {
             solver: "cg",
             iterations: 3,
@@ -116,5 +107,21 @@ mod tests {
             known: "y".into(),
         };
         assert_eq!(unknown.exit_code(), EXIT_BAD_INPUT);
+        // A library error while deriving the outputs keeps its code.
+        let nc = tribo::Error::NotConverged {
+            solver: "cg",
+            iterations: 3,
+            residual: 1e-3,
+            tolerance: 1e-10,
+        };
+        assert_eq!(
+            CliError::from(IoError::from(nc)).exit_code(),
+            EXIT_NOT_CONVERGED
+        );
+        let write = IoError::Write {
+            path: "x".into(),
+            source: std::io::Error::other("full"),
+        };
+        assert_eq!(CliError::from(write).exit_code(), EXIT_OTHER);
     }
 }

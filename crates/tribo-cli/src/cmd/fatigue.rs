@@ -1,18 +1,14 @@
 //! `tribo fatigue fit` and `tribo fatigue diagram`: Woehler curves from test data (the paper's
 //! Fig. 3) and the multicriterial limiting-state diagram (Fig. 4). See docs/user/fatigue.md.
+//! The fit and the diagram are [`tribo_case::fatigue`]'s, the files [`tribo_io::fatigue`]'s.
 
-pub mod plot;
-
-use crate::error::{CliError, CliResult, EXIT_OK};
-use crate::output::{plot_atomic, prepare_dir, write_atomic};
+use crate::exit::{CliError, CliResult, EXIT_OK};
 use clap::{Subcommand, ValueEnum};
 use serde::Serialize;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use tribo::analysis::woehler::{LoadMeasure, TestKind};
-use tribo_case::fatigue::{
-    diagram, fit, parse_csv, parse_limits, DiagramReport, FitReport, DIAGRAM_FILES, FIT_FILES,
-};
+use tribo_case::fatigue::{diagram, fit, parse_csv, parse_limits};
 
 /// The test kind on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -153,8 +149,8 @@ pub fn run(cmd: FatigueCommand) -> CliResult<u8> {
                 confidence,
                 &data.display().to_string(),
             )?;
-            write_fit(&out, &report)?;
-            emit(json, &report, || fit_human(&report, &out))
+            tribo_io::write_fit(&out, &report, &crate::write_options())?;
+            emit(json, &report, || crate::human::fit(&report, &out))
         }
         FatigueCommand::Diagram { limits, out, json } => {
             let (text, base) = read_input(&limits, "limits")?;
@@ -165,8 +161,8 @@ pub fn run(cmd: FatigueCommand) -> CliResult<u8> {
             };
             let input = parse_limits(&text, &name, &base)?;
             let report = diagram(input)?;
-            write_diagram(&out, &report)?;
-            emit(json, &report, || diagram_human(&report, &out))
+            tribo_io::write_diagram(&out, &report, &crate::write_options())?;
+            emit(json, &report, || crate::human::diagram(&report, &out))
         }
     }
 }
@@ -209,132 +205,4 @@ fn read_input(path: &Path, field: &str) -> CliResult<(String, PathBuf)> {
             .unwrap_or_else(|| PathBuf::from("."));
         Ok((text, base))
     }
-}
-
-fn mpa(v: f64) -> String {
-    format!("{:.1} MPa", v / 1e6)
-}
-
-/// The human summary of a fit.
-fn fit_human(report: &FitReport, out: &Path) -> String {
-    let mut s = format!(
-        "Woehler fit, {} curve ({}), loads as {}: {} tests, {} fractures, {} run-outs\n",
-        report.kind.symbol(),
-        report.limit_symbol,
-        report.measure.name(),
-        report.tests,
-        report.fractures,
-        report.runouts
-    );
-    if let Some(r) = &report.regression {
-        let g = &r.regression;
-        s += &format!(
-            "  E739 regression ({} fractures): m = {:.3} +- {:.3}, s(log10 N) = {:.4}, R^2 = {:.4}\n",
-            g.n,
-            g.slope(),
-            g.std_error_slope,
-            g.std_error,
-            g.r_squared
-        );
-        if let Some(c) = &r.curve {
-            s += &format!(
-                "    limit at the transition {} = {}, N_G = {:.4e}\n",
-                report.limit_symbol,
-                mpa(c.fatigue_limit()),
-                c.knee_cycles()
-            );
-        }
-    }
-    if let Some(m) = &report.max_likelihood {
-        let c = &m.curve;
-        s += &format!(
-            "  maximum likelihood: {} = {}, m = {:.3}, N_G = {:.4e}, T_N = {:.3}, T_S = {:.3} ({} iterations)\n",
-            report.limit_symbol,
-            mpa(c.fatigue_limit()),
-            c.slope(),
-            c.knee_cycles(),
-            m.scatter_cycles,
-            m.scatter_load,
-            m.iterations
-        );
-    }
-    for n in &report.notes {
-        s += &format!("  note: {n}\n");
-    }
-    s += &format!(
-        "wrote {}, {} in {}\n",
-        FIT_FILES[0],
-        FIT_FILES[1],
-        out.display()
-    );
-    s
-}
-
-fn check_finite(what: &str, values: &[f64]) -> CliResult<()> {
-    match values.iter().find(|v| !v.is_finite()) {
-        None => Ok(()),
-        Some(v) => Err(CliError::Output {
-            what: what.into(),
-            detail: format!("a result is {v} (refusing to write a non-finite number)"),
-        }),
-    }
-}
-
-fn write_fit(dir: &Path, report: &FitReport) -> CliResult<()> {
-    check_finite(FIT_FILES[0], &report.scalars())?;
-    let json = to_json(report, FIT_FILES[0])?;
-    prepare_dir(dir, FIT_FILES[0])?;
-    plot_atomic(dir, FIT_FILES[1], |p| plot::woehler(p, report))?;
-    write_atomic(dir, FIT_FILES[0], json.as_bytes())
-}
-
-/// The human summary of a diagram.
-fn diagram_human(report: &DiagramReport, out: &Path) -> String {
-    let d = &report.diagram;
-    let mut s = format!("{}\n", report.title);
-    for p in &d.points {
-        s += &format!(
-            "  {}: p0/p_f = {:.4}, sigma_a/sigma_-1 = {:.4}\n",
-            p.name, p.pressure_ratio, p.stress_ratio
-        );
-    }
-    s += &format!(
-        "  direct effect sigma_-1p/sigma_-1 = {:.3} (paper: up to 1.5-1.6), back effect p_f_sigma/p_f = {:.3} (paper: up to 1.20-1.25)\n",
-        d.direct_effect, d.back_effect
-    );
-    if let Some(c) = &report.state {
-        s += &format!(
-            "  state sigma_a = {}, p0 = {}: {} (load factor {:.3}, margin {:+.1} %, boundary on {})\n",
-            mpa(c.stress_amplitude),
-            mpa(c.contact_pressure),
-            if c.inside { "inside the safe region" } else { "OUTSIDE the safe region" },
-            c.load_factor,
-            100.0 * c.margin,
-            c.segment
-        );
-    }
-    s += &format!(
-        "wrote {}, {} in {}\n",
-        DIAGRAM_FILES[0],
-        DIAGRAM_FILES[1],
-        out.display()
-    );
-    s
-}
-
-fn write_diagram(dir: &Path, report: &DiagramReport) -> CliResult<()> {
-    let mut v: Vec<f64> = report
-        .diagram
-        .points
-        .iter()
-        .flat_map(|p| [p.pressure_ratio, p.stress_ratio])
-        .collect();
-    if let Some(c) = &report.state {
-        v.extend([c.load_factor, c.margin]);
-    }
-    check_finite(DIAGRAM_FILES[0], &v)?;
-    let json = to_json(report, DIAGRAM_FILES[0])?;
-    prepare_dir(dir, DIAGRAM_FILES[0])?;
-    plot_atomic(dir, DIAGRAM_FILES[1], |p| plot::limit_diagram(p, report))?;
-    write_atomic(dir, DIAGRAM_FILES[0], json.as_bytes())
 }

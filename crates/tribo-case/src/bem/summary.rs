@@ -1,0 +1,793 @@
+//! The summary of a 2D boundary element run (`summary.json`): a pure function of the case,
+//! its results and the names of the files written ([`BemSummary::new`]); the derived
+//! quantities it holds (contact lengths and node counts per pair, field extremes, segment
+//! resultants, the damage sweep's factors, the material comparison) and the point values the
+//! field outputs show ([`point_scalars`], [`arc_lengths`]).
+
+use serde::Serialize;
+use tribo::analysis::bem_field::FieldSample;
+use tribo::analysis::damage::{DamageQuantity, DangerousRegion, TensorKind};
+use tribo::solvers::bem2d::contact::{ContactState, PairResult};
+
+use super::case::{BcKind, BemCase, ComponentSpec};
+use super::pipeline::{extremes, plane_name, tensor, BemOutcome, RegionField, Variant};
+use crate::error::CaseResult;
+
+/// The paper's Sec. 7 statements, for the clamp-knife-base template.
+pub mod paper {
+    /// Fig. 8b: factors by which V_int, Psi_int and psi_max fall as tau_W^lim goes from 2.9
+    /// to 8.7 MPa.
+    pub const SWEEP_FACTORS: [(&str, f64); 3] =
+        [("V_int", 27.0), ("Psi_int", 36.0), ("psi_max", 2.5)];
+    /// Cast iron against steel, % change: sigma_xx max, sigma_int max, V_int, Psi_int,
+    /// psi_max (Sec. 7 text: "by approx. 10% and 20% smaller", "by approx. 33% less",
+    /// "approx. 6% less").
+    pub const CAST_IRON_CHANGES: [(&str, f64); 5] = [
+        ("sigma_xx_max", -10.0),
+        ("sigma_int_max", -20.0),
+        ("V_int", -33.0),
+        ("Psi_int", -33.0),
+        ("psi_max", -6.0),
+    ];
+}
+
+/// A value at a point.
+#[derive(Debug, Clone, Serialize)]
+pub struct At {
+    /// Value.
+    pub value: f64,
+    /// Where (x, y), m.
+    pub at_m: [f64; 2],
+}
+
+/// One region of the model.
+#[derive(Debug, Clone, Serialize)]
+pub struct RegionInfo {
+    /// Name.
+    pub name: String,
+    /// Young's modulus, Pa.
+    pub young_modulus_pa: f64,
+    /// Poisson's ratio.
+    pub poisson_ratio: f64,
+    /// Boundary elements.
+    pub elements: usize,
+    /// Boundary nodes.
+    pub nodes: usize,
+}
+
+/// A pair in one step.
+#[derive(Debug, Clone, Serialize)]
+pub struct PairSummary {
+    /// Slave segment.
+    pub slave: String,
+    /// Master segment.
+    pub master: String,
+    /// Coulomb friction coefficient of the pair (0: frictionless).
+    pub friction: f64,
+    /// Slave nodes in contact (stick + slip).
+    pub nodes_in_contact: usize,
+    /// Slave nodes sticking (none on a frictionless pair).
+    pub stick_nodes: usize,
+    /// Slave nodes slipping (every node in contact on a frictionless pair: nothing holds it
+    /// tangentially).
+    pub slip_nodes: usize,
+    /// Length in contact (tributary lengths of the nodes in contact), m.
+    pub contact_length_m: f64,
+    /// The first and last contact node's x, m.
+    pub contact_x_range_m: Option<[f64; 2]>,
+    /// Resultant of the contact traction on the slave, N/m.
+    pub slave_force_n_per_m: [f64; 2],
+    /// Largest pressure, Pa.
+    pub max_pressure: At,
+    /// Largest |shear traction|, Pa.
+    pub max_abs_shear: At,
+}
+
+/// The extremes of a region in one step.
+#[derive(Debug, Clone, Serialize)]
+pub struct RegionExtremes {
+    /// Region.
+    pub region: String,
+    /// max |sigma_xx|, Pa.
+    pub sigma_xx_max_abs: At,
+    /// max sigma_int (von Mises), Pa.
+    pub sigma_int_max: At,
+    /// max |eps_xx|.
+    pub eps_xx_max_abs: At,
+    /// max strain intensity.
+    pub eps_int_max: At,
+}
+
+/// A free body's motion.
+#[derive(Debug, Clone, Serialize)]
+pub struct FreeBody {
+    /// Body (its first region).
+    pub body: String,
+    /// Rigid translation, m.
+    pub translation_m: [f64; 2],
+    /// Rigid rotation, rad (counter-clockwise), about `reference_point_m`.
+    pub rotation_rad: f64,
+    /// Reference point, m.
+    pub reference_point_m: [f64; 2],
+}
+
+/// A rigid (guided) segment in one step.
+#[derive(Debug, Clone, Serialize)]
+pub struct RigidSummary {
+    /// Segment.
+    pub segment: String,
+    /// Translation, m.
+    pub translation_m: [f64; 2],
+    /// Resultant force, N/m.
+    pub force_n_per_m: [f64; 2],
+}
+
+/// A material of the case.
+#[derive(Debug, Clone, Serialize)]
+pub struct MaterialSummary {
+    /// Name.
+    pub name: String,
+    /// Young's modulus, Pa.
+    pub young_modulus_pa: f64,
+    /// Poisson's ratio.
+    pub poisson_ratio: f64,
+    /// Where the values come from (as given in the case).
+    pub source: Option<String>,
+}
+
+/// One step.
+#[derive(Debug, Clone, Serialize)]
+pub struct StepSummary {
+    /// Name.
+    pub name: String,
+    /// Active-set iterations.
+    pub iterations: usize,
+    /// Complementarity residual.
+    pub residual: f64,
+    /// Pairs.
+    pub pairs: Vec<PairSummary>,
+    /// Free bodies.
+    pub free_bodies: Vec<FreeBody>,
+    /// Rigid segments.
+    pub rigid: Vec<RigidSummary>,
+    /// Field extremes per sampled region.
+    pub regions: Vec<RegionExtremes>,
+    /// Resultant of the traction on every segment but the bonded interfaces (on a
+    /// displacement-held segment: the support's reaction on the body).
+    pub segment_forces: Vec<SegmentForce>,
+}
+
+/// The resultant of the traction on one segment in one step.
+#[derive(Debug, Clone, Serialize)]
+pub struct SegmentForce {
+    /// Segment.
+    pub segment: String,
+    /// Region it bounds.
+    pub region: String,
+    /// Force on the region, N per m of thickness.
+    pub force_n_per_m: [f64; 2],
+    /// Its moment about the origin, N m per m (counter-clockwise positive).
+    pub moment_about_origin_n: f64,
+    /// Whether a displacement is prescribed on it (then the force is the support's
+    /// reaction).
+    pub support: bool,
+}
+
+/// A dangerous region.
+#[derive(Debug, Clone, Serialize)]
+pub struct Dangerous {
+    /// The limit, in the quantity's unit.
+    pub limit: f64,
+    /// Dangerous area V (22), m^2 per unit thickness.
+    pub dangerous_area_m2: f64,
+    /// Damageability Psi (24), m^2.
+    pub damageability_m2: f64,
+    /// Psi / V.
+    pub average: Option<f64>,
+    /// psi_max.
+    pub psi_max: f64,
+    /// Where psi is largest, m.
+    pub psi_max_at_m: [f64; 2],
+}
+
+impl Dangerous {
+    /// The summary of one dangerous region at `limit`.
+    pub fn new(limit: f64, r: &DangerousRegion) -> Self {
+        Self {
+            limit,
+            dangerous_area_m2: r.volume,
+            damageability_m2: r.damageability,
+            average: r.average,
+            psi_max: r.psi_max,
+            psi_max_at_m: [r.psi_max_at[0], r.psi_max_at[1]],
+        }
+    }
+}
+
+/// Damage summary.
+#[derive(Debug, Clone, Serialize)]
+pub struct DamageSummary {
+    /// Region.
+    pub region: String,
+    /// Step.
+    pub step: String,
+    /// Quantity.
+    pub quantity: String,
+    /// Unit of the limits.
+    pub unit: String,
+    /// At the case's limit.
+    pub at_limit: Dangerous,
+    /// The sweep.
+    pub sweep: Vec<Dangerous>,
+    /// First / last of the sweep: V, Psi, psi_max (None where the last is zero).
+    pub sweep_factors: Option<[Option<f64>; 3]>,
+    /// The paper's factors (clamp-knife-base only): V_int 27, Psi_int 36, psi_max 2.5.
+    pub paper_sweep_factors: Option<[f64; 3]>,
+}
+
+/// One material of the comparison.
+#[derive(Debug, Clone, Serialize)]
+pub struct CompareRow {
+    /// Material name.
+    pub material: String,
+    /// Young's modulus, Pa.
+    pub young_modulus_pa: f64,
+    /// Poisson's ratio.
+    pub poisson_ratio: f64,
+    /// Metric values: sigma_xx_max (Pa), sigma_int_max (Pa), eps_xx_max, eps_int_max,
+    /// V_int (m^2), Psi_int (m^2), psi_max (the last three with a damage section).
+    pub values: Vec<f64>,
+    /// Change against the first material, %.
+    pub change_percent: Vec<f64>,
+}
+
+/// The comparison.
+#[derive(Debug, Clone, Serialize)]
+pub struct CompareSummary {
+    /// Region compared.
+    pub region: String,
+    /// Step compared.
+    pub step: String,
+    /// Metric names.
+    pub metrics: Vec<String>,
+    /// One row per material.
+    pub rows: Vec<CompareRow>,
+    /// The paper's changes, cast iron against steel (clamp-knife-base only), %, per metric.
+    pub paper_change_percent: Option<Vec<Option<f64>>>,
+}
+
+/// Timings, s.
+#[derive(Debug, Clone, Serialize)]
+pub struct TimingSummary {
+    /// Meshing, assembly, factorization, condensation.
+    pub setup_s: f64,
+    /// Load steps.
+    pub steps_s: f64,
+    /// Field triangulation and sampling.
+    pub fields_s: f64,
+    /// Damage.
+    pub damage_s: f64,
+    /// Comparison runs (all).
+    pub compare_s: f64,
+}
+
+/// summary.json.
+#[derive(Debug, Clone, Serialize)]
+pub struct BemSummary {
+    /// Always "bem2d".
+    pub kind: &'static str,
+    /// tribo's version.
+    pub version: &'static str,
+    /// Title.
+    pub title: String,
+    /// Source.
+    pub source: String,
+    /// "strain" or "stress".
+    pub plane: &'static str,
+    /// Materials.
+    pub materials: Vec<MaterialSummary>,
+    /// Regions.
+    pub regions: Vec<RegionInfo>,
+    /// The gmsh files read (empty for outline models).
+    pub meshes: Vec<super::pipeline::MeshImportInfo>,
+    /// Boundary unknowns.
+    pub dof: usize,
+    /// Condensed contact unknowns.
+    pub contact_unknowns: usize,
+    /// Steps.
+    pub steps: Vec<StepSummary>,
+    /// Damage.
+    pub damage: Option<DamageSummary>,
+    /// Comparison.
+    pub compare: Option<CompareSummary>,
+    /// Timings.
+    pub timings: TimingSummary,
+    /// Files written.
+    pub outputs: Vec<String>,
+    /// The case as written.
+    pub case: serde_json::Value,
+    /// The unit of every number above, by its dotted key path (`[]` for array elements);
+    /// "1" for counts and dimensionless ratios. Keys ending in a unit (`_m`, `_pa`,
+    /// `_n_per_m`, `_rad`, `_s`) say it in their name too.
+    pub units: std::collections::BTreeMap<&'static str, &'static str>,
+}
+
+/// Units of the 2D summary's numbers, by key path (per unit thickness: forces N/m, areas
+/// m^2 of the section).
+pub const UNITS: &[(&str, &str)] = &[
+    ("materials[].young_modulus_pa", "Pa"),
+    ("materials[].poisson_ratio", "1"),
+    ("regions[].young_modulus_pa", "Pa"),
+    ("regions[].poisson_ratio", "1"),
+    ("regions[].elements", "1"),
+    ("regions[].nodes", "1"),
+    ("dof", "1"),
+    ("contact_unknowns", "1"),
+    ("steps[].iterations", "1"),
+    ("steps[].residual", "1"),
+    ("steps[].pairs[].friction", "1"),
+    ("steps[].pairs[].nodes_in_contact", "1"),
+    ("steps[].pairs[].stick_nodes", "1"),
+    ("steps[].pairs[].slip_nodes", "1"),
+    ("steps[].pairs[].contact_length_m", "m"),
+    ("steps[].pairs[].contact_x_range_m[]", "m"),
+    ("steps[].pairs[].max_pressure.value", "Pa"),
+    ("steps[].pairs[].max_abs_shear.value", "Pa"),
+    ("steps[].pairs[].*.at_m[]", "m"),
+    ("steps[].pairs[].slave_force_n_per_m[]", "N/m"),
+    ("steps[].regions[].sigma_xx_max_abs.value", "Pa"),
+    ("steps[].regions[].sigma_int_max.value", "Pa"),
+    ("steps[].regions[].eps_xx_max_abs.value", "1"),
+    ("steps[].regions[].eps_int_max.value", "1"),
+    ("steps[].regions[].*.at_m[]", "m"),
+    ("steps[].segment_forces[].force_n_per_m[]", "N/m"),
+    ("steps[].segment_forces[].moment_about_origin_n", "N m/m"),
+    ("steps[].free_bodies[].reference_point_m[]", "m"),
+    ("steps[].free_bodies[].translation_m[]", "m"),
+    ("steps[].free_bodies[].rotation_rad", "rad"),
+    ("damage.*.limit", "Pa"),
+    ("damage.*.psi_max", "1"),
+    ("damage.*.psi_max_at_m[]", "m"),
+    ("damage.*.dangerous_area_m2", "m^2"),
+    ("damage.*.damageability_m2", "m^2"),
+    ("damage.*.average", "1"),
+    ("damage.sweep_factors[]", "1"),
+    ("damage.paper_sweep_factors[]", "1"),
+    ("compare.rows[].young_modulus_pa", "Pa"),
+    ("compare.rows[].poisson_ratio", "1"),
+    (
+        "compare.rows[].values[]",
+        "compare.metrics (sigma: Pa, eps: 1, V_int, Psi_int: m^2, psi: 1)",
+    ),
+    ("compare.rows[].change_percent[]", "%"),
+    ("compare.paper_change_percent[]", "%"),
+    ("timings.*", "s"),
+];
+
+fn at(v: (f64, [f64; 2])) -> At {
+    At {
+        value: v.0,
+        at_m: v.1,
+    }
+}
+
+fn in_contact(s: ContactState) -> bool {
+    matches!(
+        s,
+        ContactState::Stick | ContactState::SlipPositive | ContactState::SlipNegative
+    )
+}
+
+/// Tributary lengths of the slave nodes (half the distance to each neighbour).
+fn tributary(pair: &PairResult) -> Vec<f64> {
+    let n = pair.nodes.len();
+    let d = |a: usize, b: usize| {
+        let (p, q) = (pair.nodes[a].position, pair.nodes[b].position);
+        (p[0] - q[0]).hypot(p[1] - q[1])
+    };
+    (0..n)
+        .map(|i| {
+            let left = if i > 0 { 0.5 * d(i - 1, i) } else { 0.0 };
+            let right = if i + 1 < n { 0.5 * d(i, i + 1) } else { 0.0 };
+            left + right
+        })
+        .collect()
+}
+
+fn pair_summary(pair: &PairResult, friction: f64) -> PairSummary {
+    let trib = tributary(pair);
+    let mut s = PairSummary {
+        slave: pair.slave.clone(),
+        master: pair.master.clone(),
+        friction,
+        nodes_in_contact: 0,
+        stick_nodes: 0,
+        slip_nodes: 0,
+        contact_length_m: 0.0,
+        contact_x_range_m: None,
+        slave_force_n_per_m: pair.slave_force,
+        max_pressure: At {
+            value: 0.0,
+            at_m: [0.0; 2],
+        },
+        max_abs_shear: At {
+            value: 0.0,
+            at_m: [0.0; 2],
+        },
+    };
+    for (n, l) in pair.nodes.iter().zip(&trib) {
+        if in_contact(n.state) {
+            s.nodes_in_contact += 1;
+            s.contact_length_m += l;
+            let x = n.position[0];
+            s.contact_x_range_m = Some(match s.contact_x_range_m {
+                None => [x, x],
+                Some([a, b]) => [a.min(x), b.max(x)],
+            });
+            // The library labels contact on a frictionless pair `Stick` (its tangential
+            // traction is fixed at zero); nothing sticks there.
+            if n.state == ContactState::Stick && friction > 0.0 {
+                s.stick_nodes += 1;
+            } else {
+                s.slip_nodes += 1;
+            }
+        }
+        if n.pressure > s.max_pressure.value {
+            s.max_pressure = At {
+                value: n.pressure,
+                at_m: n.position,
+            };
+        }
+        if n.shear.abs() > s.max_abs_shear.value {
+            s.max_abs_shear = At {
+                value: n.shear.abs(),
+                at_m: n.position,
+            };
+        }
+    }
+    s
+}
+
+fn region_extremes(f: &RegionField, step: usize) -> RegionExtremes {
+    let e = extremes(f, step);
+    RegionExtremes {
+        region: f.region.clone(),
+        sigma_xx_max_abs: at(e.sigma_xx),
+        sigma_int_max: at(e.sigma_int),
+        eps_xx_max_abs: at(e.eps_xx),
+        eps_int_max: at(e.eps_int),
+    }
+}
+
+/// [`SegmentForce`] of every segment that is not a bonded interface.
+fn segment_forces(
+    sol: &tribo::solvers::bem2d::BemSolution,
+    supports: &std::collections::BTreeSet<String>,
+) -> CaseResult<Vec<SegmentForce>> {
+    let mesh = sol.mesh();
+    let mut out = Vec::new();
+    for seg in mesh.segments.iter().filter(|s| s.partner.is_none()) {
+        let (force, moment) = sol.segment_resultant(&seg.name, [0.0, 0.0])?;
+        out.push(SegmentForce {
+            segment: seg.name.clone(),
+            region: mesh.regions[seg.owner].name.clone(),
+            force_n_per_m: force,
+            moment_about_origin_n: moment,
+            support: supports.contains(&seg.name),
+        });
+    }
+    Ok(out)
+}
+
+/// The material comparison of a case with `[compare]` (None without one, or where a run
+/// lacks the compared region or its damage).
+pub fn compare_summary(case: &BemCase, out: &BemOutcome) -> Option<CompareSummary> {
+    let c = case.compare.as_ref()?;
+    let step = case
+        .damage
+        .as_ref()
+        .map_or(out.main.steps.len() - 1, |d| d.step);
+    let mut metrics: Vec<String> = ["sigma_xx_max", "sigma_int_max", "eps_xx_max", "eps_int_max"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    let with_damage = case.damage.as_ref().is_some_and(|d| d.region == c.region);
+    if with_damage {
+        metrics.extend(
+            ["V_int", "Psi_int", "psi_max"]
+                .iter()
+                .map(|s| s.to_string()),
+        );
+    }
+    let mut rows: Vec<CompareRow> = Vec::new();
+    for (name, v) in &out.compare {
+        let f = v.fields.iter().find(|f| f.region == c.region)?;
+        let e = extremes(f, step);
+        let mut values = vec![e.sigma_xx.0, e.sigma_int.0, e.eps_xx.0, e.eps_int.0];
+        if with_damage {
+            let d = v.damage.as_ref()?;
+            values.extend([
+                d.at_limit.volume,
+                d.at_limit.damageability,
+                d.at_limit.psi_max,
+            ]);
+        }
+        let m = case.materials[name];
+        rows.push(CompareRow {
+            material: name.clone(),
+            young_modulus_pa: m.youngs_modulus(),
+            poisson_ratio: m.poisson_ratio(),
+            values,
+            change_percent: Vec::new(),
+        });
+    }
+    let reference = rows.first()?.values.clone();
+    for r in &mut rows {
+        r.change_percent = r
+            .values
+            .iter()
+            .zip(&reference)
+            .map(|(v, r0)| {
+                if *r0 != 0.0 {
+                    100.0 * (v / r0 - 1.0)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+    }
+    let paper_change_percent = case.template.as_ref().map(|_| {
+        metrics
+            .iter()
+            .map(|m| {
+                paper::CAST_IRON_CHANGES
+                    .iter()
+                    .find(|p| p.0 == m)
+                    .map(|p| p.1)
+            })
+            .collect()
+    });
+    Some(CompareSummary {
+        region: c.region.clone(),
+        step: out.main.steps[step].name.clone(),
+        metrics,
+        rows,
+        paper_change_percent,
+    })
+}
+
+/// The segments with a prescribed displacement (a gmsh boundary name stands for its parts):
+/// their resultant is the support's reaction.
+fn supports(case: &BemCase, v: &Variant) -> std::collections::BTreeSet<String> {
+    let mut supports = std::collections::BTreeSet::new();
+    for b in &case.bcs {
+        let held = match &b.kind {
+            BcKind::Components(x, y) => [x, y]
+                .iter()
+                .any(|c| matches!(c, ComponentSpec::Displacement(_))),
+            BcKind::Pressure(_) => false,
+        };
+        if held {
+            let parts = v.meshes.iter().find_map(|m| m.curves.get(&b.segment));
+            match parts {
+                Some(parts) if v.mesh.segment_index(&b.segment).is_none() => {
+                    supports.extend(parts.iter().cloned())
+                }
+                _ => {
+                    supports.insert(b.segment.clone());
+                }
+            }
+        }
+    }
+    supports
+}
+
+/// The summary of every step of the case's own run.
+fn step_summaries(case: &BemCase, v: &Variant) -> CaseResult<Vec<StepSummary>> {
+    let supports = supports(case, v);
+    let mut steps = Vec::new();
+    for (k, st) in v.steps.iter().enumerate() {
+        steps.push(StepSummary {
+            name: st.name.clone(),
+            iterations: st.iterations,
+            residual: st.residual,
+            pairs: st
+                .pairs
+                .iter()
+                .map(|p| {
+                    let friction = case
+                        .pairs
+                        .iter()
+                        .find(|c| c.slave == p.slave && c.master == p.master)
+                        .map_or(0.0, |c| c.friction);
+                    pair_summary(p, friction)
+                })
+                .collect(),
+            free_bodies: st
+                .free_bodies
+                .iter()
+                .map(|b| FreeBody {
+                    body: b.body.clone(),
+                    translation_m: b.translation,
+                    rotation_rad: b.rotation,
+                    reference_point_m: b.reference_point,
+                })
+                .collect(),
+            rigid: st
+                .rigid
+                .iter()
+                .map(|r| RigidSummary {
+                    segment: r.segment.clone(),
+                    translation_m: r.translation,
+                    force_n_per_m: r.force,
+                })
+                .collect(),
+            regions: v.fields.iter().map(|f| region_extremes(f, k)).collect(),
+            segment_forces: segment_forces(&st.solution, &supports)?,
+        });
+    }
+    Ok(steps)
+}
+
+/// The damage summary of the case's own run (None without `[damage]`).
+fn damage_summary(case: &BemCase, v: &Variant) -> Option<DamageSummary> {
+    let d = v.damage.as_ref()?;
+    let sweep: Vec<Dangerous> = d.sweep.iter().map(|(l, r)| Dangerous::new(*l, r)).collect();
+    let sweep_factors = if sweep.len() >= 2 {
+        let (a, b) = (&sweep[0], &sweep[sweep.len() - 1]);
+        let ratio = |x: f64, y: f64| (y > 0.0).then(|| x / y);
+        Some([
+            ratio(a.dangerous_area_m2, b.dangerous_area_m2),
+            ratio(a.damageability_m2, b.damageability_m2),
+            ratio(a.psi_max, b.psi_max),
+        ])
+    } else {
+        None
+    };
+    Some(DamageSummary {
+        region: d.region.clone(),
+        step: d.step.clone(),
+        quantity: d.quantity.clone(),
+        unit: d.unit.to_string(),
+        at_limit: Dangerous::new(d.limit, &d.at_limit),
+        sweep,
+        sweep_factors,
+        paper_sweep_factors: case
+            .template
+            .as_ref()
+            .map(|_| paper::SWEEP_FACTORS.map(|p| p.1)),
+    })
+}
+
+impl BemSummary {
+    /// The summary of a solved case; `outputs` names the files written (`summary.json`
+    /// last). Fails only where a segment's resultant cannot be integrated.
+    pub fn new(case: &BemCase, out: &BemOutcome, outputs: Vec<String>) -> CaseResult<Self> {
+        let v = &out.main;
+        let steps = step_summaries(case, v)?;
+        let damage = damage_summary(case, v);
+        let compare = compare_summary(case, out);
+        let compare_s: f64 = out
+            .compare
+            .iter()
+            .filter(|(_, x)| x.material.is_some())
+            .map(|(_, x)| x.timings.setup + x.timings.steps + x.timings.fields + x.timings.damage)
+            // A fold from +0 (an empty f64 sum is -0, printed "-0.00").
+            .fold(0.0, |a, b| a + b);
+        let units = UNITS
+            .iter()
+            .copied()
+            .filter(|(p, _)| match p.split(['.', '[']).next() {
+                Some("damage") => damage.is_some(),
+                Some("compare") => compare.is_some(),
+                _ => true,
+            })
+            .collect();
+        Ok(BemSummary {
+            kind: "bem2d",
+            version: env!("CARGO_PKG_VERSION"),
+            title: case.title.clone(),
+            source: case.source.clone(),
+            plane: plane_name(case.plane),
+            materials: case
+                .materials
+                .iter()
+                .map(|(name, m)| MaterialSummary {
+                    name: name.clone(),
+                    young_modulus_pa: m.youngs_modulus(),
+                    poisson_ratio: m.poisson_ratio(),
+                    source: case.material_sources.get(name).cloned(),
+                })
+                .collect(),
+            regions: v
+                .mesh
+                .regions
+                .iter()
+                .map(|r| RegionInfo {
+                    name: r.name.clone(),
+                    young_modulus_pa: r.material.youngs_modulus(),
+                    poisson_ratio: r.material.poisson_ratio(),
+                    elements: r.elements.len(),
+                    nodes: r.nodes.len(),
+                })
+                .collect(),
+            meshes: v.meshes.clone(),
+            dof: v.dof,
+            contact_unknowns: v.contact_unknowns,
+            steps,
+            damage,
+            compare,
+            timings: TimingSummary {
+                setup_s: v.timings.setup,
+                steps_s: v.timings.steps,
+                fields_s: v.timings.fields,
+                damage_s: v.timings.damage,
+                compare_s,
+            },
+            outputs,
+            case: case.echo.clone(),
+            units,
+        })
+    }
+}
+
+/// The arc length along a pair's slave nodes from its first node, m (the polyline through
+/// the nodes).
+pub fn arc_lengths(pair: &PairResult) -> Vec<f64> {
+    let mut arc = 0.0;
+    let mut out = Vec::with_capacity(pair.nodes.len());
+    for (i, n) in pair.nodes.iter().enumerate() {
+        if i > 0 {
+            let q = pair.nodes[i - 1].position;
+            arc += (n.position[0] - q[0]).hypot(n.position[1] - q[1]);
+        }
+        out.push(arc);
+    }
+    out
+}
+
+/// The stress intensity sigma_int (von Mises, with sigma_zz of the plane condition) of a
+/// sample, Pa ([`DamageQuantity::Intensity`] of the stress).
+pub fn stress_intensity(f: &RegionField, x: &FieldSample) -> f64 {
+    DamageQuantity::Intensity {
+        tensor: TensorKind::Stress,
+    }
+    .value(&tensor(&x.stress), &f.material)
+}
+
+/// The strain intensity eps_int of a sample ([`DamageQuantity::Intensity`] of the strain).
+pub fn strain_intensity(f: &RegionField, x: &FieldSample) -> f64 {
+    DamageQuantity::Intensity {
+        tensor: TensorKind::Strain,
+    }
+    .value(&tensor(&x.stress), &f.material)
+}
+
+/// The scalar point arrays of the field outputs in one step, per region in the order of
+/// `v.fields`: name (with its unit) and one value per triangulation node: the stresses (Pa),
+/// sigma_int (Pa), the strains and eps_int.
+pub fn point_scalars(v: &Variant, step: usize) -> Vec<(&'static str, Vec<f64>)> {
+    type Getter = fn(&RegionField, &FieldSample) -> f64;
+    let scalars: [(&str, Getter); 9] = [
+        ("sigma_xx_Pa", |_, x| x.stress.xx),
+        ("sigma_yy_Pa", |_, x| x.stress.yy),
+        ("sigma_xy_Pa", |_, x| x.stress.xy),
+        ("sigma_zz_Pa", |_, x| x.stress.zz),
+        ("sigma_int_Pa", stress_intensity),
+        ("eps_xx", |_, x| x.strain.xx),
+        ("eps_yy", |_, x| x.strain.yy),
+        ("eps_xy", |_, x| x.strain.xy),
+        ("eps_int", strain_intensity),
+    ];
+    scalars
+        .iter()
+        .map(|(name, get)| {
+            let values = v
+                .fields
+                .iter()
+                .flat_map(|f| f.samples[step].iter().map(move |x| get(f, x)))
+                .collect();
+            (*name, values)
+        })
+        .collect()
+}
