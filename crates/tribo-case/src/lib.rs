@@ -62,7 +62,7 @@ impl Case {
 }
 
 /// The results of a run, by the kind of case.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub enum Results {
     /// Of a half-space case.
     HalfSpace(Box<pipeline::Outcome>),

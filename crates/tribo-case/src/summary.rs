@@ -960,7 +960,7 @@ impl DamageSummary {
                     average: r.average,
                     cycle: c.cycle.as_ref().map(|c| c.0.clone()),
                     cycle_window_note: c.window_note.clone(),
-                    box_faces: c.box_faces.clone(),
+                    box_faces: c.box_faces.iter().map(|f| f.name()).collect(),
                     box_note: c.box_note.clone(),
                     cycles: c.cycle.as_ref().map(|c| c.1),
                 }

@@ -1,5 +1,7 @@
 //! Helpers shared by the end-to-end tests.
+#![allow(dead_code)] // each test crate uses part of them
 
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
 /// Run the `tribo` binary with `args`, feeding `stdin` if given.
@@ -22,4 +24,89 @@ pub fn tribo(args: &[&str], stdin: Option<&str>) -> Output {
             .unwrap();
     }
     child.wait_with_output().expect("wait for tribo")
+}
+
+/// The text of the embedded example `name` (the case files `tribo example NAME` prints).
+pub fn example(name: &str) -> &'static str {
+    tribo_case::examples::find(name)
+        .unwrap_or_else(|| panic!("no example {name}"))
+        .text
+}
+
+/// stderr as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// stdout as text.
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// A JSON file.
+pub fn read_json(path: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(path).unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
+/// Run `tribo run CASE -o OUT --quiet EXTRA` on `text` (written as case.toml in a fresh
+/// directory, with the extra files `files`); the output, the output directory and the
+/// directory's guard.
+pub fn run_case(
+    text: &str,
+    files: &[(&str, &str)],
+    extra: &[&str],
+) -> (Output, PathBuf, tempfile::TempDir) {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case.toml");
+    std::fs::write(&case, text).unwrap();
+    for (name, content) in files {
+        std::fs::write(dir.path().join(name), content).unwrap();
+    }
+    let out = dir.path().join("out");
+    let mut args = vec![
+        "run",
+        case.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    args.extend_from_slice(extra);
+    let o = tribo(&args, None);
+    (o, out, dir)
+}
+
+/// Like [`run_case`] without `--quiet`: the notes go to stderr.
+pub fn run_case_loud(text: &str, files: &[(&str, &str)]) -> (Output, tempfile::TempDir) {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case.toml");
+    std::fs::write(&case, text).unwrap();
+    for (name, content) in files {
+        std::fs::write(dir.path().join(name), content).unwrap();
+    }
+    let out = dir.path().join("out");
+    let o = tribo(
+        &["run", case.to_str().unwrap(), "-o", out.to_str().unwrap()],
+        None,
+    );
+    (o, dir)
+}
+
+/// The case `text` (with `files`) exits 2, names `field` on stderr and writes nothing;
+/// stderr.
+pub fn assert_bad_input(text: &str, files: &[(&str, &str)], field: &str) -> String {
+    let (o, out, _dir) = run_case(text, files, &[]);
+    let err = stderr(&o);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "expected exit 2 for {field}; stderr: {err}"
+    );
+    assert!(err.contains(field), "stderr does not name {field:?}: {err}");
+    assert!(
+        !out.exists(),
+        "bad input for {field} wrote {}",
+        out.display()
+    );
+    err
 }
