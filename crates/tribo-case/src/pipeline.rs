@@ -122,7 +122,7 @@ pub struct Stress {
     /// The stress at the field points.
     pub field: StressField,
     /// The body it is computed in.
-    pub body: &'static str,
+    pub body: FieldBody,
     /// Its material.
     pub material: ElasticMaterial,
     /// The bulk stress superposed: kind and operating stress, Pa.
@@ -134,6 +134,36 @@ pub struct Stress {
     pub edge_refinement: usize,
     /// Wall time, s.
     pub time_s: f64,
+}
+
+/// The body a stress field is computed in (`field.body`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FieldBody {
+    /// Body 1.
+    Body1,
+    /// Body 2.
+    Body2,
+}
+
+impl FieldBody {
+    /// The body named `name` in a case ("body1"; anything else is body 2, as the validated
+    /// `field.body` can only be "body1" or "body2").
+    pub fn from_name(name: &str) -> Self {
+        if name == "body1" {
+            FieldBody::Body1
+        } else {
+            FieldBody::Body2
+        }
+    }
+
+    /// Its name in a case and the summary: "body1" or "body2".
+    pub fn name(self) -> &'static str {
+        match self {
+            FieldBody::Body1 => "body1",
+            FieldBody::Body2 => "body2",
+        }
+    }
 }
 
 /// One damage criterion evaluated on the stress field.
@@ -890,7 +920,7 @@ pub fn stress(
     }
     Ok(Some(Stress {
         field,
-        body: spec.body,
+        body: FieldBody::from_name(spec.body),
         material: body.material,
         bulk: bulk_applied,
         method,
@@ -1197,7 +1227,7 @@ pub fn damage(
                      the semi-axis a) and a [bulk] section",
                 ));
             };
-            let (qx, qy) = field_tractions(out, st.body);
+            let (qx, qy) = field_tractions(out, st.body.name());
             let tractions = SurfaceTractions {
                 grid: &out.prepared.grid,
                 pressure: &out.solution.pressure,

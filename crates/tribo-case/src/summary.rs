@@ -807,7 +807,7 @@ impl StressSummary {
         let m = st.material;
         let half = f.grid.x.last().copied().unwrap_or(0.0);
         Self {
-            body: st.body,
+            body: st.body.name(),
             points: [f.grid.x.len(), f.grid.y.len(), f.grid.z.len()],
             half_width: half,
             depth: f.grid.z.last().copied().unwrap_or(0.0),

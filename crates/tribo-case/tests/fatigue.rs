@@ -121,15 +121,11 @@ fn fatigue_diagram_from_the_example() {
 fn fatigue_diagram_with_a_limit_fitted_from_data() {
     let dir = tempfile::tempdir().expect("a temporary directory");
     std::fs::copy(data_set(), dir.path().join("sigma.csv")).expect("copied");
-    let toml = r#"
-[limits]
-sigma_1 = { data = "sigma.csv" }
-p_f = 1.3e9
-sigma_1p = "403 MPa"
-p_f_sigma = "1586 MPa"
-sigma_p_contact_pressure = "800 MPa"
-p_sigma_stress_amplitude = "80 MPa"
-"#;
+    // The limits inline: sigma_-1 fitted from the data file, the others given.
+    let toml =
+        "limits = { sigma_1 = { data = \"sigma.csv\" }, p_f = 1.3e9, sigma_1p = \"403 MPa\", \
+                p_f_sigma = \"1586 MPa\", sigma_p_contact_pressure = \"800 MPa\", \
+                p_sigma_stress_amplitude = \"80 MPa\" }\n";
     let input = parse_limits(toml, "limits.toml", dir.path()).expect("valid limits");
     let t = diagram(input).expect("a diagram");
     // The maximum-likelihood limit of the data set (262.26 MPa, see the pyLife test).

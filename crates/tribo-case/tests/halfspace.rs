@@ -6,7 +6,9 @@
 
 mod common;
 
-use common::{example, paper, parse, rel, solve, sphere, with_contact};
+use common::{
+    energy_case, example, height_map, paper, parse, rel, solve, sphere, with_contact, DAMAGE_BASE,
+};
 use tribo::solvers::back_effect::BackEffectPoint;
 use tribo_case::case::LoadKind;
 use tribo_case::pipeline::{ApproachFrom, BackEffect, FieldEvaluation, LimitOrigin};
@@ -17,9 +19,6 @@ const PAPER_A: f64 = 5.2964e-4;
 const PAPER_B: f64 = 4.6903e-4;
 const PAPER_P0: f64 = 3.844e9;
 const PAPER_APPROACH: f64 = 2.7225e-5;
-
-/// Sliding friction f = 0.2 across the roller (along y, the rolling direction).
-const DAMAGE_BASE: &str = "friction = 0.2\nsliding = true\nsliding_angle_deg = 90\n";
 
 fn hertz(s: &Summary) -> tribo_case::summary::HertzInfo {
     s.contact.hertz.expect("a Hertzian gap")
@@ -634,13 +633,7 @@ fn a_dangerous_region_reaching_the_field_box_is_flagged() {
 #[test]
 fn the_energy_criterion_reduces_to_the_strain_energy() {
     let u0 = 5.0e6;
-    let text = paper(
-        DAMAGE_BASE,
-        &format!(
-            "[field]\nn = [9, 9, 5]\n[damage]\ncriteria = [\"u\"]\n[damage.limits]\nu = {u0}\n\
-             [damage.energy]\nu0 = {u0}\ntemperature = 300.0\n"
-        ),
-    );
+    let text = energy_case(u0);
     let s = solve(&text).summary;
     let (u, eff) = (criterion(&s, 0), criterion(&s, 1));
     assert_eq!(u.name, "u");
@@ -923,26 +916,8 @@ fn free_direction_runs_near_gross_slip_for_dissimilar_materials() {
 fn coarse_height_maps_are_noted() {
     // A paraboloid of radius 0.5 mm (10 um at one node spacing, 0.1 mm): contact radius
     // 32 um under 10 N, inside the +-0.1 mm window.
-    let map = r#"
-[body1]
-E = 2.01e11
-nu = 0.3
-[body1.surface]
-kind = "height_map"
-heights = [[20, 10, 20], [10, 0, 10], [20, 10, 20]]
-spacing = [1e-4, 1e-4]
-scale = 1e-6
-[body2]
-E = 2.01e11
-nu = 0.3
-radii = ["inf", "inf"]
-[contact]
-load = 10.0
-[grid]
-n = 8
-half_width = 1e-4
-"#;
-    let s = solve(map).summary;
+    let map = height_map("heights = [[20, 10, 20], [10, 0, 10], [20, 10, 20]]");
+    let s = solve(&map).summary;
     let note = s.gap.note.as_deref().expect("a note");
     assert!(note.contains("coarser than the contact grid"), "{note}");
     assert!(note.contains("body1"), "{note}");

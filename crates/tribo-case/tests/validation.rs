@@ -6,31 +6,7 @@
 
 mod common;
 
-use common::{assert_refused, example, paper, parse, sphere};
-
-/// Sliding friction f = 0.2 across the roller (along y).
-const DAMAGE_BASE: &str = "friction = 0.2\nsliding = true\nsliding_angle_deg = 90\n";
-
-/// A 3 x 3 height map 0.1 mm apart on a flat; `MAP` is replaced by the surface's source.
-const MAP: &str = r#"
-[body1]
-E = 2.01e11
-nu = 0.3
-[body1.surface]
-kind = "height_map"
-MAP
-spacing = [1e-4, 1e-4]
-scale = 1e-6
-[body2]
-E = 2.01e11
-nu = 0.3
-radii = ["inf", "inf"]
-[contact]
-load = 10.0
-[grid]
-n = 8
-half_width = 1e-4
-"#;
+use common::{assert_refused, energy_case, example, height_map, paper, parse, sphere, DAMAGE_BASE};
 
 /// Parses `text` with the files `files` in a fresh directory (the case's base directory).
 fn parse_with_files(
@@ -101,7 +77,7 @@ fn every_bad_input_rule_names_the_field() {
 
 #[test]
 fn bad_height_maps_name_the_file_and_line() {
-    let file = MAP.replace("MAP", "file = \"map.csv\"");
+    let file = height_map("file = \"map.csv\"");
     let ok = "0,1,0\n1,0,1\n0,1,0\n";
     assert!(parse_with_files(&file, &[("map.csv", ok)]).is_ok());
     assert_file_refused(&file, &[], "body1.surface.file");
@@ -353,13 +329,7 @@ fn bad_damage_and_cycle_input_names_the_field() {
         assert_refused(&format!("{cycle}{extra}"), name);
     }
     let u0 = 5.0e6;
-    let energy = paper(
-        DAMAGE_BASE,
-        &format!(
-            "[field]\nn = [9, 9, 5]\n[damage]\ncriteria = [\"u\"]\n[damage.limits]\nu = {u0}\n\
-             [damage.energy]\nu0 = {u0}\ntemperature = 300.0\n"
-        ),
-    );
+    let energy = energy_case(u0);
     for (extra, name) in [
         ("a_n = -1.0\n", "damage.energy.a_n"),
         ("temperature = -5.0\n", "damage.energy.temperature"),
@@ -381,77 +351,115 @@ fn bad_damage_and_cycle_input_names_the_field() {
 /// rule.
 #[test]
 fn non_finite_and_absurd_values_are_refused_by_their_physical_range() {
-    let p = paper("", "");
-    for (text, field) in [
-        (p.replace("[-0.01, 0.01]", "[-inf, 0.01]"), "body2.radii[0]"),
-        (p.replace("[-0.01, 0.01]", "[nan, 0.01]"), "body2.radii[0]"),
+    let roller = paper("", "");
+    let map = height_map("heights = [[0, 1, 0], [1, 2, 1], [0, 1, 0]]");
+    // (case, the text replaced, its replacement, the field, the rule; "": not stated).
+    let cases = [
         (
-            p.replace("[-0.01, 0.01]", "[-0.01, \"-inf m\"]"),
+            &roller,
+            "[-0.01, 0.01]",
+            "[-inf, 0.01]",
+            "body2.radii[0]",
+            "",
+        ),
+        (
+            &roller,
+            "[-0.01, 0.01]",
+            "[nan, 0.01]",
+            "body2.radii[0]",
+            "",
+        ),
+        (
+            &roller,
+            "[-0.01, 0.01]",
+            "[-0.01, \"-inf m\"]",
             "body2.radii[1]",
+            "",
         ),
-        (p.replace("extent = 1.5", "extent = inf"), "grid.extent"),
-        (p.replace("load = 2000.0", "load = inf"), "contact.load"),
+        (&roller, "extent = 1.5", "extent = inf", "grid.extent", ""),
+        (&roller, "load = 2000.0", "load = inf", "contact.load", ""),
         (
-            p.replace("load = 2000.0", "load = \"inf kN\""),
+            &roller,
+            "load = 2000.0",
+            "load = \"inf kN\"",
             "contact.load",
+            "",
         ),
-    ] {
-        assert_refused(&text, field);
-    }
-    let map = MAP.replace("MAP", "heights = [[0, 1, 0], [1, 2, 1], [0, 1, 0]]");
-    for (text, field, rule) in [
         (
-            p.replacen("E = 2.01e11", "E = 1e-308", 1),
+            &roller,
+            "E = 2.01e11",
+            "E = 1e-308",
             "body1.E = 1e-308",
             "[1e2, 1e13] Pa",
         ),
         (
-            p.replacen("E = 2.01e11", "E = \"1e5 GPa\"", 1),
+            &roller,
+            "E = 2.01e11",
+            "E = \"1e5 GPa\"",
             "body1.E",
             "[1e2, 1e13] Pa",
         ),
         (
-            p.replace("load = 2000.0", "load = 1e308"),
+            &roller,
+            "load = 2000.0",
+            "load = 1e308",
             "contact.load",
             "p0/E*",
         ),
         (
-            p.replace("load = 2000.0", "load = 1e-300"),
+            &roller,
+            "load = 2000.0",
+            "load = 1e-300",
             "contact.load",
             "p0/E*",
         ),
         // 2 MN on a 10 mm steel roller: p0/E* = 0.28.
         (
-            p.replace("load = 2000.0", "load = \"2 MN\""),
+            &roller,
+            "load = 2000.0",
+            "load = \"2 MN\"",
             "contact.load",
             "small strains",
         ),
         (
-            p.replace("load = 2000.0", "approach = 1e300"),
+            &roller,
+            "load = 2000.0",
+            "approach = 1e300",
             "contact.approach",
             "p0/E*",
         ),
         (
-            p.replace("[-0.01, 0.01]", "[-0.01, 1e-300]"),
+            &roller,
+            "[-0.01, 0.01]",
+            "[-0.01, 1e-300]",
             "body2.radii[1]",
             "[1e-9, 1e6] m",
         ),
         (
-            p.replace("[-0.01, 0.01]", "[-1e300, 0.01]"),
+            &roller,
+            "[-0.01, 0.01]",
+            "[-1e300, 0.01]",
             "body2.radii[0]",
             "[1e-9, 1e6] m",
         ),
         (
-            map.replace("half_width = 1e-4", "half_width = 1e-12"),
+            &map,
+            "half_width = 1e-4",
+            "half_width = 1e-12",
             "grid.half_width[0]",
             "[1e-9, 1e6] m",
         ),
         (
-            map.replace("load = 10.0", "load = 1e12"),
+            &map,
+            "load = 10.0",
+            "load = 1e12",
             "contact.load",
             "mean pressure",
         ),
-    ] {
+    ];
+    for (case, from, to, field, rule) in cases {
+        assert!(case.contains(from), "{from}");
+        let text = case.replacen(from, to, 1);
         assert_refused(&text, field);
         let e = match parse(&text) {
             Err(e) => e,

@@ -31,11 +31,37 @@ pub fn sphere(n: usize, contact: &str, sections: &str) -> String {
         + sections
 }
 
+/// Sliding friction f = 0.2 across the roller (along y, the rolling direction).
+pub const DAMAGE_BASE: &str = "friction = 0.2\nsliding = true\nsliding_angle_deg = 90\n";
+
+/// The paper's roller sliding across ([`DAMAGE_BASE`]) with the generalized energy criterion
+/// (25)-(36) at u0 = `u0` (J/m^3) next to the strain energy u with the limit u0, at 300 K,
+/// on a 9 x 9 x 5 field.
+pub fn energy_case(u0: f64) -> String {
+    paper(
+        DAMAGE_BASE,
+        &format!(
+            "[field]\nn = [9, 9, 5]\n[damage]\ncriteria = [\"u\"]\n[damage.limits]\nu = {u0}\n\
+             [damage.energy]\nu0 = {u0}\ntemperature = 300.0\n"
+        ),
+    )
+}
+
 /// `text` with the lines `contact` at the end of its `[contact]` section (the examples
 /// write `[grid]` right after it).
 pub fn with_contact(text: &str, contact: &str) -> String {
     assert_eq!(text.matches("[grid]").count(), 1);
     text.replace("[grid]", &format!("{contact}[grid]"))
+}
+
+/// A height map on a flat (both steel, 10 N, 8 x 8 elements over +-0.1 mm), the map's nodes
+/// 0.1 mm apart in micrometres: `source` is its `heights = [...]` or `file = "..."`.
+pub fn height_map(source: &str) -> String {
+    format!(
+        "[body1]\nE = 2.01e11\nnu = 0.3\nsurface = {{ kind = \"height_map\", {source}, \
+         spacing = [1e-4, 1e-4], scale = 1e-6 }}\n[body2]\nE = 2.01e11\nnu = 0.3\n\
+         radii = [\"inf\", \"inf\"]\n[contact]\nload = 10.0\n[grid]\nn = 8\nhalf_width = 1e-4\n"
+    )
 }
 
 /// Parses and validates a half-space case.

@@ -2,7 +2,7 @@
 #![allow(dead_code)] // each test crate uses part of them
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Child, Command, Output, Stdio};
 
 /// Run the `tribo` binary with `args`, feeding `stdin` if given.
 pub fn tribo(args: &[&str], stdin: Option<&str>) -> Output {
@@ -14,17 +14,32 @@ pub fn tribo(args: &[&str], stdin: Option<&str>) -> Output {
         Stdio::null()
     });
     let mut child = cmd.spawn().expect("spawn tribo");
+    feed_stdin(&mut child, stdin);
+    child.wait_with_output().expect("wait for tribo")
+}
+
+/// Writes `stdin` (if any) to the child's stdin and closes it.
+pub fn feed_stdin(child: &mut Child, stdin: Option<&str>) {
     if let Some(text) = stdin {
         use std::io::Write;
         child
             .stdin
             .take()
-            .unwrap()
+            .expect("a piped stdin")
             .write_all(text.as_bytes())
-            .unwrap();
+            .expect("stdin written");
     }
-    child.wait_with_output().expect("wait for tribo")
 }
+
+/// The files every half-space run writes.
+pub const CONTACT_FILES: [&str; 6] = [
+    "summary.json",
+    "pressure.csv",
+    "gap.csv",
+    "fields.vti",
+    "pressure_map.png",
+    "pressure_profiles.png",
+];
 
 /// The text of the embedded example `name` (the case files `tribo example NAME` prints).
 pub fn example(name: &str) -> &'static str {
@@ -49,13 +64,13 @@ pub fn read_json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&text).unwrap()
 }
 
-/// Run `tribo run CASE -o OUT --quiet EXTRA` on `text` (written as case.toml in a fresh
-/// directory, with the extra files `files`); the output, the output directory and the
-/// directory's guard.
-pub fn run_case(
+/// Run `tribo run CASE -o OUT ARGS` on `text` (written as case.toml in a fresh directory,
+/// with the extra files `files`); the output, the output directory and the directory's
+/// guard.
+fn run_in_dir(
     text: &str,
     files: &[(&str, &str)],
-    extra: &[&str],
+    args: &[&str],
 ) -> (Output, PathBuf, tempfile::TempDir) {
     let dir = tempfile::tempdir().unwrap();
     let case = dir.path().join("case.toml");
@@ -64,31 +79,26 @@ pub fn run_case(
         std::fs::write(dir.path().join(name), content).unwrap();
     }
     let out = dir.path().join("out");
-    let mut args = vec![
-        "run",
-        case.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--quiet",
-    ];
-    args.extend_from_slice(extra);
-    let o = tribo(&args, None);
+    let mut all = vec!["run", case.to_str().unwrap(), "-o", out.to_str().unwrap()];
+    all.extend_from_slice(args);
+    let o = tribo(&all, None);
     (o, out, dir)
+}
+
+/// Run `tribo run CASE -o OUT --quiet EXTRA` on `text` (see `run_in_dir`).
+pub fn run_case(
+    text: &str,
+    files: &[(&str, &str)],
+    extra: &[&str],
+) -> (Output, PathBuf, tempfile::TempDir) {
+    let mut args = vec!["--quiet"];
+    args.extend_from_slice(extra);
+    run_in_dir(text, files, &args)
 }
 
 /// Like [`run_case`] without `--quiet`: the notes go to stderr.
 pub fn run_case_loud(text: &str, files: &[(&str, &str)]) -> (Output, tempfile::TempDir) {
-    let dir = tempfile::tempdir().unwrap();
-    let case = dir.path().join("case.toml");
-    std::fs::write(&case, text).unwrap();
-    for (name, content) in files {
-        std::fs::write(dir.path().join(name), content).unwrap();
-    }
-    let out = dir.path().join("out");
-    let o = tribo(
-        &["run", case.to_str().unwrap(), "-o", out.to_str().unwrap()],
-        None,
-    );
+    let (o, _, dir) = run_in_dir(text, files, &[]);
     (o, dir)
 }
 
