@@ -9,7 +9,7 @@ mod common;
 mod summary;
 #[path = "common/vtk.rs"]
 mod vtk;
-use common::{example, read_json, run_case, stderr, stdout, tribo};
+use common::{assert_files, example, read_json, run_case, stderr, stdout, tribo};
 use std::path::Path;
 
 /// A 10 mm square plate: u_x = 0 on the left, u_y = 0 on the bottom (rollers), a traction
@@ -55,14 +55,15 @@ fn a_plate_run_writes_its_files() {
     let s = read_json(&out.join("summary.json"));
     summary::assert_layout(&s);
     assert!(s["steps"][0]["regions"][0]["sigma_xx_max_abs"]["value"].is_number());
-    for f in [
-        "summary.json",
-        "fields_step1.vtu",
-        "sigma_xx_step1.png",
-        "sigma_int_step1.png",
-    ] {
-        assert!(out.join(f).is_file(), "{f} missing");
-    }
+    assert_files(
+        &out,
+        &[
+            "summary.json",
+            "fields_step1.vtu",
+            "sigma_xx_step1.png",
+            "sigma_int_step1.png",
+        ],
+    );
     let vtu = vtk::read(&out.join("fields_step1.vtu"));
     assert!(vtu.header.contains("type=\"UnstructuredGrid\""));
     assert!(vtu.get("sigma_int_Pa").f64s().iter().all(|x| x.is_finite()));
@@ -263,21 +264,22 @@ fn the_clamp_knife_base_run_derives_its_summary_and_writes_its_files() {
         .iter()
         .all(|c| c.as_f64() == Some(0.0)));
     assert!(c["paper_change_percent"].is_array());
-    for f in [
-        "interfaces.csv",
-        "interfaces.png",
-        "fields_clamping.vtu",
-        "fields_clamping_cutting.vtu",
-        "sigma_xx_clamping_cutting.png",
-        "sigma_int_clamping_cutting.png",
-        "psi_sigma_int.png",
-        "damage_sweep.csv",
-        "damage_sweep.png",
-        "compare.csv",
-        "compare.png",
-    ] {
-        assert!(out.join(f).is_file(), "{f} missing");
-    }
+    assert_files(
+        &out,
+        &[
+            "interfaces.csv",
+            "interfaces.png",
+            "fields_clamping.vtu",
+            "fields_clamping_cutting.vtu",
+            "sigma_xx_clamping_cutting.png",
+            "sigma_int_clamping_cutting.png",
+            "psi_sigma_int.png",
+            "damage_sweep.csv",
+            "damage_sweep.png",
+            "compare.csv",
+            "compare.png",
+        ],
+    );
     let vtu = vtk::read(&out.join("fields_clamping_cutting.vtu"));
     assert!(vtu.get("psi").f64s().iter().all(|x| x.is_finite()));
 }

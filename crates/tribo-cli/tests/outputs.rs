@@ -436,6 +436,13 @@ fn sigint_and_sigterm_while_writing_remove_the_temporary() {
     }
 }
 
+/// Runs `case` into `out` (which must succeed) and reads its summary.json.
+fn run_summary(out: &Path, case: &str) -> serde_json::Value {
+    let o = run_into(out, case);
+    assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+    common::read_json(&out.join("summary.json"))
+}
+
 #[test]
 fn summaries_share_one_layout_and_give_every_unit() {
     let base = tempfile::tempdir().unwrap();
@@ -443,15 +450,7 @@ fn summaries_share_one_layout_and_give_every_unit() {
     // Friction, a stress field and the Hertz comparison: most sections present.
     let case = small().replace("[contact]\n", "[contact]\nfriction = 0.2\nsliding = true\n")
         + "\n[field]\nn = [9, 9, 5]\n";
-    let o = run_into(&out, &case);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    let s: serde_json::Value =
-        serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let s = run_summary(&out, &case);
     summary::assert_layout(&s);
     assert_eq!(s["kind"], "halfspace");
     assert_eq!(s["units"]["contact.max_pressure"], "Pa");
@@ -466,15 +465,7 @@ fn summaries_share_one_layout_and_give_every_unit() {
             "radii = [\"inf\", \"inf\"]",
             "radii = [0.05, \"inf\"]\nangle_deg = 30",
         );
-    let o = run_into(&out, &crossed);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    let s: serde_json::Value =
-        serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let s = run_summary(&out, &crossed);
     let angle = s["gap"]["angle"].as_f64().unwrap();
     assert!(
         angle.abs() <= 90.0 && angle.abs() > 1.0,

@@ -31,6 +31,13 @@ pub fn feed_stdin(child: &mut Child, stdin: Option<&str>) {
     }
 }
 
+/// Every file of `names` is in `out`.
+pub fn assert_files(out: &Path, names: &[&str]) {
+    for f in names {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+}
+
 /// The files every half-space run writes.
 pub const CONTACT_FILES: [&str; 6] = [
     "summary.json",
