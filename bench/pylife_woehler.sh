@@ -8,7 +8,7 @@
 # likelihood of all five parameters, default likelihood LikelihoodHighestMixedLevel); tribo
 # runs `tribo fatigue fit --json` (E739 regression and maximum likelihood with the same
 # likelihood). The pyLife numbers of the default data set are kept, with their provenance,
-# in crates/tribo-cli/tests/fixtures/pylife_woehler.json, which `cargo test` compares with.
+# in crates/tribo-case/tests/fixtures/pylife_woehler.json, which `cargo test` compares with.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"

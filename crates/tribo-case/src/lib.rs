@@ -5,7 +5,8 @@
 //!   the subsurface stress field, damage), parsed from TOML and validated with errors that
 //!   name the field and the rule;
 //! - [`builder`]: a half-space case built in code, validated by the same rules;
-//! - [`bem`]: the 2D boundary element case (`kind = "bem2d"`);
+//! - [`bem`]: the 2D boundary element case (`kind = "bem2d"`), from a file or built in code
+//!   ([`bem::BemCaseBuilder`]);
 //! - [`fatigue`]: fatigue test data, the Woehler fits and the limiting-state diagram;
 //! - [`examples`]: the embedded example cases (`tribo example`);
 //! - [`units`]: quantities written with units ("201 GPa") and the ranges of the theory;
@@ -68,7 +69,7 @@ impl Case {
 }
 
 /// The results of a run, by the kind of case.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub enum Results {
     /// Of a half-space case.
     HalfSpace(Box<pipeline::Outcome>),

@@ -12,9 +12,9 @@ use crate::error::{CaseError, CaseResult};
 use crate::progress::{Progress, WithoutNotes};
 use std::time::Instant;
 use tribo::analysis::damage::{
-    accumulate, dangerous_region, faces_reached, relative_damage, roller_shaft_sweep, CycleDamage,
-    CyclesDamage, DamageAssessment, DamageMesh, Execution, Limit, RollerShaftStudy, RollingContact,
-    RotatingBentShaft, StudyResult,
+    accumulate, dangerous_region, faces_reached, relative_damage, roller_shaft_sweep, BoxFace,
+    CycleDamage, CyclesDamage, DamageAssessment, DamageMesh, Execution, Limit, RollerShaftStudy,
+    RollingContact, RotatingBentShaft, StudyResult,
 };
 use tribo::analysis::edge_refinement::{refine_tractions, RefinedTractions};
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
@@ -36,7 +36,7 @@ use tribo::solvers::{
 use tribo::{ElasticMaterial, SurfaceGrid};
 
 /// The Hertz solution of a case whose gap is Hertzian.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, serde::Serialize)]
 pub struct HertzReference {
     /// Gap coefficients.
     pub curvature: GapCurvature,
@@ -45,7 +45,7 @@ pub struct HertzReference {
 }
 
 /// Everything needed to solve: grid, initial gap, E*, Hertz reference.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct Prepared {
     /// The window.
     pub grid: SurfaceGrid,
@@ -60,7 +60,7 @@ pub struct Prepared {
 }
 
 /// A solved case.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct Outcome {
     /// Inputs of the solver.
     pub prepared: Prepared,
@@ -83,7 +83,7 @@ pub struct Outcome {
 }
 
 /// The tangential contact of a case with friction.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct Tangential {
     /// The library's solution.
     pub solution: TangentialSolution,
@@ -106,7 +106,7 @@ pub const COUPLING_TOLERANCE: f64 = 1e-8;
 pub const COUPLING_MAX_PASSES: usize = 100;
 
 /// The normal-tangential coupling of dissimilar materials, solved by alternation.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct Coupling {
     /// The normal solution of the coupled problem (replaces the uncoupled one).
     pub normal: NormalContactSolution,
@@ -117,12 +117,12 @@ pub struct Coupling {
 }
 
 /// The subsurface stress field of a case with `[field]`.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct Stress {
     /// The stress at the field points.
     pub field: StressField,
     /// The body it is computed in.
-    pub body: &'static str,
+    pub body: FieldBody,
     /// Its material.
     pub material: ElasticMaterial,
     /// The bulk stress superposed: kind and operating stress, Pa.
@@ -136,8 +136,38 @@ pub struct Stress {
     pub time_s: f64,
 }
 
+/// The body a stress field is computed in (`field.body`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FieldBody {
+    /// Body 1.
+    Body1,
+    /// Body 2.
+    Body2,
+}
+
+impl FieldBody {
+    /// The body named `name` in a case ("body1"; anything else is body 2, as the validated
+    /// `field.body` can only be "body1" or "body2").
+    pub fn from_name(name: &str) -> Self {
+        if name == "body1" {
+            FieldBody::Body1
+        } else {
+            FieldBody::Body2
+        }
+    }
+
+    /// Its name in a case and the summary: "body1" or "body2".
+    pub fn name(self) -> &'static str {
+        match self {
+            FieldBody::Body1 => "body1",
+            FieldBody::Body2 => "body2",
+        }
+    }
+}
+
 /// One damage criterion evaluated on the stress field.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct DamageCriterion {
     /// The limit used and the dangerous region (22), (24).
     pub assessment: DamageAssessment,
@@ -152,9 +182,8 @@ pub struct DamageCriterion {
     /// the accumulation depends on the window. The text says so.
     pub window_note: Option<String>,
     /// The faces of the field box that the static dangerous region (psi >= 1) reaches
-    /// ("x-", "x+", "y-", "y+", "top", "bottom"; the surface z = 0 is not a face): V and
-    /// Psi then depend on the box.
-    pub box_faces: Vec<&'static str>,
+    /// (the surface z = 0 is not a face): V and Psi then depend on the box.
+    pub box_faces: Vec<BoxFace>,
     /// The note on stderr and in the summary when `box_faces` is not empty.
     pub box_note: Option<String>,
 }
@@ -187,7 +216,7 @@ fn box_face_note(faces: &[&str]) -> Option<String> {
 }
 
 /// Volume damageability of a case with `[damage]`.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct Damage {
     /// The criteria, in the case's order.
     pub criteria: Vec<DamageCriterion>,
@@ -271,7 +300,7 @@ impl LimitOrigin {
 
 /// The back effect of bulk loading, the paper's (18) and Fig. 2a: the contact force at a
 /// fixed rigid approach against the bulk stress of the shaft.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct BackEffect {
     /// The fixed rigid approach delta_0, m.
     pub reference_approach: f64,
@@ -891,7 +920,7 @@ pub fn stress(
     }
     Ok(Some(Stress {
         field,
-        body: spec.body,
+        body: FieldBody::from_name(spec.body),
         material: body.material,
         bulk: bulk_applied,
         method,
@@ -901,7 +930,7 @@ pub fn stress(
 }
 
 /// A rough cost of a stage: wall time on the machine's cores and peak memory.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct StageCost {
     /// Seconds (within a factor of about 3: calibrated on `bench/stress_field.sh`).
     pub seconds: f64,
@@ -1056,7 +1085,7 @@ pub fn limiting_state(
 }
 
 /// The limiting state: the case's stress field at the limiting load F_lim.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct LimitingState {
     /// F_lim, N.
     pub load: f64,
@@ -1122,11 +1151,8 @@ pub fn damage(
         if let Some(note) = &window_note {
             progress.note(&format!("{}: {note}", quantity.name()));
         }
-        let box_faces: Vec<&'static str> = faces_reached(&st.field.grid, &psi)?
-            .into_iter()
-            .map(|f| f.name())
-            .collect();
-        let box_note = box_face_note(&box_faces);
+        let box_faces = faces_reached(&st.field.grid, &psi)?;
+        let box_note = box_face_note(&box_faces.iter().map(|f| f.name()).collect::<Vec<_>>());
         if let Some(note) = &box_note {
             progress.note(&format!("{}: {note}", quantity.name()));
         }
@@ -1201,7 +1227,7 @@ pub fn damage(
                      the semi-axis a) and a [bulk] section",
                 ));
             };
-            let (qx, qy) = field_tractions(out, st.body);
+            let (qx, qy) = field_tractions(out, st.body.name());
             let tractions = SurfaceTractions {
                 grid: &out.prepared.grid,
                 pressure: &out.solution.pressure,

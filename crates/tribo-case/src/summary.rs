@@ -807,7 +807,7 @@ impl StressSummary {
         let m = st.material;
         let half = f.grid.x.last().copied().unwrap_or(0.0);
         Self {
-            body: st.body,
+            body: st.body.name(),
             points: [f.grid.x.len(), f.grid.y.len(), f.grid.z.len()],
             half_width: half,
             depth: f.grid.z.last().copied().unwrap_or(0.0),
@@ -960,7 +960,7 @@ impl DamageSummary {
                     average: r.average,
                     cycle: c.cycle.as_ref().map(|c| c.0.clone()),
                     cycle_window_note: c.window_note.clone(),
-                    box_faces: c.box_faces.clone(),
+                    box_faces: c.box_faces.iter().map(|f| f.name()).collect(),
                     box_note: c.box_note.clone(),
                     cycles: c.cycle.as_ref().map(|c| c.1),
                 }

@@ -1,6 +1,6 @@
-//! End-to-end tests of `tribo fatigue fit` and `tribo fatigue diagram`: the fits against
-//! pyLife's numbers recorded in `tests/fixtures/pylife_woehler.json` (provenance inside),
-//! the files written, and bad input (exit code 2 naming the field).
+//! End-to-end tests of `tribo fatigue fit` and `tribo fatigue diagram`: the files written,
+//! `--json`, the options, and bad input (exit code 2 naming the field). The fits against
+//! pyLife and the diagram's numbers on typed results: crates/tribo-case/tests/fatigue.rs.
 
 mod common;
 use common::tribo;
@@ -35,8 +35,10 @@ fn is_png(path: &Path) -> bool {
     std::fs::read(path).is_ok_and(|b| b.starts_with(b"\x89PNG"))
 }
 
+/// `tribo fatigue fit DATA -o DIR --json` prints the report, writes the same report to
+/// woehler.json and the S-N plot.
 #[test]
-fn fatigue_fit_agrees_with_pylife() {
+fn fatigue_fit_writes_its_report_and_plot() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("fit");
     let o = tribo(
@@ -51,41 +53,11 @@ fn fatigue_fit_agrees_with_pylife() {
         None,
     );
     let t = json_of(&o);
-    let fixture: Value =
-        serde_json::from_str(include_str!("fixtures/pylife_woehler.json")).unwrap();
-    let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
-
-    // Elementary vs the E739 regression with the transition limit: the same closed-form
-    // least squares and the same midpoint rule, so only summation order differs (1e-12).
-    let el = &fixture["elementary"];
-    let c = ["regression", "curve"];
-    let curve = &t[c[0]][c[1]];
-    assert!(rel(num(curve, &["fatigue_limit"]), num(el, &["SD"])) < 1e-12);
-    assert!(rel(num(curve, &["slope"]), num(el, &["k_1"])) < 1e-12);
-    assert!(rel(num(curve, &["knee_cycles"]), num(el, &["ND"])) < 1e-12);
-
-    // MaxLikeFull vs tribo's maximum likelihood: the same likelihood, different Nelder-Mead
-    // runs. pyLife stops scipy's fmin at xtol = ftol = 1e-4 (absolute, raw parameters);
-    // a -log-likelihood within 1e-4 of the optimum leaves each parameter within about
-    // sqrt(2e-4) = 0.014 standard errors of it. With SE(log10 SD) = 0.0098, SE(m) = 0.33,
-    // SE(log10 ND) = 0.072 and SE(ln s) = 0.16, 0.32 (tribo's JSON), that is 3e-4 relative
-    // in SD, 5e-3 in m... we allow 1e-3 relative for SD, m, TN, TS and 5e-3 for ND. (They
-    // agree to ~1e-8 in fact.) tribo's own optimum must be at least as likely as pyLife's.
-    let ml = &fixture["max_like_full"];
-    let m = &t["max_likelihood"];
-    let mc = &m["curve"];
-    assert!(rel(num(mc, &["fatigue_limit"]), num(ml, &["SD"])) < 1e-3);
-    assert!(rel(num(mc, &["slope"]), num(ml, &["k_1"])) < 1e-3);
-    assert!(rel(num(mc, &["knee_cycles"]), num(ml, &["ND"])) < 5e-3);
-    assert!(rel(num(m, &["scatter_cycles"]), num(ml, &["TN"])) < 1e-3);
-    assert!(rel(num(m, &["scatter_load"]), num(ml, &["TS"])) < 1e-3);
-    let (ll, ll_py) = (num(m, &["log_likelihood"]), num(ml, &["log_likelihood"]));
-    assert!(ll >= ll_py - 1e-9, "tribo {ll} < pyLife {ll_py}");
-    assert!(ll - ll_py < 1e-4);
-
     assert_eq!(t["measure"], "amplitude");
     assert_eq!(t["kind"], "sigma");
     assert_eq!(t["unit"], "Pa");
+    assert!(num(&t["max_likelihood"]["curve"], &["fatigue_limit"]) > 0.0);
+    assert!(num(&t["regression"]["curve"], &["fatigue_limit"]) > 0.0);
     assert!(is_png(&out.join("woehler.png")));
     let written: Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("woehler.json")).unwrap()).unwrap();
@@ -204,27 +176,10 @@ fn fatigue_diagram_from_the_example() {
         ],
         Some(&text),
     ));
-    let d = &t["diagram"];
-    // 403/260 and 1586/1300, correctly rounded quotients.
-    assert!((num(d, &["direct_effect"]) - 403.0 / 260.0).abs() < 1e-12);
-    assert!((num(d, &["back_effect"]) - 1586.0 / 1300.0).abs() < 1e-12);
-    let names: Vec<&str> = d["points"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|p| p["name"].as_str().unwrap())
-        .collect();
-    assert_eq!(names, ["A", "B", "C", "D"]);
-    // State (150 MPa, 1000 MPa): x = 10/13, y = 15/26, direction (2, 1.5) up to scale.
-    // BC from B = (800/1300, 1.55) to C = (1.22, 80/260); lambda = (B x e) / (d x e).
-    let (bx, by, cx, cy) = (800.0 / 1300.0, 1.55, 1.22, 80.0 / 260.0);
-    let (dx, dy) = (1000.0 / 1300.0, 150.0 / 260.0);
-    let (ex, ey) = (cx - bx, cy - by);
-    let lambda = (bx * ey - by * ex) / (dx * ey - dy * ex);
-    let st = &t["state"];
-    assert!((num(st, &["load_factor"]) - lambda).abs() < 1e-9, "{st}");
-    assert_eq!(st["inside"], true);
-    assert_eq!(st["segment"], "BC");
+    // The diagram and the state check (their numbers: the library test
+    // `fatigue_diagram_from_the_example`).
+    assert_eq!(t["diagram"]["points"].as_array().map(Vec::len), Some(4));
+    assert!(t["state"]["load_factor"].is_number());
     assert!(is_png(&out.join("limit_diagram.png")));
     assert!(out.join("limit_diagram.json").exists());
 }
@@ -256,9 +211,9 @@ p_sigma_stress_amplitude = "80 MPa"
         ],
         None,
     ));
-    // The maximum-likelihood limit of the data set (262.26 MPa, see the pyLife test).
-    let s1 = num(&t["diagram"]["limits"], &["sigma_1"]);
-    assert!((s1 / 262.2625e6 - 1.0).abs() < 1e-5, "{s1}");
+    // The data file is found next to the limits file (its value: the library test
+    // `fatigue_diagram_with_a_limit_fitted_from_data`).
+    assert!(num(&t["diagram"]["limits"], &["sigma_1"]) > 0.0);
     assert_eq!(t["sources"][0]["method"], "max-likelihood");
     assert!(t["state"].is_null());
 }

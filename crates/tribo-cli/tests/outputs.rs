@@ -8,26 +8,16 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
+mod common;
 #[path = "common/summary.rs"]
 mod summary;
 
 const BIN: &str = env!("CARGO_BIN_EXE_tribo");
 
-const SMALL: &str = r#"
-title = "small sphere"
-[body1]
-E = 2.01e11
-nu = 0.3
-radii = [0.01, 0.01]
-[body2]
-E = 2.01e11
-nu = 0.3
-radii = ["inf", "inf"]
-[contact]
-load = 100.0
-[grid]
-n = 16
-"#;
+/// A small case: the steel ball on a flat on 16 x 16 elements.
+fn small() -> String {
+    common::example("sphere-on-flat").replace("n = 64", "n = 16")
+}
 
 fn manifest(p: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(p)
@@ -40,7 +30,7 @@ fn commands(dir: &Path, validate: bool) -> Vec<(Vec<String>, Option<String>)> {
     let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>();
     let out = |n: &str| dir.join(n).display().to_string();
     let case = dir.join("case.toml");
-    fs::write(&case, SMALL).unwrap();
+    fs::write(&case, small()).unwrap();
     let diagram =
         fs::read_to_string(manifest("../tribo-case/examples/fatigue-diagram.toml")).unwrap();
     let data = manifest("examples/data/woehler-steel.csv")
@@ -96,15 +86,7 @@ fn spawn(args: &[String], stdin: &Option<String>, stdout: Stdio, stderr: Stdio) 
         .stderr(stderr)
         .spawn()
         .unwrap();
-    if let Some(text) = stdin {
-        use std::io::Write;
-        child
-            .stdin
-            .take()
-            .unwrap()
-            .write_all(text.as_bytes())
-            .unwrap();
-    }
+    common::feed_stdin(&mut child, stdin.as_deref());
     child
 }
 
@@ -213,7 +195,7 @@ fn a_closed_stderr_does_not_stop_a_run() {
     // Progress (indicatif) and notes go to stderr; a closed stderr pipe must not panic.
     let dir = tempfile::tempdir().unwrap();
     let case = dir.path().join("case.toml");
-    fs::write(&case, SMALL).unwrap();
+    fs::write(&case, small()).unwrap();
     let out_dir = dir.path().join("out");
     let args: Vec<String> = [
         "run",
@@ -256,14 +238,7 @@ fn symlinks_planted_at_our_names_are_not_followed() {
     fs::write(&victim, "precious").unwrap();
     // Every final name, the former predictable temporaries (.tmp-<pid>-NAME for the next
     // pids) and names with our temporary prefix.
-    let names = [
-        "summary.json",
-        "pressure.csv",
-        "gap.csv",
-        "fields.vti",
-        "pressure_map.png",
-        "pressure_profiles.png",
-    ];
+    let names = common::CONTACT_FILES;
     let me = std::process::id();
     for n in names {
         std::os::unix::fs::symlink(&victim, out.join(n)).unwrap();
@@ -272,7 +247,7 @@ fn symlinks_planted_at_our_names_are_not_followed() {
         }
         std::os::unix::fs::symlink(&victim, out.join(format!(".tribo-tmp-x-{n}"))).unwrap();
     }
-    let o = run_into(&out, SMALL);
+    let o = run_into(&out, &small());
     assert_eq!(
         o.status.code(),
         Some(0),
@@ -302,7 +277,7 @@ fn leftover_temporaries_are_removed_and_nothing_else() {
     for n in ["notes.txt", ".tmpfoo", ".tmp-abc-x", ".tribo-other"] {
         fs::write(out.join(n), "mine").unwrap();
     }
-    let o = run_into(&out, SMALL);
+    let o = run_into(&out, &small());
     assert_eq!(o.status.code(), Some(0));
     assert!(
         leftovers(&out).iter().all(|n| n == ".tmp-abc-x"),
@@ -320,7 +295,7 @@ fn the_earlier_runs_outputs_are_removed_and_nothing_else() {
     let out = base.path().join("out");
     // A run with friction writes traction.csv and two more plots; the next run, without
     // friction, must not leave them beside its own files.
-    let friction = SMALL.replace("[contact]\n", "[contact]\nfriction = 0.2\nsliding = true\n");
+    let friction = small().replace("[contact]\n", "[contact]\nfriction = 0.2\nsliding = true\n");
     let o = run_into(&out, &friction);
     assert_eq!(
         o.status.code(),
@@ -329,7 +304,7 @@ fn the_earlier_runs_outputs_are_removed_and_nothing_else() {
         String::from_utf8_lossy(&o.stderr)
     );
     assert!(out.join("traction.csv").is_file());
-    let o = run_into(&out, SMALL);
+    let o = run_into(&out, &small());
     assert_eq!(o.status.code(), Some(0));
     for f in ["traction.csv", "stick_slip.png", "traction_profiles.png"] {
         assert!(!out.join(f).exists(), "stale {f}");
@@ -352,7 +327,7 @@ fn the_earlier_runs_outputs_are_removed_and_nothing_else() {
         ]
     });
     fs::write(out.join("summary.json"), forged.to_string()).unwrap();
-    let o = run_into(&out, SMALL);
+    let o = run_into(&out, &small());
     assert_eq!(o.status.code(), Some(0));
     assert!(!out.join("stale.png").exists());
     assert_eq!(fs::read_to_string(&outside).unwrap(), "keep");
@@ -378,7 +353,7 @@ fn the_earlier_runs_outputs_are_removed_and_nothing_else() {
 fn start_and_catch_writing(out: &Path) -> Child {
     let case_path = out.with_extension("toml");
     // A larger grid: its plots take tens of milliseconds each to draw.
-    let case = SMALL.replace("n = 16", "n = 64");
+    let case = small().replace("n = 16", "n = 64");
     fs::write(&case_path, case).unwrap();
     let mut child = Command::new(BIN)
         .args([
@@ -424,7 +399,7 @@ fn start_and_catch_writing(out: &Path) -> Child {
 fn a_run_killed_while_writing_leaves_no_summary() {
     let base = tempfile::tempdir().unwrap();
     let out = base.path().join("out");
-    let o = run_into(&out, SMALL);
+    let o = run_into(&out, &small());
     assert_eq!(o.status.code(), Some(0));
     assert!(out.join("summary.json").is_file());
     let mut child = start_and_catch_writing(&out);
@@ -437,7 +412,7 @@ fn a_run_killed_while_writing_leaves_no_summary() {
         "a summary beside a killed run's files"
     );
     // The next run cleans up the killed run's temporaries and completes.
-    let o = run_into(&out, SMALL);
+    let o = run_into(&out, &small());
     assert_eq!(o.status.code(), Some(0));
     assert_complete(&out);
 }
@@ -449,7 +424,7 @@ fn sigint_and_sigterm_while_writing_remove_the_temporary() {
     for sig in [libc::SIGINT, libc::SIGTERM] {
         let base = tempfile::tempdir().unwrap();
         let out = base.path().join("out");
-        let o = run_into(&out, SMALL);
+        let o = run_into(&out, &small());
         assert_eq!(o.status.code(), Some(0));
         let mut child = start_and_catch_writing(&out);
         // SAFETY: sending a signal to our own child process.
@@ -461,22 +436,21 @@ fn sigint_and_sigterm_while_writing_remove_the_temporary() {
     }
 }
 
+/// Runs `case` into `out` (which must succeed) and reads its summary.json.
+fn run_summary(out: &Path, case: &str) -> serde_json::Value {
+    let o = run_into(out, case);
+    assert_eq!(o.status.code(), Some(0), "{}", common::stderr(&o));
+    common::read_json(&out.join("summary.json"))
+}
+
 #[test]
 fn summaries_share_one_layout_and_give_every_unit() {
     let base = tempfile::tempdir().unwrap();
     let out = base.path().join("out");
     // Friction, a stress field and the Hertz comparison: most sections present.
-    let case = SMALL.replace("[contact]\n", "[contact]\nfriction = 0.2\nsliding = true\n")
+    let case = small().replace("[contact]\n", "[contact]\nfriction = 0.2\nsliding = true\n")
         + "\n[field]\nn = [9, 9, 5]\n";
-    let o = run_into(&out, &case);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    let s: serde_json::Value =
-        serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let s = run_summary(&out, &case);
     summary::assert_layout(&s);
     assert_eq!(s["kind"], "halfspace");
     assert_eq!(s["units"]["contact.max_pressure"], "Pa");
@@ -485,21 +459,13 @@ fn summaries_share_one_layout_and_give_every_unit() {
         assert!(s["timings"][stage].as_f64().is_some(), "{stage}");
     }
     // A 30 degree crossing: the gap angle in degrees, as the case gave it.
-    let crossed = SMALL
-        .replace("radii = [0.01, 0.01]", "radii = [0.01, 0.02]")
+    let crossed = small()
+        .replace("radii = [\"10 mm\", \"10 mm\"]", "radii = [0.01, 0.02]")
         .replace(
             "radii = [\"inf\", \"inf\"]",
             "radii = [0.05, \"inf\"]\nangle_deg = 30",
         );
-    let o = run_into(&out, &crossed);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    let s: serde_json::Value =
-        serde_json::from_str(&fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let s = run_summary(&out, &crossed);
     let angle = s["gap"]["angle"].as_f64().unwrap();
     assert!(
         angle.abs() <= 90.0 && angle.abs() > 1.0,

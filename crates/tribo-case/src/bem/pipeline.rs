@@ -24,7 +24,7 @@ use crate::error::{CaseError, CaseResult};
 use crate::progress::Progress;
 
 /// One solved step.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct StepOutcome {
     /// Step name.
     pub name: String,
@@ -43,7 +43,7 @@ pub struct StepOutcome {
 }
 
 /// The field of one region: its triangulation and the samples of every step.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct RegionField {
     /// Region name.
     pub region: String,
@@ -60,7 +60,7 @@ pub struct RegionField {
 }
 
 /// Extremes of one region in one step.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Extremes {
     /// max |sigma_xx|, Pa, and where.
     pub sigma_xx: (f64, [f64; 2]),
@@ -73,7 +73,7 @@ pub struct Extremes {
 }
 
 /// The damage of one region.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct DamageOutcome {
     /// Region.
     pub region: String,
@@ -94,7 +94,7 @@ pub struct DamageOutcome {
 }
 
 /// Timings, s.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
 pub struct Timings {
     /// Meshing, assembly, factorization and condensation.
     pub setup: f64,
@@ -107,11 +107,13 @@ pub struct Timings {
 }
 
 /// One run of the model (the case's materials, or one material of the comparison).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct Variant {
     /// The material of the compared region (None: the case as written).
     pub material: Option<String>,
-    /// The boundary mesh.
+    /// The boundary mesh (not serialised: geometry and kernels; the fields' triangulations
+    /// and the steps' solutions carry the results).
+    #[serde(skip)]
     pub mesh: BemMesh,
     /// What the gmsh files gave the model.
     pub meshes: Vec<MeshImportInfo>,
@@ -130,7 +132,7 @@ pub struct Variant {
 }
 
 /// A solved case.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct BemOutcome {
     /// The case as written.
     pub main: Variant,

@@ -86,7 +86,8 @@ pub const DEFAULT_BULK_POINTS: usize = 21;
 pub const MAX_BULK_POINTS: usize = 1001;
 
 /// A kind of bulk load of the shaft, as the back effect (18) distinguishes them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum LoadKind {
     /// Tension-compression: u_z = -(nu/E) sigma R2.
     TensionCompression,

@@ -342,7 +342,7 @@ pub fn triangulate_region(
 }
 
 /// Displacement, stress and strain at one point.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct FieldSample {
     /// Displacement (u_x, u_y), m.
     pub displacement: [f64; 2],

@@ -234,7 +234,7 @@ impl BoundaryConditions {
 }
 
 /// In-plane stress plus sigma_zz (Pa), tension positive.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Stress2d {
     /// sigma_xx.
     pub xx: f64,
@@ -247,7 +247,7 @@ pub struct Stress2d {
 }
 
 /// In-plane strain (tensor shear) plus eps_zz.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Strain2d {
     /// eps_xx.
     pub xx: f64,
@@ -303,8 +303,9 @@ enum Dof {
 }
 
 /// The solved boundary state.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct BemSolution {
+    #[serde(skip)]
     mesh: BemMesh,
     /// Nodal displacements per region, m.
     pub displacement: Vec<Vec<[f64; 2]>>,
@@ -314,6 +315,7 @@ pub struct BemSolution {
     pub residual: f64,
     /// Factor on the regions' body forces in this state (1, or the load step's factor of
     /// the external loads in contact).
+    #[serde(skip)]
     body_force_factor: f64,
 }
 

@@ -20,16 +20,22 @@ use crate::error::{Error, Result};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 pub enum BoxFace {
     /// x = x_min.
+    #[serde(rename = "x-")]
     XMinus,
     /// x = x_max.
+    #[serde(rename = "x+")]
     XPlus,
     /// y = y_min.
+    #[serde(rename = "y-")]
     YMinus,
     /// y = y_max.
+    #[serde(rename = "y+")]
     YPlus,
     /// The top of a field that starts below the surface (first depth > 0).
+    #[serde(rename = "top")]
     Top,
     /// The deepest layer, z = z_max.
+    #[serde(rename = "bottom")]
     Bottom,
 }
 

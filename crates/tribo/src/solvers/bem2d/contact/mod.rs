@@ -347,7 +347,7 @@ impl Default for ContactOptions {
 }
 
 /// The state of a slave node.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
 pub enum ContactState {
     /// Its projection misses the master segment: no contact possible.
     Outside,
@@ -362,7 +362,7 @@ pub enum ContactState {
 }
 
 /// Results at one slave node.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct ContactNode {
     /// Position (initial configuration), m.
     pub position: [f64; 2],
@@ -390,7 +390,7 @@ pub struct ContactNode {
 }
 
 /// Results of one pair in one step.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct PairResult {
     /// Slave segment.
     pub slave: String,
@@ -410,7 +410,7 @@ pub struct PairResult {
 }
 
 /// A rigid segment's motion and force in one step.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct RigidResult {
     /// Segment.
     pub segment: String,
@@ -422,7 +422,7 @@ pub struct RigidResult {
 
 /// The motion of a body held only by contact and friction (a body with free rigid-body
 /// modes, see the module docs) in one step.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct FreeBodyResult {
     /// The name of the body's first region.
     pub body: String,
