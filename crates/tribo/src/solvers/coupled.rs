@@ -409,6 +409,64 @@ mod tests {
         assert!(asym > 1e-6 * s.normal.max_pressure(), "{asym}");
     }
 
+    /// Stopped by the pass limit, the alternation returns its last pass: the error's residual
+    /// is that pass's change (finite from the second pass on, above the tolerance), and the
+    /// pass's solutions carry both loads (each inner solve converged). The observer saw
+    /// every pass.
+    #[test]
+    fn the_pass_limit_returns_the_last_pass() {
+        let steel = ElasticMaterial::new(2.1e11, 0.3).unwrap();
+        let aluminium = ElasticMaterial::new(7.0e10, 0.33).unwrap();
+        let e_star = crate::material::composite_modulus(&steel, &aluminium);
+        let a = (3.0 * 1000.0 * 0.01 / (4.0 * e_star)).cbrt();
+        let grid = SurfaceGrid::centred(24, 24, 1.3 * a, 1.3 * a).unwrap();
+        let gap = grid.sample(|x, y| (x * x + y * y) / 0.02);
+        let problem = CoupledProblem {
+            grid: &grid,
+            initial_gap: &gap,
+            body1: steel,
+            body2: aluminium,
+            normal_loading: NormalLoading::Force(1000.0),
+            tangential_loading: TangentialLoading::Force {
+                magnitude: 150.0,
+                angle: 0.0,
+            },
+            friction: 0.3,
+        };
+        let params = CoupledParams::new(1e-12, 2, TangentialModel::LoadParallel).unwrap();
+        let mut seen = Vec::new();
+        let err =
+            solve_coupled(&problem, &params, Some(&mut |k, c| seen.push((k, c)))).unwrap_err();
+        let Error::NotConverged {
+            iterations,
+            residual,
+            ..
+        } = err.kind
+        else {
+            panic!("expected NotConverged, got {:?}", err.kind);
+        };
+        let last = err.into_output().expect("the last pass");
+        assert_eq!((iterations, last.passes), (2, 2));
+        assert_eq!(last.change, residual);
+        assert!(residual.is_finite() && residual > 1e-12, "{residual}");
+        assert_eq!(seen.len(), 2);
+        assert_eq!(seen[1], (2, residual));
+        assert!((last.normal.normal_load / 1000.0 - 1.0).abs() < 1e-9);
+        assert!((last.tangential.tangential_force.0 / 150.0 - 1.0).abs() < 1e-8);
+        // Invalid params are refused before any work.
+        let bad = CoupledParams {
+            max_passes: 0,
+            ..params
+        };
+        assert!(matches!(
+            solve_coupled(&problem, &bad, None),
+            Err(SolveError {
+                kind: Error::InvalidParameter { .. },
+                output: None
+            })
+        ));
+    }
+
     #[test]
     fn coupling_kernel_is_the_difference_of_the_bodies_cross_displacements() {
         // Against the Pohrt-Li surface displacements (tested on docs/theory/HALFSPACE.md 1.1's vectors):
