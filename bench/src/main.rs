@@ -2,8 +2,9 @@
 //!
 //! Solves the paper's half-space case (docs/theory/HALFSPACE.md section 4) once with tribo's
 //! Polonsky-Keer solver and prints one line of JSON. `seconds` is the iteration
-//! (`solve_normal_cg_with`), `operator_seconds` the FFT operator's construction, which
-//! `solve_normal_cg` does first; `--one-call` times `solve_normal_cg` as one piece instead. `apply_seconds`: one FFT
+//! (`solve_normal` with a prebuilt operator), `operator_seconds` the FFT operator's
+//! construction, which `solve_normal` does first without one; `--one-call` times
+//! `solve_normal` building its operator as one piece instead. `apply_seconds`: one FFT
 //! operator application (mean of 5, after the solve).
 //! `--pressure-out FILE` writes the pressure (f64 little-endian, x fastest) for
 //! `tamaas_case.py --evaluate`. One process per N, so that
@@ -21,8 +22,8 @@ use std::time::Instant;
 
 use serde_json::{json, Value};
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
-use tribo::solvers::normal::{normal_compliance_operator, solve_normal_cg_with};
-use tribo::solvers::{solve_normal_cg, NormalContactParams, NormalContactProblem, NormalLoading};
+use tribo::solvers::normal::normal_compliance_operator;
+use tribo::solvers::{solve_normal, NormalContactParams, NormalContactProblem, NormalLoading};
 use tribo::{composite_modulus, ElasticMaterial, SurfaceGrid};
 
 const YOUNGS_MODULUS: f64 = 2.01e11;
@@ -177,28 +178,21 @@ fn run(args: &Args) -> Result<Value, String> {
     };
     let setup_seconds = t_setup.elapsed().as_secs_f64();
 
-    // `solve_normal_cg` = build the FFT operator (kernel spectrum) + `solve_normal_cg_with`.
-    // The two are timed apart here; `--one-call` times `solve_normal_cg` itself.
+    // `solve_normal` without an operator = build the FFT operator (kernel spectrum) + the
+    // iteration. The two are timed apart here; `--one-call` times them as one call.
     let (operator_seconds, apply_seconds, seconds, solved) = if args.one_call {
         let t = Instant::now();
-        let solved = solve_normal_cg(&problem, &params);
+        let solved = solve_normal(&problem, &params, None, None);
         (None, None, t.elapsed().as_secs_f64(), solved)
     } else {
         let t = Instant::now();
         let operator = normal_compliance_operator(&grid, e_star);
-        let mut workspace = operator.workspace();
         let operator_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let solved = solve_normal_cg_with(
-            &operator,
-            &mut workspace,
-            &gap,
-            problem.loading,
-            &params,
-            &mut |_, _| {},
-        );
+        let solved = solve_normal(&problem, &params, Some(&operator), None);
         let seconds = t.elapsed().as_secs_f64();
         // One operator application (the FFT convolution), mean of a few, after the solve.
+        let mut workspace = operator.workspace();
         let reps = 5;
         let mut out = vec![0.0; grid.len()];
         let t = Instant::now();
@@ -208,7 +202,7 @@ fn run(args: &Args) -> Result<Value, String> {
         let apply_seconds = t.elapsed().as_secs_f64() / reps as f64;
         (Some(operator_seconds), Some(apply_seconds), seconds, solved)
     };
-    let sol = solved.map_err(|e| format!("solve_normal_cg failed after {seconds:.3} s: {e}"))?;
+    let sol = solved.map_err(|e| format!("solve_normal failed after {seconds:.3} s: {e}"))?;
 
     // Accuracy against Hertz, the paper's (17).
     let p0 = hertz.max_pressure;

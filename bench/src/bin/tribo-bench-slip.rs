@@ -14,7 +14,7 @@ use std::time::Instant;
 use serde_json::json;
 use tribo::kernels::hertz::HertzContact;
 use tribo::solvers::tangential::{
-    solve_tangential_with, tangential_compliance_operator, TangentialLoading, TangentialParams,
+    solve_tangential, tangential_compliance_operator, TangentialLoading, TangentialParams,
     TangentialProblem,
 };
 use tribo::{composite_modulus, ElasticMaterial, SurfaceGrid};
@@ -59,17 +59,17 @@ fn run() -> Result<serde_json::Value, String> {
             magnitude: q,
             angle: 0.0,
         },
+        offset: None,
     };
     let start = Instant::now();
     let operator = tangential_compliance_operator(&grid, &steel, &steel, 0.0);
-    let mut workspace = operator.workspace();
     let operator_seconds = start.elapsed().as_secs_f64();
     let start = Instant::now();
-    let solution = solve_tangential_with(
-        &operator,
-        &mut workspace,
+    let solution = solve_tangential(
         &problem,
         &TangentialParams::default(),
+        Some(&operator),
+        None,
     )
     .map_err(|e| e.to_string())?;
     let seconds = start.elapsed().as_secs_f64();

@@ -92,6 +92,14 @@ impl CaseError {
     }
 }
 
+/// A failed solve is the library's error (the solver's partial output is dropped; the
+/// message, with the residual of a solver that did not converge, is the same).
+impl<S> From<tribo::solvers::SolveError<S>> for CaseError {
+    fn from(e: tribo::solvers::SolveError<S>) -> Self {
+        CaseError::Library(e.kind)
+    }
+}
+
 /// The result type of this crate.
 pub type CaseResult<T> = Result<T, CaseError>;
 

@@ -24,14 +24,16 @@ use tribo::analysis::stress_field::{
 };
 use tribo::geometry::initial_gap;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
-use tribo::solvers::back_effect::{back_effect_curve_observed, BackEffectPoint};
-use tribo::solvers::coupled::{dundurs_beta, solve_coupled_with, TangentialModel};
+use tribo::solvers::back_effect::{back_effect_curve, BackEffectPoint, BackEffectProblem};
+use tribo::solvers::coupled::{
+    dundurs_beta, solve_coupled, CoupledParams, CoupledProblem, TangentialModel,
+};
 use tribo::solvers::tangential::TangentialSolution;
 use tribo::solvers::tangential::{solve_tangential, TangentialParams, TangentialProblem};
-use tribo::solvers::tangential_2d::solve_tangential_2d;
+use tribo::solvers::tangential_free::solve_tangential_free;
 use tribo::solvers::{
-    solve_normal_active_set, solve_normal_cg_observed, NormalContactProblem, NormalContactSolution,
-    NormalLoading,
+    solve_normal, NormalContactParams, NormalContactProblem, NormalContactSolution, NormalLoading,
+    NormalMethod,
 };
 use tribo::{ElasticMaterial, SurfaceGrid};
 
@@ -515,8 +517,14 @@ pub fn solve(
         ));
     };
     let result = match case.method {
-        Method::Cg => solve_normal_cg_observed(&problem, &case.params, &mut report),
-        Method::ActiveSet => solve_normal_active_set(&problem, &case.params),
+        Method::Cg => solve_normal(&problem, &case.params, None, Some(&mut report)),
+        Method::ActiveSet => {
+            let params = NormalContactParams {
+                method: NormalMethod::ActiveSet,
+                ..case.params
+            };
+            solve_normal(&problem, &params, None, None)
+        }
     };
     let solve_time_s = start.elapsed().as_secs_f64();
     progress.finish();
@@ -608,20 +616,23 @@ pub fn back_effect(
     );
     let p = &out.prepared;
     let start = Instant::now();
-    let result = back_effect_curve_observed(
-        &p.grid,
-        &p.initial_gap,
-        p.composite_modulus,
-        &case.body(bulk.shaft).material,
-        bulk.shaft_radius,
-        reference_approach,
-        &loads,
+    let result = back_effect_curve(
+        &BackEffectProblem {
+            grid: &p.grid,
+            initial_gap: &p.initial_gap,
+            composite_modulus: p.composite_modulus,
+            shaft: case.body(bulk.shaft).material,
+            shaft_radius: bulk.shaft_radius,
+            initial_approach: reference_approach,
+            loads: &loads,
+        },
         &case.params,
-        &mut |done, _| progress.advance(done as u64),
+        None,
+        Some(&mut |done, _| progress.advance(done as u64)),
     );
     let time_s = start.elapsed().as_secs_f64();
     progress.finish();
-    let points = result.map_err(|e| match e {
+    let points = result.map_err(|e| match e.kind {
         tribo::Error::ContactReachesWindow { detail } => {
             let (field, value) = match bulk.stress {
                 Some(s) if s.abs() > bulk.stress_max => ("bulk.stress", s),
@@ -738,20 +749,23 @@ pub fn tangential(
         } else {
             TangentialModel::LoadParallel
         };
-        match solve_coupled_with(
-            &p.grid,
-            &p.initial_gap,
-            m1,
-            m2,
-            case.loading,
-            fr.coefficient,
-            fr.loading,
-            &case.params,
-            &params,
-            COUPLING_TOLERANCE,
-            COUPLING_MAX_PASSES,
+        let problem = CoupledProblem {
+            grid: &p.grid,
+            initial_gap: &p.initial_gap,
+            body1: *m1,
+            body2: *m2,
+            normal_loading: case.loading,
+            tangential_loading: fr.loading,
+            friction: fr.coefficient,
+        };
+        let coupled_params = CoupledParams {
+            normal: case.params,
+            tangential: params,
+            tolerance: COUPLING_TOLERANCE,
+            max_passes: COUPLING_MAX_PASSES,
             model,
-        ) {
+        };
+        match solve_coupled(&problem, &coupled_params, None) {
             Ok(c) => (
                 Ok(c.tangential),
                 Some(Coupling {
@@ -760,7 +774,7 @@ pub fn tangential(
                     change: c.change,
                 }),
             ),
-            Err(e) => (Err(e), None),
+            Err(e) => (Err(CaseError::from(e)), None),
         }
     } else {
         let problem = TangentialProblem {
@@ -770,12 +784,14 @@ pub fn tangential(
             body1: *m1,
             body2: *m2,
             loading: fr.loading,
+            offset: None,
         };
-        if fr.free_direction {
-            (solve_tangential_2d(&problem, &params), None)
+        let solved = if fr.free_direction {
+            solve_tangential_free(&problem, &params, None, None)
         } else {
-            (solve_tangential(&problem, &params), None)
-        }
+            solve_tangential(&problem, &params, None, None)
+        };
+        (solved.map_err(CaseError::from), None)
     };
     let time_s = start.elapsed().as_secs_f64();
     progress.finish();

@@ -5,8 +5,11 @@ use thiserror::Error as ThisError;
 /// Errors of the tribo library.
 ///
 /// Input errors name the offending field and the rule it breaks; solver failures carry the
-/// residual they reached, so that a caller can report it.
+/// residual they reached, so that a caller can report it (and the solvers return the
+/// iterate they stopped at beside it, [`crate::solvers::SolveError`]). Non-exhaustive: a
+/// later version may add kinds, so a `match` needs a wildcard arm.
 #[derive(Debug, Clone, PartialEq, ThisError)]
+#[non_exhaustive]
 pub enum Error {
     /// A parameter breaks a rule (the field, its value as text, and the rule).
     #[error("{field} = {value}: {rule}")]

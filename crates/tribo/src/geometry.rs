@@ -740,7 +740,7 @@ mod tests {
     fn coarse_and_fine_maps_give_the_same_pressure() {
         use crate::material::{composite_modulus, ElasticMaterial};
         use crate::solvers::normal::{
-            solve_normal_cg, NormalContactParams, NormalContactProblem, NormalLoading,
+            solve_normal, NormalContactParams, NormalContactProblem, NormalLoading,
         };
         let steel = ElasticMaterial::new(2.01e11, 0.3).unwrap();
         let e_star = composite_modulus(&steel, &steel);
@@ -756,7 +756,7 @@ mod tests {
                 composite_modulus: e_star,
                 loading: NormalLoading::Force(50.0),
             };
-            solve_normal_cg(&problem, &NormalContactParams::default())
+            solve_normal(&problem, &NormalContactParams::default(), None, None)
                 .unwrap()
                 .pressure
         };

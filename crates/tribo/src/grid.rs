@@ -12,8 +12,14 @@ use serde::{Deserialize, Serialize};
 /// error rather than an out-of-memory crash. 8192^2 elements need about 4 GiB in the FFT path.
 pub const MAX_ELEMENTS_PER_SIDE: usize = 8192;
 
-/// A window of `nx * ny` rectangular elements on the surface z = 0.
+/// A window of `nx * ny` rectangular elements on the surface z = 0, centred on the origin.
+///
+/// Validated on construction ([`SurfaceGrid::centred`]) and on deserialization: the
+/// serialized fields `nx, ny, x_min, y_min, dx, dy` must describe a grid `centred` accepts
+/// (`nx`, `ny` in `[4, MAX_ELEMENTS_PER_SIDE]`, `x_min = -half_width_x < 0`, and
+/// `dx = 2 half_width_x / nx` to a few ulp; likewise in y), and the grid is rebuilt from them.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawSurfaceGrid")]
 pub struct SurfaceGrid {
     nx: usize,
     ny: usize,
@@ -21,6 +27,42 @@ pub struct SurfaceGrid {
     y_min: f64,
     dx: f64,
     dy: f64,
+}
+
+/// The serialized form of [`SurfaceGrid`], checked on the way in.
+#[derive(Deserialize)]
+struct RawSurfaceGrid {
+    nx: usize,
+    ny: usize,
+    x_min: f64,
+    y_min: f64,
+    dx: f64,
+    dy: f64,
+}
+
+impl TryFrom<RawSurfaceGrid> for SurfaceGrid {
+    type Error = Error;
+
+    fn try_from(raw: RawSurfaceGrid) -> Result<Self> {
+        let grid = Self::centred(raw.nx, raw.ny, -raw.x_min, -raw.y_min)?;
+        // The element sizes are derived: they must be those of the window, to the round-off
+        // of the division that makes them (a few ulp; a written-out `dx` may be the decimal
+        // nearest to it, not the same double).
+        for (field, given, derived) in [("grid.dx", raw.dx, grid.dx), ("grid.dy", raw.dy, grid.dy)]
+        {
+            if !(given.is_finite() && (given - derived).abs() <= 4.0 * f64::EPSILON * derived) {
+                return Err(Error::invalid(
+                    field,
+                    given,
+                    format!(
+                        "must be 2 half_width / n = {derived:e} m for the window (the grid is \
+                         centred on the origin)"
+                    ),
+                ));
+            }
+        }
+        Ok(grid)
+    }
 }
 
 impl SurfaceGrid {
@@ -144,6 +186,40 @@ mod tests {
         assert!((g.x(10)).abs() < 1e-18);
         assert!((g.x(3) + a).abs() < 1e-15 && (g.x(17) - a).abs() < 1e-15);
         assert_eq!(g.index(2, 1), 23);
+    }
+
+    /// Deserialization keeps the invariants: the serialized form round-trips exactly, and
+    /// grids `centred` refuses or whose element sizes do not fit the window are refused from
+    /// JSON too (before: accepted as is, e.g. nx = 0 or dx = -1).
+    #[test]
+    fn deserialization_checks_the_rules() {
+        let g = SurfaceGrid::centred(21, 16, 7.9e-4, 5.0e-4).unwrap();
+        let json = serde_json::to_string(&g).unwrap();
+        assert_eq!(serde_json::from_str::<SurfaceGrid>(&json).unwrap(), g);
+        let written = r#"{"nx":20,"ny":20,"x_min":-1e-3,"y_min":-1e-3,"dx":1e-4,"dy":1e-4}"#;
+        let read = serde_json::from_str::<SurfaceGrid>(written).unwrap();
+        assert_eq!(read, SurfaceGrid::centred(20, 20, 1e-3, 1e-3).unwrap());
+        for (bad, field) in [
+            (
+                r#"{"nx":2,"ny":20,"x_min":-1e-3,"y_min":-1e-3,"dx":1e-3,"dy":1e-4}"#,
+                "grid.nx",
+            ),
+            (
+                r#"{"nx":20,"ny":20,"x_min":1e-3,"y_min":-1e-3,"dx":1e-4,"dy":1e-4}"#,
+                "grid.half_width_x",
+            ),
+            (
+                r#"{"nx":20,"ny":20,"x_min":-1e-3,"y_min":-1e-3,"dx":-1e-4,"dy":1e-4}"#,
+                "grid.dx",
+            ),
+            (
+                r#"{"nx":20,"ny":20,"x_min":-1e-3,"y_min":-1e-3,"dx":1e-4,"dy":2e-4}"#,
+                "grid.dy",
+            ),
+        ] {
+            let err = serde_json::from_str::<SurfaceGrid>(bad).unwrap_err();
+            assert!(err.to_string().starts_with(field), "{bad}: {err}");
+        }
     }
 
     #[test]

@@ -3,18 +3,37 @@
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
-/// An isotropic linear elastic material, validated on construction.
+/// An isotropic linear elastic material, validated on construction and on deserialization
+/// (the same rules: a `{"youngs_modulus": 2e11, "poisson_ratio": 0.6}` is refused).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawElasticMaterial")]
 pub struct ElasticMaterial {
     youngs_modulus: f64,
     poisson_ratio: f64,
 }
 
+/// The serialized form of [`ElasticMaterial`], checked by [`ElasticMaterial::new`] on the way
+/// in.
+#[derive(Deserialize)]
+struct RawElasticMaterial {
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+}
+
+impl TryFrom<RawElasticMaterial> for ElasticMaterial {
+    type Error = Error;
+
+    fn try_from(raw: RawElasticMaterial) -> Result<Self> {
+        Self::new(raw.youngs_modulus, raw.poisson_ratio)
+    }
+}
+
 impl ElasticMaterial {
     /// A material from Young's modulus `E` (Pa) and Poisson's ratio `nu`.
     ///
-    /// Errors: `E` must be finite and > 0; `nu` must be finite and in (-1, 0.5).
-    /// `field` prefixes the parameter names in errors (e.g. `"body1"` gives `body1.E`).
+    /// Errors: `E` must be finite and > 0; `nu` must be finite and in (-1, 0.5). The errors
+    /// name the fields `material.E` and `material.nu`; [`ElasticMaterial::named`] chooses
+    /// the prefix.
     pub fn new(youngs_modulus: f64, poisson_ratio: f64) -> Result<Self> {
         Self::named("material", youngs_modulus, poisson_ratio)
     }
@@ -84,6 +103,36 @@ mod tests {
         let steel = ElasticMaterial::new(2.01e11, 0.3).unwrap();
         let e_star = composite_modulus(&steel, &steel);
         assert!((e_star / 1.10440e11 - 1.0).abs() < 5e-6, "{e_star}");
+    }
+
+    /// Deserialization keeps the invariant: the serialized form round-trips, and the values
+    /// [`ElasticMaterial::new`] refuses are refused from JSON too (before: accepted as is, a
+    /// nu = 0.6 material gave a negative plane-strain modulus).
+    #[test]
+    fn deserialization_checks_the_rules() {
+        let steel = ElasticMaterial::new(2.01e11, 0.3).unwrap();
+        let json = serde_json::to_string(&steel).unwrap();
+        assert_eq!(
+            json,
+            r#"{"youngs_modulus":201000000000.0,"poisson_ratio":0.3}"#
+        );
+        assert_eq!(
+            serde_json::from_str::<ElasticMaterial>(&json).unwrap(),
+            steel
+        );
+        for bad in [
+            r#"{"youngs_modulus":2e11,"poisson_ratio":0.6}"#,
+            r#"{"youngs_modulus":2e11,"poisson_ratio":-1.0}"#,
+            r#"{"youngs_modulus":0.0,"poisson_ratio":0.3}"#,
+            r#"{"youngs_modulus":-2e11,"poisson_ratio":0.3}"#,
+        ] {
+            let err = serde_json::from_str::<ElasticMaterial>(bad).unwrap_err();
+            assert!(
+                err.to_string().contains("material."),
+                "{bad}: the rule is named: {err}"
+            );
+        }
+        assert!(serde_json::from_str::<ElasticMaterial>(r#"{"youngs_modulus":2e11}"#).is_err());
     }
 
     #[test]

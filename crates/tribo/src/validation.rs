@@ -23,10 +23,10 @@ use crate::kernels::subsurface::StressTensor;
 use crate::kernels::{elliptic, love};
 use crate::material::{composite_modulus, ElasticMaterial};
 use crate::operators::convolution::convolve_direct;
-use crate::solvers::back_effect::{back_effect_curve, BackEffectPoint};
+use crate::solvers::back_effect::{back_effect_curve, BackEffectPoint, BackEffectProblem};
 use crate::solvers::normal::{
-    normal_compliance_kernel, normal_compliance_operator, solve_normal_active_set, solve_normal_cg,
-    NormalContactParams, NormalContactProblem, NormalContactSolution, NormalLoading,
+    normal_compliance_kernel, normal_compliance_operator, solve_normal, NormalContactParams,
+    NormalContactProblem, NormalContactSolution, NormalLoading, NormalMethod,
 };
 use crate::solvers::tangential::{
     solve_tangential, TangentialLoading, TangentialParams, TangentialProblem,
@@ -128,12 +128,13 @@ fn solve_hertzian(
         composite_modulus: e_star,
         loading,
     };
-    let params = NormalContactParams::default();
-    let solution = if dense {
-        solve_normal_active_set(&problem, &params)?
+    let method = if dense {
+        NormalMethod::ActiveSet
     } else {
-        solve_normal_cg(&problem, &params)?
+        NormalMethod::ConjugateGradient
     };
+    let params = NormalContactParams::default().with_method(method);
+    let solution = solve_normal(&problem, &params, None, None)?;
     Ok((grid, solution))
 }
 
@@ -595,16 +596,21 @@ pub fn back_effect_points(stress_ratios: &[f64]) -> Result<Vec<BackEffectPoint>>
             surface_stress: r * sigma_max,
         });
     }
-    back_effect_curve(
-        &grid,
-        &gap,
-        e_star,
-        &steel,
-        0.01,
-        2.723e-5,
-        &loads,
+    let problem = BackEffectProblem {
+        grid: &grid,
+        initial_gap: &gap,
+        composite_modulus: e_star,
+        shaft: steel,
+        shaft_radius: 0.01,
+        initial_approach: 2.723e-5,
+        loads: &loads,
+    };
+    Ok(back_effect_curve(
+        &problem,
         &NormalContactParams::default(),
-    )
+        None,
+        None,
+    )?)
 }
 
 /// Rows of the back effect (Fig. 2a): numerical against Hertz, and against the paper.
@@ -794,8 +800,9 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
                 magnitude: ratio * f * normal.normal_load,
                 angle: 0.0,
             },
+            offset: None,
         };
-        solve_tangential(&problem, &TangentialParams::default())
+        solve_tangential(&problem, &TangentialParams::default(), None, None)
     };
     // Mindlin's rigid shift of two identical bodies, m: 2 x 3 (2 - nu) f P
     // [1 - (1 - Q/fP)^(2/3)] / (16 G a) (Johnson 1985 eq. (7.42)).
@@ -925,8 +932,9 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
             magnitude: 0.5 * 0.2 * normal.normal_load,
             angle: 0.0,
         },
+        offset: None,
     };
-    let s = solve_tangential(&problem, &TangentialParams::default())?;
+    let s = solve_tangential(&problem, &TangentialParams::default(), None, None)?;
     rows.push(ValidationRow::new(
         "Mindlin, paper ellipse (b/a = 0.886), Q/fP = 0.5, 96x96",
         "sqrt(stick area / contact area) = (1 - Q/fP)^(1/3)",
@@ -1316,7 +1324,7 @@ pub fn sliding_sphere_edge_rows() -> Result<Vec<ValidationRow>> {
     let (hx, hy) = (0.5 * grid.dx(), 0.5 * grid.dy());
     let averaged = grid.sample(|x, y| hertz.mean_pressure_over_rectangle(x, y, hx, hy));
     let gap = grid.sample(|x, y| (x * x + y * y) / (2.0 * 0.01));
-    let solved = solve_normal_cg(
+    let solved = solve_normal(
         &NormalContactProblem {
             grid: &grid,
             initial_gap: &gap,
@@ -1324,6 +1332,8 @@ pub fn sliding_sphere_edge_rows() -> Result<Vec<ValidationRow>> {
             loading: NormalLoading::Force(1000.0),
         },
         &NormalContactParams::default(),
+        None,
+        None,
     )?
     .pressure;
     let dx = grid.dx();
@@ -1496,7 +1506,7 @@ pub fn coupled_free_dense_check() -> Result<CoupledDenseCheck> {
 
 fn coupled_dense(model: crate::solvers::coupled::TangentialModel) -> Result<CoupledDenseCheck> {
     use crate::kernels::love;
-    use crate::solvers::coupled::{solve_coupled_with, TangentialModel};
+    use crate::solvers::coupled::{solve_coupled, CoupledParams, CoupledProblem, TangentialModel};
     let steel = ElasticMaterial::new(2.1e11, 0.3)?;
     let aluminium = ElasticMaterial::new(7.0e10, 0.33)?;
     let e_star = composite_modulus(&steel, &aluminium);
@@ -1505,22 +1515,21 @@ fn coupled_dense(model: crate::solvers::coupled::TangentialModel) -> Result<Coup
     let grid = SurfaceGrid::centred(n_side, n_side, 1.3 * a, 1.3 * a)?;
     let gap0 = grid.sample(|x, y| (x * x + y * y) / 0.02);
     let friction = 0.3;
-    let coupled = solve_coupled_with(
-        &grid,
-        &gap0,
-        &steel,
-        &aluminium,
-        NormalLoading::Force(1000.0),
-        friction,
-        TangentialLoading::Force {
-            magnitude: 150.0,
-            angle: 0.0,
+    let coupled = solve_coupled(
+        &CoupledProblem {
+            grid: &grid,
+            initial_gap: &gap0,
+            body1: steel,
+            body2: aluminium,
+            normal_loading: NormalLoading::Force(1000.0),
+            tangential_loading: TangentialLoading::Force {
+                magnitude: 150.0,
+                angle: 0.0,
+            },
+            friction,
         },
-        &NormalContactParams::default(),
-        &TangentialParams::default(),
-        1e-9,
-        60,
-        model,
+        &CoupledParams::new(1e-9, 60, model)?,
+        None,
     )?;
 
     // Dense influence matrices from each body's displacements (body 2 carries -q; its frame
@@ -1820,7 +1829,7 @@ pub struct FreeDirectionDenseCheck {
     pub sweeps: usize,
 }
 
-/// The free-direction solver ([`crate::solvers::tangential_2d`]) on a steel sphere (R = 10 mm,
+/// The free-direction solver ([`crate::solvers::tangential_free`]) on a steel sphere (R = 10 mm,
 /// nu = 0.3, on a steel flat, 1000 N, element-averaged Hertz pressure on `n` x `n` elements
 /// over 2.6a, f = 0.2) at Q = `ratio` f F_N along x (`along_y`: along y), against a dense
 /// projected block Gauss-Seidel given the solver's shift W: with W fixed the traction that
@@ -1835,7 +1844,7 @@ pub fn free_direction_dense_check(
     along_y: bool,
     n: usize,
 ) -> Result<FreeDirectionDenseCheck> {
-    use crate::solvers::tangential_2d::solve_tangential_2d;
+    use crate::solvers::tangential_free::solve_tangential_free;
     let material = ElasticMaterial::new(2.1e11, 0.3)?;
     let hertz = HertzContact::circle(0.01, composite_modulus(&material, &material), 1000.0)?;
     let a = hertz.semi_major;
@@ -1851,7 +1860,7 @@ pub fn free_direction_dense_check(
         0.0
     };
     let (sin, cos) = crate::solvers::tangential::direction(angle);
-    let solution = solve_tangential_2d(
+    let solution = solve_tangential_free(
         &TangentialProblem {
             grid: &grid,
             pressure: &pressure,
@@ -1862,8 +1871,11 @@ pub fn free_direction_dense_check(
                 magnitude: ratio * f * load,
                 angle,
             },
+            offset: None,
         },
         &TangentialParams::default(),
+        None,
+        None,
     )?;
     let len = grid.len();
     let (g_mod, nu) = (material.shear_modulus(), material.poisson_ratio());

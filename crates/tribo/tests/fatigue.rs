@@ -1,5 +1,10 @@
 //! Woehler fits (ASTM E739 regression, maximum likelihood) against closed forms and against
 //! synthetic data drawn from known curves; the bad-input rules of issue 4.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "tests: a panic is a failed test"
+)]
 
 use tribo::analysis::woehler::nelder_mead::NelderMeadOptions;
 use tribo::analysis::woehler::{

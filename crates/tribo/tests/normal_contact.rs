@@ -1,9 +1,15 @@
 //! Normal contact: the verification table (every row group, the 2D BEM's included),
 //! convergence under refinement, and the errors a solver must raise. Every number asserted here has its reference and tolerance stated in
 //! `tribo::validation` (one source for `tribo validate` and the tests).
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "tests: a panic is a failed test"
+)]
 
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
 use tribo::solvers::normal::*;
+use tribo::solvers::SolveError;
 use tribo::validation::{self, ValidationRow};
 use tribo::{Error, SurfaceGrid};
 
@@ -71,8 +77,14 @@ fn solvers_agree_under_approach_control_and_complementarity_holds() {
         loading: NormalLoading::Approach(2.723e-5),
     };
     let params = NormalContactParams::default();
-    let cg = solve_normal_cg(&problem, &params).unwrap();
-    let dense = solve_normal_active_set(&problem, &params).unwrap();
+    let cg = solve_normal(&problem, &params, None, None).unwrap();
+    let dense = solve_normal(
+        &problem,
+        &params.with_method(NormalMethod::ActiveSet),
+        None,
+        None,
+    )
+    .unwrap();
     let p0 = cg.max_pressure();
     for (a, b) in cg.pressure.iter().zip(&dense.pressure) {
         // Both at residual <= 1e-10; the pressures agree to ~10x that.
@@ -110,8 +122,8 @@ fn serial_equals_parallel() {
         .num_threads(3)
         .build()
         .unwrap();
-    let a = serial.install(|| solve_normal_cg(&problem, &params).unwrap());
-    let b = parallel.install(|| solve_normal_cg(&problem, &params).unwrap());
+    let a = serial.install(|| solve_normal(&problem, &params, None, None).unwrap());
+    let b = parallel.install(|| solve_normal(&problem, &params, None, None).unwrap());
     assert_eq!(a.pressure, b.pressure);
     assert_eq!(a.iterations, b.iterations);
 }
@@ -125,12 +137,19 @@ fn a_window_the_contact_reaches_is_refused() {
         composite_modulus: e_star,
         loading: NormalLoading::Force(2000.0),
     };
-    for result in [
-        solve_normal_cg(&problem, &NormalContactParams::default()),
-        solve_normal_active_set(&problem, &NormalContactParams::default()),
-    ] {
-        match result {
-            Err(Error::ContactReachesWindow { .. }) => {}
+    for method in [NormalMethod::ConjugateGradient, NormalMethod::ActiveSet] {
+        let params = NormalContactParams::default().with_method(method);
+        match solve_normal(&problem, &params, None, None) {
+            // The refused solution comes with the error: converged, carrying the load, and
+            // in contact on the window's border.
+            Err(SolveError {
+                kind: Error::ContactReachesWindow { .. },
+                output: Some(refused),
+            }) => {
+                assert!(refused.residual <= params.tolerance, "{}", refused.residual);
+                assert!((refused.normal_load / 2000.0 - 1.0).abs() < 1e-9);
+                assert!(refused.pressure[grid.index(0, grid.ny() / 2)] > 0.0);
+            }
             other => panic!("expected ContactReachesWindow, got {other:?}"),
         }
     }
@@ -147,8 +166,11 @@ fn an_approach_without_contact_is_refused() {
             loading: NormalLoading::Approach(approach),
         };
         assert!(matches!(
-            solve_normal_cg(&problem, &NormalContactParams::default()),
-            Err(Error::NoContact { .. })
+            solve_normal(&problem, &NormalContactParams::default(), None, None),
+            Err(SolveError {
+                kind: Error::NoContact { .. },
+                ..
+            })
         ));
     }
 }
@@ -168,8 +190,11 @@ fn bad_loads_name_the_field() {
             composite_modulus: e_star,
             loading,
         };
-        match solve_normal_cg(&problem, &NormalContactParams::default()) {
-            Err(Error::InvalidParameter { field: f, .. }) => assert_eq!(f, field),
+        match solve_normal(&problem, &NormalContactParams::default(), None, None) {
+            Err(SolveError {
+                kind: Error::InvalidParameter { field: f, .. },
+                output: None,
+            }) => assert_eq!(f, field),
             other => panic!("expected InvalidParameter({field}), got {other:?}"),
         }
     }
@@ -181,13 +206,23 @@ fn bad_loads_name_the_field() {
         loading: NormalLoading::Force(1.0),
     };
     assert!(matches!(
-        solve_normal_cg(&problem, &NormalContactParams::default()),
-        Err(Error::InvalidParameter { .. })
+        solve_normal(&problem, &NormalContactParams::default(), None, None),
+        Err(SolveError {
+            kind: Error::InvalidParameter { .. },
+            ..
+        })
     ));
 }
 
+/// A solve stopped by `max_iterations` returns the last iterate with the error: its
+/// `residual` is the one reported (above the tolerance), its `iterations` the limit, p >= 0
+/// (the projection; the active set drops its negative pressures). The CG's iterate carries
+/// the load (it rescales the pressure to the load after every step, so to the sum's
+/// round-off, 1e-12), and its observer saw every iteration, the reported residual last. (The
+/// active set's first sweep, all elements active, has negative pressures: its partial is
+/// that sweep with them dropped, which carries more than the load.)
 #[test]
-fn stopping_early_is_an_error_with_the_residual() {
+fn stopping_early_returns_the_partial_solution_with_its_residual() {
     let (grid, gap, e_star, _) = paper_problem(41, 1.5);
     let problem = NormalContactProblem {
         grid: &grid,
@@ -195,22 +230,111 @@ fn stopping_early_is_an_error_with_the_residual() {
         composite_modulus: e_star,
         loading: NormalLoading::Force(2000.0),
     };
-    let params = NormalContactParams {
-        tolerance: 1e-10,
-        max_iterations: 3,
-    };
-    match solve_normal_cg(&problem, &params) {
-        Err(Error::NotConverged {
-            iterations,
-            residual,
-            tolerance,
-            ..
-        }) => {
-            assert_eq!(iterations, 3);
-            assert!(residual > tolerance && residual.is_finite());
+    for method in [NormalMethod::ConjugateGradient, NormalMethod::ActiveSet] {
+        let params = NormalContactParams::new(1e-10, 1)
+            .unwrap()
+            .with_method(method);
+        let mut seen = Vec::new();
+        let result = solve_normal(
+            &problem,
+            &params,
+            None,
+            Some(&mut |k: usize, r: f64| seen.push((k, r))),
+        );
+        let Err(SolveError {
+            kind:
+                Error::NotConverged {
+                    iterations,
+                    residual,
+                    tolerance,
+                    ..
+                },
+            output: Some(partial),
+        }) = result
+        else {
+            panic!("{method:?}: expected NotConverged with a partial solution, got {result:?}");
+        };
+        assert_eq!(iterations, 1, "{method:?}");
+        assert!(
+            residual > tolerance && residual.is_finite(),
+            "{method:?}: {residual}"
+        );
+        assert_eq!(partial.residual, residual, "{method:?}");
+        assert_eq!(partial.iterations, 1, "{method:?}");
+        assert_eq!(partial.pressure.len(), grid.len());
+        assert!(partial.pressure.iter().all(|&p| p >= 0.0), "{method:?}");
+        assert!(partial.contact_elements > 0, "{method:?}");
+        if method == NormalMethod::ConjugateGradient {
+            assert!(
+                (partial.normal_load / 2000.0 - 1.0).abs() < 1e-12,
+                "{}",
+                partial.normal_load
+            );
+            assert_eq!(seen.iter().map(|s| s.0).collect::<Vec<_>>(), [0, 1]);
+            assert_eq!(seen.last().map(|s| s.1), Some(residual));
         }
-        other => panic!("expected NotConverged, got {other:?}"),
+        // `?` into tribo::Error keeps the message (the CLI's exit 3 line).
+        let message = tribo::Error::from(SolveError::with_output(
+            Error::NotConverged {
+                solver: "s",
+                iterations,
+                residual,
+                tolerance,
+            },
+            *partial,
+        ))
+        .to_string();
+        assert!(message.contains("did not converge: residual"), "{message}");
     }
+}
+
+/// A prebuilt operator gives the same solution bit for bit; one for another grid or another
+/// E* is refused, naming the operator.
+#[test]
+fn a_prebuilt_operator_is_used_and_checked() {
+    let (grid, gap, e_star, _) = paper_problem(21, 1.5);
+    let problem = NormalContactProblem {
+        grid: &grid,
+        initial_gap: &gap,
+        composite_modulus: e_star,
+        loading: NormalLoading::Force(2000.0),
+    };
+    let params = NormalContactParams::default();
+    let own = solve_normal(&problem, &params, None, None).unwrap();
+    let operator = normal_compliance_operator(&grid, e_star);
+    let reused = solve_normal(&problem, &params, Some(&operator), None).unwrap();
+    assert_eq!(own, reused);
+    let other_modulus = normal_compliance_operator(&grid, 2.0 * e_star);
+    let other_grid = normal_compliance_operator(
+        &SurfaceGrid::centred(21, 20, grid.half_widths().0, grid.half_widths().1).unwrap(),
+        e_star,
+    );
+    for wrong in [&other_modulus, &other_grid] {
+        match solve_normal(&problem, &params, Some(wrong), None) {
+            Err(SolveError {
+                kind: Error::InvalidParameter { field, .. },
+                ..
+            }) => assert_eq!(field, "operator"),
+            other => panic!("expected InvalidParameter(operator), got {other:?}"),
+        }
+    }
+}
+
+/// Params are checked by their constructor and setters, and by the solver on entry.
+#[test]
+fn params_keep_their_rules() {
+    assert!(NormalContactParams::new(1e-8, 100).is_ok());
+    for (tolerance, iterations) in [(0.0, 10), (1.0, 10), (f64::NAN, 10), (1e-8, 0)] {
+        assert!(NormalContactParams::new(tolerance, iterations).is_err());
+    }
+    let params = NormalContactParams::default();
+    assert!(params.with_tolerance(-1.0).is_err());
+    assert!(params.with_max_iterations(0).is_err());
+    assert_eq!(
+        params.with_tolerance(1e-9).unwrap().tolerance,
+        1e-9,
+        "the setter sets"
+    );
 }
 
 #[test]

@@ -275,7 +275,7 @@ mod tests {
     use crate::kernels::hamilton::sliding_sphere_stress;
     use crate::kernels::hertz::HertzContact;
     use crate::solvers::normal::{
-        solve_normal_cg, NormalContactParams, NormalContactProblem, NormalLoading,
+        solve_normal, NormalContactParams, NormalContactProblem, NormalLoading,
     };
 
     /// The validation's sliding sphere: R = 10 mm, E* = 1.1e11 Pa, 1000 N, 64 x 64 elements
@@ -420,7 +420,7 @@ mod tests {
         let (hx, hy) = (0.5 * grid.dx(), 0.5 * grid.dy());
         let averaged = grid.sample(|x, y| hertz.mean_pressure_over_rectangle(x, y, hx, hy));
         let gap = grid.sample(|x, y| (x * x + y * y) / (2.0 * 0.01));
-        let solved = solve_normal_cg(
+        let solved = solve_normal(
             &NormalContactProblem {
                 grid: &grid,
                 initial_gap: &gap,
@@ -428,6 +428,8 @@ mod tests {
                 loading: NormalLoading::Force(1000.0),
             },
             &NormalContactParams::default(),
+            None,
+            None,
         )
         .unwrap()
         .pressure;

@@ -289,6 +289,7 @@ impl ConvolutionOperator {
             .zip(scratch.par_iter_mut())
             .for_each(|((real, spectrum), scratch)| {
                 for (row, bins) in real.chunks_mut(padded_x).zip(spectrum.chunks_mut(bins_x)) {
+                    #[allow(clippy::expect_used, reason = "buffer lengths are fixed by construction: a failure is a bug, not bad input")]
                     self.row_forward
                         .process_with_scratch(row, bins, scratch)
                         .expect("buffer lengths fixed by construction");
@@ -326,6 +327,7 @@ impl ConvolutionOperator {
                     // complex-to-real transform requires to be zero.
                     bins[0].im = 0.0;
                     bins[bins_x - 1].im = 0.0;
+                    #[allow(clippy::expect_used, reason = "buffer lengths are fixed by construction: a failure is a bug, not bad input")]
                     self.row_inverse
                         .process_with_scratch(bins, row, scratch)
                         .expect("buffer lengths fixed by construction");
@@ -406,6 +408,7 @@ impl ConvolutionOperator {
             .for_each_init(
                 || vec![Complex::new(0.0, 0.0); scratch_len],
                 |scratch, (row, bins)| {
+                    #[allow(clippy::expect_used, reason = "buffer lengths are fixed by construction: a failure is a bug, not bad input")]
                     self.row_forward
                         .process_with_scratch(row, bins, scratch)
                         .expect("buffer lengths fixed by construction");

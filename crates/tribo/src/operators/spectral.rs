@@ -169,6 +169,7 @@ impl SpectralConvolution {
                     // the round-off in their imaginary parts (required by the C2R transform).
                     bins[0].im = 0.0;
                     bins[bins_x - 1].im = 0.0;
+                    #[allow(clippy::expect_used, reason = "buffer lengths are fixed by construction: a failure is a bug, not bad input")]
                     row_inverse
                         .process_with_scratch(bins, row, scratch)
                         .expect("buffer lengths fixed by construction");
@@ -188,6 +189,7 @@ impl SpectralConvolution {
             .for_each_init(
                 || vec![Complex::new(0.0, 0.0); scratch_len],
                 |scratch, (row, bins)| {
+                    #[allow(clippy::expect_used, reason = "buffer lengths are fixed by construction: a failure is a bug, not bad input")]
                     row_forward
                         .process_with_scratch(row, bins, scratch)
                         .expect("buffer lengths fixed by construction");

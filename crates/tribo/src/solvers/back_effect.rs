@@ -4,13 +4,16 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
+use crate::error::Error;
 use crate::grid::SurfaceGrid;
 use crate::kernels::bulk::{hertz_force_ratio, BulkLoad};
 use crate::material::ElasticMaterial;
+use crate::operators::ConvolutionOperator;
 use crate::solvers::normal::{
-    normal_compliance_operator, solve_normal_cg_with, NormalContactParams, NormalLoading,
+    normal_compliance_operator, solve_normal, NormalContactParams, NormalContactProblem,
+    NormalLoading, NormalMethod,
 };
+use crate::solvers::{SolveError, SolveResult};
 
 /// One point of the curve of Fig. 2a.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -31,24 +34,43 @@ pub struct BackEffectPoint {
     pub iterations: usize,
 }
 
-/// The contact at a fixed rigid approach `initial_approach` (m) under the bulk loads
-/// `loads`: the contact force for each (approach control at `delta_0 + u_z`), relative to
-/// the force without bulk load. One FFT operator serves all points.
+/// The back-effect problem: the contact at a fixed rigid approach under a list of bulk
+/// loads.
+#[derive(Debug, Clone, Copy)]
+pub struct BackEffectProblem<'a> {
+    /// The surface window.
+    pub grid: &'a SurfaceGrid,
+    /// Initial separation h(x, y) at element centres, m (grid layout).
+    pub initial_gap: &'a [f64],
+    /// Composite modulus E*, Pa.
+    pub composite_modulus: f64,
+    /// The shaft's material (u_z of (18)).
+    pub shaft: ElasticMaterial,
+    /// The shaft's radius, m.
+    pub shaft_radius: f64,
+    /// The rigid approach delta_0 without bulk load, m (> 0).
+    pub initial_approach: f64,
+    /// The bulk loads, one curve point each.
+    pub loads: &'a [BulkLoad],
+}
+
+/// The contact at the fixed rigid approach `problem.initial_approach` under each of
+/// `problem.loads`: the contact force (approach control at `delta_0 + u_z`, u_z by (18)),
+/// relative to the force without bulk load. One FFT operator serves all points: `operator`
+/// is [`normal_compliance_operator`]`(grid, composite_modulus)` where the caller has one,
+/// `None` builds it. `params` are those of each normal solve (the conjugate gradient; the
+/// method field is not used). `observer(done, total)` is called after the reference solution
+/// and after each point (`total = loads.len() + 1`), e.g. to drive a progress bar.
 ///
-/// `initial_gap` is sampled on `grid` (m), `composite_modulus` is E* (Pa), `shaft` and
-/// `shaft_radius` (m) define u_z by (18).
-#[allow(clippy::too_many_arguments)]
+/// Errors: those of the normal solves (a point without contact has force 0, no error); the
+/// output holds the points solved before the failing one.
 pub fn back_effect_curve(
-    grid: &SurfaceGrid,
-    initial_gap: &[f64],
-    composite_modulus: f64,
-    shaft: &ElasticMaterial,
-    shaft_radius: f64,
-    initial_approach: f64,
-    loads: &[BulkLoad],
+    problem: &BackEffectProblem<'_>,
     params: &NormalContactParams,
-) -> Result<Vec<BackEffectPoint>> {
-    back_effect_curve_observed(
+    operator: Option<&ConvolutionOperator>,
+    observer: Option<&mut dyn FnMut(usize, usize)>,
+) -> SolveResult<Vec<BackEffectPoint>> {
+    let BackEffectProblem {
         grid,
         initial_gap,
         composite_modulus,
@@ -56,68 +78,60 @@ pub fn back_effect_curve(
         shaft_radius,
         initial_approach,
         loads,
-        params,
-        &mut |_, _| {},
-    )
-}
-
-/// [`back_effect_curve`] with a progress observer, called as `progress(done, total)` after
-/// the reference solution and after each point (`total = loads.len() + 1`), e.g. to drive
-/// a progress bar.
-#[allow(clippy::too_many_arguments)]
-pub fn back_effect_curve_observed(
-    grid: &SurfaceGrid,
-    initial_gap: &[f64],
-    composite_modulus: f64,
-    shaft: &ElasticMaterial,
-    shaft_radius: f64,
-    initial_approach: f64,
-    loads: &[BulkLoad],
-    params: &NormalContactParams,
-    progress: &mut dyn FnMut(usize, usize),
-) -> Result<Vec<BackEffectPoint>> {
+    } = *problem;
+    let mut silent = |_: usize, _: usize| {};
+    let progress = observer.unwrap_or(&mut silent);
     let total = loads.len() + 1;
     if !(initial_approach.is_finite() && initial_approach > 0.0) {
         return Err(Error::invalid(
             "contact.approach",
             initial_approach,
             "must be finite and > 0 (m)",
-        ));
+        )
+        .into());
     }
-    let operator = normal_compliance_operator(grid, composite_modulus);
-    let mut workspace = operator.workspace();
-    let reference = solve_normal_cg_with(
-        &operator,
-        &mut workspace,
-        initial_gap,
-        NormalLoading::Approach(initial_approach),
-        params,
-        &mut |_, _| {},
-    )?;
+    let built;
+    let operator = match operator {
+        Some(op) => op,
+        None => {
+            built = normal_compliance_operator(grid, composite_modulus);
+            &built
+        }
+    };
+    let params = NormalContactParams {
+        method: NormalMethod::ConjugateGradient,
+        ..*params
+    };
+    let solve = |approach: f64| {
+        solve_normal(
+            &NormalContactProblem {
+                grid,
+                initial_gap,
+                composite_modulus,
+                loading: NormalLoading::Approach(approach),
+            },
+            &params,
+            Some(operator),
+            None,
+        )
+        .map_err(|e| e.kind)
+    };
+    let reference = solve(initial_approach)?;
     progress(1, total);
-    loads
-        .iter()
-        .enumerate()
-        .map(|(k, load)| {
-            let change = load.approach_change(shaft, shaft_radius)?;
+    let mut points = Vec::with_capacity(loads.len());
+    for (k, load) in loads.iter().enumerate() {
+        let point = (|| {
+            let change = load.approach_change(&shaft, shaft_radius)?;
             let approach = initial_approach + change;
             let (normal_load, iterations) = if approach <= 0.0 {
                 (0.0, 0)
             } else {
-                match solve_normal_cg_with(
-                    &operator,
-                    &mut workspace,
-                    initial_gap,
-                    NormalLoading::Approach(approach),
-                    params,
-                    &mut |_, _| {},
-                ) {
+                match solve(approach) {
                     Ok(s) => (s.normal_load, s.iterations),
                     Err(Error::NoContact { .. }) => (0.0, 0),
                     Err(e) => return Err(e),
                 }
             };
-            progress(k + 2, total);
             Ok(BackEffectPoint {
                 load: *load,
                 stress: load.surface_stress(),
@@ -127,8 +141,14 @@ pub fn back_effect_curve_observed(
                 force_ratio_hertz: hertz_force_ratio(change, initial_approach),
                 iterations,
             })
-        })
-        .collect()
+        })();
+        match point {
+            Ok(p) => points.push(p),
+            Err(kind) => return Err(SolveError::with_output(kind, points)),
+        }
+        progress(k + 2, total);
+    }
+    Ok(points)
 }
 
 #[cfg(test)]
@@ -148,16 +168,19 @@ mod tests {
             BulkLoad::TensionCompression { stress: 3e8 },
         ];
         let mut seen = Vec::new();
-        let points = back_effect_curve_observed(
-            &grid,
-            &gap,
-            1.1e11,
-            &steel,
-            0.01,
-            4e-6,
-            &loads,
+        let points = back_effect_curve(
+            &BackEffectProblem {
+                grid: &grid,
+                initial_gap: &gap,
+                composite_modulus: 1.1e11,
+                shaft: steel,
+                shaft_radius: 0.01,
+                initial_approach: 4e-6,
+                loads: &loads,
+            },
             &NormalContactParams::default(),
-            &mut |done, total| seen.push((done, total)),
+            None,
+            Some(&mut |done, total| seen.push((done, total))),
         )
         .unwrap();
         assert_eq!(seen, [(1, 3), (2, 3), (3, 3)]);

@@ -5,7 +5,7 @@
 //! solver (with the tangential displacement of the current pressure) until both stop
 //! changing. For beta = 0 the coupling vanishes and one pass is exact. The tangential solver
 //! is the load-parallel one ([`crate::solvers::tangential`]) or the free-direction one
-//! ([`crate::solvers::tangential_2d`]), [`TangentialModel`]; both are checked against a dense
+//! ([`crate::solvers::tangential_free`]), [`TangentialModel`]; both are checked against a dense
 //! projected Gauss-Seidel solution of the same discrete problem
 //! ([`crate::validation::coupled_dense_check`], [`crate::validation::coupled_free_dense_check`]).
 
@@ -16,16 +16,16 @@ use crate::grid::SurfaceGrid;
 use crate::kernels::love;
 use crate::material::ElasticMaterial;
 use crate::operators::ConvolutionOperator;
-use crate::solvers::nan_max;
 use crate::solvers::normal::{
-    normal_compliance_operator, solve_normal_cg_with, NormalContactParams, NormalContactSolution,
-    NormalLoading,
+    normal_compliance_operator, solve_normal, NormalContactParams, NormalContactProblem,
+    NormalContactSolution, NormalLoading, NormalMethod,
 };
 use crate::solvers::tangential::{
-    solve_tangential_with_offset, tangential_compliance_operator, TangentialLoading,
-    TangentialParams, TangentialProblem, TangentialSolution,
+    solve_tangential, tangential_compliance_operator, TangentialLoading, TangentialParams,
+    TangentialProblem, TangentialSolution,
 };
-use crate::solvers::tangential_2d::solve_tangential_2d_with_offset;
+use crate::solvers::tangential_free::{solve_tangential_free, TangentialBlockOperator};
+use crate::solvers::{nan_max, SolveError, SolveResult};
 
 /// Dundurs' second constant beta = [(1 - 2 nu1)/G1 - (1 - 2 nu2)/G2] /
 /// (2 [(1 - nu1)/G1 + (1 - nu2)/G2]) (Johnson 1985 eq. (5.4b)); 0 for equal materials.
@@ -81,93 +81,153 @@ pub struct CoupledSolution {
 }
 
 /// Which tangential problem the alternation solves.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub enum TangentialModel {
     /// The traction parallel to the load (Cattaneo-Mindlin's assumption,
     /// [`crate::solvers::tangential`]).
+    #[default]
     LoadParallel,
     /// The traction direction free (the full 2D problem,
-    /// [`crate::solvers::tangential_2d`]).
+    /// [`crate::solvers::tangential_free`]).
     Free,
 }
 
-/// Solve the coupled normal-tangential problem by alternation (force control normal,
-/// partial slip or sliding tangential, the traction parallel to the load), to the relative
-/// change `tolerance` in at most `max_passes` passes ([`solve_coupled_with`] with
-/// [`TangentialModel::LoadParallel`]).
-#[allow(clippy::too_many_arguments)]
+/// The coupled problem: two bodies pressed together (force or approach) and loaded
+/// tangentially (partial slip or sliding).
+#[derive(Debug, Clone, Copy)]
+pub struct CoupledProblem<'a> {
+    /// The surface window.
+    pub grid: &'a SurfaceGrid,
+    /// Initial separation h(x, y) at element centres, m (grid layout).
+    pub initial_gap: &'a [f64],
+    /// Body 1 (the tangential traction is the one on body 1).
+    pub body1: ElasticMaterial,
+    /// Body 2.
+    pub body2: ElasticMaterial,
+    /// Force or approach control of the normal problem.
+    pub normal_loading: NormalLoading,
+    /// Partial slip or sliding.
+    pub tangential_loading: TangentialLoading,
+    /// Coulomb friction coefficient f (dimensionless, > 0).
+    pub friction: f64,
+}
+
+/// Parameters of the alternation: plain data, checked by [`solve_coupled`] on entry (and by
+/// the validating [`CoupledParams::new`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CoupledParams {
+    /// Parameters of each normal solve (the conjugate gradient; the method field is not used).
+    pub normal: NormalContactParams,
+    /// Parameters of each tangential solve.
+    pub tangential: TangentialParams,
+    /// Tolerance on the largest change of p (relative to p_max) and of q (relative to
+    /// f p_max) in a pass, > 0. Default 1e-8: the alternation contracts by about |beta| per
+    /// pass (beta <= 0.5), so each pass gains at least a factor 2; 1e-8 is two orders above
+    /// the inner solves' 1e-10, so that the change measured is the alternation's, not the
+    /// inner solves' round-off.
+    pub tolerance: f64,
+    /// Pass limit, >= 1 (default 100: at |beta| <= 0.5, 1e-8 needs about 27 passes).
+    pub max_passes: usize,
+    /// The tangential problem solved in each pass.
+    pub model: TangentialModel,
+}
+
+impl Default for CoupledParams {
+    fn default() -> Self {
+        Self {
+            normal: NormalContactParams::default(),
+            tangential: TangentialParams::default(),
+            tolerance: 1e-8,
+            max_passes: 100,
+            model: TangentialModel::LoadParallel,
+        }
+    }
+}
+
+impl CoupledParams {
+    /// Default inner solves with the given alternation tolerance, pass limit and model.
+    ///
+    /// Errors: the rules of [`CoupledParams::validate`].
+    pub fn new(tolerance: f64, max_passes: usize, model: TangentialModel) -> Result<Self> {
+        let params = Self {
+            tolerance,
+            max_passes,
+            model,
+            ..Self::default()
+        };
+        params.validate()?;
+        Ok(params)
+    }
+
+    /// Check the parameters: the inner ones, the tolerance finite and > 0, at least one pass.
+    pub fn validate(&self) -> Result<()> {
+        self.normal.validate()?;
+        self.tangential.validate()?;
+        if !(self.tolerance.is_finite() && self.tolerance > 0.0) || self.max_passes == 0 {
+            return Err(Error::invalid(
+                "coupling",
+                format!(
+                    "tolerance {}, max_passes {}",
+                    self.tolerance, self.max_passes
+                ),
+                "tolerance > 0 and at least one pass",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Solve the coupled normal-tangential problem by alternation, with the tangential problem
+/// of `params.model`. Each pass solves the normal problem with the gap changed by the current
+/// traction, `h + K_x q_x + K_y q_y` ([`coupling_operator`] along x and y; Johnson 1985
+/// sec. 5.4, docs/theory/HALFSPACE.md 1.1), then the tangential problem with the tangential
+/// displacement of the pressure, `-(K_x * p, K_y * p)` (`K_qp = K_pq^T`, odd kernels), as its
+/// [`TangentialProblem::offset`], until the largest change of p (relative to p_max) and of q
+/// (relative to f p_max) is below `params.tolerance`. For the load-parallel model the offset
+/// along the load direction e is `e . offset`, and `K_x q_x + K_y q_y = K_e tau` for
+/// q = tau e. `observer(pass, change)` is called after each pass.
+///
+/// Errors: those of the inner solves (without their outputs); [`Error::NotConverged`] at the
+/// pass limit, with the last pass's solution as the output (its `change` the residual
+/// reported).
 pub fn solve_coupled(
-    grid: &SurfaceGrid,
-    initial_gap: &[f64],
-    body1: &ElasticMaterial,
-    body2: &ElasticMaterial,
-    normal_loading: NormalLoading,
-    friction: f64,
-    tangential_loading: TangentialLoading,
-    normal_params: &NormalContactParams,
-    tangential_params: &TangentialParams,
-    tolerance: f64,
-    max_passes: usize,
-) -> Result<CoupledSolution> {
-    solve_coupled_with(
+    problem: &CoupledProblem<'_>,
+    params: &CoupledParams,
+    observer: Option<&mut dyn FnMut(usize, f64)>,
+) -> SolveResult<CoupledSolution> {
+    params.validate()?;
+    let CoupledProblem {
         grid,
         initial_gap,
         body1,
         body2,
         normal_loading,
-        friction,
         tangential_loading,
-        normal_params,
-        tangential_params,
-        tolerance,
-        max_passes,
-        TangentialModel::LoadParallel,
-    )
-}
-
-/// Solve the coupled normal-tangential problem by alternation, with the tangential problem
-/// of `model`. Each pass solves the normal problem with the gap changed by the current
-/// traction, `h + K_x q_x + K_y q_y` ([`coupling_operator`] along x and y; Johnson 1985
-/// sec. 5.4, docs/theory/HALFSPACE.md 1.1), then the tangential problem with the tangential
-/// displacement of the pressure, `-(K_x * p, K_y * p)` (`K_qp = K_pq^T`, odd kernels),
-/// until the largest change of p (relative to p_max) and of q (relative to f p_max) is
-/// below `tolerance`. For the load-parallel model the offset along the load direction e is
-/// `e . offset`, and `K_x q_x + K_y q_y = K_e tau` for q = tau e.
-#[allow(clippy::too_many_arguments)]
-pub fn solve_coupled_with(
-    grid: &SurfaceGrid,
-    initial_gap: &[f64],
-    body1: &ElasticMaterial,
-    body2: &ElasticMaterial,
-    normal_loading: NormalLoading,
-    friction: f64,
-    tangential_loading: TangentialLoading,
-    normal_params: &NormalContactParams,
-    tangential_params: &TangentialParams,
-    tolerance: f64,
-    max_passes: usize,
-    model: TangentialModel,
-) -> Result<CoupledSolution> {
-    if !(tolerance.is_finite() && tolerance > 0.0) || max_passes == 0 {
-        return Err(Error::invalid(
-            "coupling",
-            format!("tolerance {tolerance}, max_passes {max_passes}"),
-            "tolerance > 0 and at least one pass",
-        ));
-    }
+        friction,
+    } = *problem;
+    let (body1, body2) = (&body1, &body2);
+    let tolerance = params.tolerance;
+    let normal_params = NormalContactParams {
+        method: NormalMethod::ConjugateGradient,
+        ..params.normal
+    };
+    let tangential_params = &params.tangential;
+    let mut silent = |_: usize, _: f64| {};
+    let observer = observer.unwrap_or(&mut silent);
     let angle = match tangential_loading {
         TangentialLoading::Force { angle, .. } | TangentialLoading::Sliding { angle } => angle,
     };
-    let (sin, cos) = crate::solvers::tangential::direction(angle);
     let e_star = crate::material::composite_modulus(body1, body2);
     let normal_op = normal_compliance_operator(grid, e_star);
     // The load-parallel solver's compliance along e (the free solver builds its own 2 x 2
     // block operator).
-    let tangential_op = match model {
+    let tangential_op = match params.model {
         TangentialModel::LoadParallel => {
-            Some(tangential_compliance_operator(grid, body1, body2, angle))
+            Tangential::LoadParallel(tangential_compliance_operator(grid, body1, body2, angle))
         }
-        TangentialModel::Free => None,
+        TangentialModel::Free => {
+            Tangential::Free(Box::new(TangentialBlockOperator::new(grid, body1, body2)))
+        }
     };
     let coupling = [
         coupling_operator(grid, body1, body2, 0.0),
@@ -179,10 +239,9 @@ pub fn solve_coupled_with(
     let mut gap = initial_gap.to_vec();
     let mut q = [vec![0.0; n], vec![0.0; n]];
     let mut offset = [vec![0.0; n], vec![0.0; n]];
-    let mut along = vec![0.0; n];
     let mut previous: Option<(Vec<f64>, [Vec<f64>; 2])> = None;
-    let mut last_change = f64::INFINITY;
-    for pass in 1..=max_passes {
+    let beta = dundurs_beta(body1, body2);
+    for pass in 1..=params.max_passes {
         // Normal problem with the gap changed by the current traction.
         for c in 0..2 {
             coupling[c].apply_into(&q[c], &mut offset[c], &mut workspace);
@@ -190,14 +249,18 @@ pub fn solve_coupled_with(
         for i in 0..n {
             gap[i] = initial_gap[i] + offset[0][i] + offset[1][i];
         }
-        let normal = solve_normal_cg_with(
-            &normal_op,
-            &mut workspace,
-            &gap,
-            normal_loading,
-            normal_params,
-            &mut |_, _| {},
-        )?;
+        let normal = solve_normal(
+            &NormalContactProblem {
+                grid,
+                initial_gap: &gap,
+                composite_modulus: e_star,
+                loading: normal_loading,
+            },
+            &normal_params,
+            Some(&normal_op),
+            None,
+        )
+        .map_err(drop_output)?;
         // Tangential problem with the tangential displacement of the pressure, K_qp p with
         // K_qp = K_pq^T; K_pq is odd in the offsets, so K_pq^T p = -(K_pq * p).
         for c in 0..2 {
@@ -213,30 +276,21 @@ pub fn solve_coupled_with(
             body1: *body1,
             body2: *body2,
             loading: tangential_loading,
+            offset: if uncoupled {
+                None
+            } else {
+                Some([&offset[0], &offset[1]])
+            },
         };
         let tangential = match &tangential_op {
-            Some(op) => {
-                for i in 0..n {
-                    along[i] = cos * offset[0][i] + sin * offset[1][i];
-                }
-                solve_tangential_with_offset(
-                    op,
-                    &mut workspace,
-                    &problem,
-                    tangential_params,
-                    if uncoupled { None } else { Some(&along) },
-                )?
+            Tangential::LoadParallel(op) => {
+                solve_tangential(&problem, tangential_params, Some(op), None)
             }
-            None => solve_tangential_2d_with_offset(
-                &problem,
-                tangential_params,
-                if uncoupled {
-                    None
-                } else {
-                    Some([&offset[0], &offset[1]])
-                },
-            )?,
-        };
+            Tangential::Free(op) => {
+                solve_tangential_free(&problem, tangential_params, Some(op), None)
+            }
+        }
+        .map_err(drop_output)?;
         q[0].copy_from_slice(&tangential.traction_x);
         q[1].copy_from_slice(&tangential.traction_y);
         let change = match &previous {
@@ -253,24 +307,48 @@ pub fn solve_coupled_with(
                 nan_max(dp / p_max, dq / (friction * p_max))
             }
         };
-        if uncoupled || change <= tolerance {
-            return Ok(CoupledSolution {
+        let change = if uncoupled { 0.0 } else { change };
+        observer(pass, change);
+        if uncoupled || change <= tolerance || pass == params.max_passes {
+            let solution = CoupledSolution {
                 normal,
                 tangential,
                 passes: pass,
-                change: if uncoupled { 0.0 } else { change },
-                beta: dundurs_beta(body1, body2),
-            });
+                change,
+                beta,
+            };
+            if uncoupled || change <= tolerance {
+                return Ok(solution);
+            }
+            return Err(SolveError::with_output(
+                Error::NotConverged {
+                    solver: "normal-tangential alternation",
+                    iterations: pass,
+                    residual: change,
+                    tolerance,
+                },
+                solution,
+            ));
         }
-        last_change = change;
         previous = Some((normal.pressure.clone(), q.clone()));
     }
-    Err(Error::NotConverged {
-        solver: "normal-tangential alternation",
-        iterations: max_passes,
-        residual: last_change,
-        tolerance,
-    })
+    // The loop returns at the last pass at the latest (max_passes >= 1 is validated).
+    Err(Error::Numerical {
+        context: "normal-tangential alternation",
+        detail: "no pass was run".into(),
+    }
+    .into())
+}
+
+/// The prebuilt tangential operator of the alternation's model.
+enum Tangential {
+    LoadParallel(ConvolutionOperator),
+    Free(Box<TangentialBlockOperator>),
+}
+
+/// An inner solve's error as the alternation's: the inner output is not a coupled solution.
+fn drop_output<S>(e: SolveError<S>) -> SolveError<CoupledSolution> {
+    e.kind.into()
 }
 
 #[cfg(test)]
@@ -284,20 +362,20 @@ mod tests {
         let grid = SurfaceGrid::centred(48, 48, 1.3 * a, 1.3 * a).unwrap();
         let gap = grid.sample(|x, y| (x * x + y * y) / 0.02);
         solve_coupled(
-            &grid,
-            &gap,
-            &steel,
-            &body2,
-            NormalLoading::Force(1000.0),
-            0.3,
-            TangentialLoading::Force {
-                magnitude: 150.0,
-                angle: 0.0,
+            &CoupledProblem {
+                grid: &grid,
+                initial_gap: &gap,
+                body1: steel,
+                body2,
+                normal_loading: NormalLoading::Force(1000.0),
+                tangential_loading: TangentialLoading::Force {
+                    magnitude: 150.0,
+                    angle: 0.0,
+                },
+                friction: 0.3,
             },
-            &NormalContactParams::default(),
-            &TangentialParams::default(),
-            1e-8,
-            50,
+            &CoupledParams::new(1e-8, 50, TangentialModel::LoadParallel).unwrap(),
+            None,
         )
         .unwrap()
     }
@@ -329,6 +407,64 @@ mod tests {
             m.max((p[k] - p[iy * grid_n + (grid_n - 1 - ix)]).abs())
         });
         assert!(asym > 1e-6 * s.normal.max_pressure(), "{asym}");
+    }
+
+    /// Stopped by the pass limit, the alternation returns its last pass: the error's residual
+    /// is that pass's change (finite from the second pass on, above the tolerance), and the
+    /// pass's solutions carry both loads (each inner solve converged). The observer saw
+    /// every pass.
+    #[test]
+    fn the_pass_limit_returns_the_last_pass() {
+        let steel = ElasticMaterial::new(2.1e11, 0.3).unwrap();
+        let aluminium = ElasticMaterial::new(7.0e10, 0.33).unwrap();
+        let e_star = crate::material::composite_modulus(&steel, &aluminium);
+        let a = (3.0 * 1000.0 * 0.01 / (4.0 * e_star)).cbrt();
+        let grid = SurfaceGrid::centred(24, 24, 1.3 * a, 1.3 * a).unwrap();
+        let gap = grid.sample(|x, y| (x * x + y * y) / 0.02);
+        let problem = CoupledProblem {
+            grid: &grid,
+            initial_gap: &gap,
+            body1: steel,
+            body2: aluminium,
+            normal_loading: NormalLoading::Force(1000.0),
+            tangential_loading: TangentialLoading::Force {
+                magnitude: 150.0,
+                angle: 0.0,
+            },
+            friction: 0.3,
+        };
+        let params = CoupledParams::new(1e-12, 2, TangentialModel::LoadParallel).unwrap();
+        let mut seen = Vec::new();
+        let err =
+            solve_coupled(&problem, &params, Some(&mut |k, c| seen.push((k, c)))).unwrap_err();
+        let Error::NotConverged {
+            iterations,
+            residual,
+            ..
+        } = err.kind
+        else {
+            panic!("expected NotConverged, got {:?}", err.kind);
+        };
+        let last = err.into_output().expect("the last pass");
+        assert_eq!((iterations, last.passes), (2, 2));
+        assert_eq!(last.change, residual);
+        assert!(residual.is_finite() && residual > 1e-12, "{residual}");
+        assert_eq!(seen.len(), 2);
+        assert_eq!(seen[1], (2, residual));
+        assert!((last.normal.normal_load / 1000.0 - 1.0).abs() < 1e-9);
+        assert!((last.tangential.tangential_force.0 / 150.0 - 1.0).abs() < 1e-8);
+        // Invalid params are refused before any work.
+        let bad = CoupledParams {
+            max_passes: 0,
+            ..params
+        };
+        assert!(matches!(
+            solve_coupled(&problem, &bad, None),
+            Err(SolveError {
+                kind: Error::InvalidParameter { .. },
+                output: None
+            })
+        ));
     }
 
     #[test]

@@ -89,7 +89,15 @@ const RATIOS: [f64; 24] = [
 ];
 
 fn solve(c: &Case, ratio: f64, angle: f64) -> crate::error::Result<TangentialSolution> {
-    solve_with(solve_tangential, c, ratio, angle)
+    solve_with(|p, q| solve_tangential(p, q, None, None), c, ratio, angle)
+}
+
+/// The free-direction solver with default attachments, for [`solve_with`].
+fn free(
+    problem: &TangentialProblem<'_>,
+    params: &TangentialParams,
+) -> crate::solvers::SolveResult<TangentialSolution> {
+    crate::solvers::tangential_free::solve_tangential_free(problem, params, None, None)
 }
 
 /// Partial slip at Q = ratio f F_N (f = 0.2) along `angle` by the given solver.
@@ -97,7 +105,7 @@ fn solve_with(
     solver: fn(
         &TangentialProblem<'_>,
         &TangentialParams,
-    ) -> crate::error::Result<TangentialSolution>,
+    ) -> crate::solvers::SolveResult<TangentialSolution>,
     c: &Case,
     ratio: f64,
     angle: f64,
@@ -114,8 +122,9 @@ fn solve_with(
             magnitude: ratio * f * load,
             angle,
         },
+        offset: None,
     };
-    solver(&problem, &TangentialParams::default())
+    Ok(solver(&problem, &TangentialParams::default())?)
 }
 
 /// The checks at one Q: converged to the tolerance, the force Q along its direction (to
@@ -241,8 +250,8 @@ fn load_parallel_solver_covers_the_whole_range() {
 /// carries Q with |q| <= f p, up to Q = (1 - 1e-9) f F_N.
 #[test]
 fn coupled_solver_runs_near_gross_slip() {
-    use crate::solvers::coupled::{solve_coupled_with, TangentialModel};
-    use crate::solvers::normal::{NormalContactParams, NormalLoading};
+    use crate::solvers::coupled::{solve_coupled, CoupledParams, CoupledProblem, TangentialModel};
+    use crate::solvers::normal::NormalLoading;
     let steel = ElasticMaterial::new(2.1e11, 0.3).unwrap();
     let alu = ElasticMaterial::new(7.0e10, 0.33).unwrap();
     let e_star = composite_modulus(&steel, &alu);
@@ -254,22 +263,21 @@ fn coupled_solver_runs_near_gross_slip() {
         for r in [0.5, 0.9, 0.99, 0.9999, 1.0 - 1e-6, 1.0 - 1e-9] {
             let label = format!("{model:?}, Q/fP = {r}");
             let q = r * f * 1000.0;
-            let s = solve_coupled_with(
-                &grid,
-                &gap,
-                &steel,
-                &alu,
-                NormalLoading::Force(1000.0),
-                f,
-                TangentialLoading::Force {
-                    magnitude: q,
-                    angle: 0.0,
+            let s = solve_coupled(
+                &CoupledProblem {
+                    grid: &grid,
+                    initial_gap: &gap,
+                    body1: steel,
+                    body2: alu,
+                    normal_loading: NormalLoading::Force(1000.0),
+                    tangential_loading: TangentialLoading::Force {
+                        magnitude: q,
+                        angle: 0.0,
+                    },
+                    friction: f,
                 },
-                &NormalContactParams::default(),
-                &TangentialParams::default(),
-                1e-8,
-                50,
-                model,
+                &CoupledParams::new(1e-8, 50, model).unwrap(),
+                None,
             )
             .unwrap_or_else(|e| panic!("{label}: {e}"));
             let t = &s.tangential;
@@ -314,7 +322,7 @@ const FREE_RATIOS: [f64; 8] = [0.3, 0.6, 0.8, 0.9, 0.99, 0.999999, 1.0 - 1e-9, T
 /// 1/2 q.C q with the block operator of `c`'s material on both sides, J per m^4 (the energy
 /// the free-direction problem minimises).
 fn energy(c: &Case, qx: &[f64], qy: &[f64]) -> f64 {
-    use crate::solvers::tangential_2d::TangentialBlockOperator;
+    use crate::solvers::tangential_free::TangentialBlockOperator;
     let op = TangentialBlockOperator::new(&c.grid, &c.material, &c.material);
     let mut ws = op.workspace();
     let n = c.grid.len();
@@ -344,7 +352,6 @@ fn energy(c: &Case, qx: &[f64], qy: &[f64]) -> f64 {
 /// Q = (1 - 1e-10) f F_N itself is refused, as for the load-parallel solver.
 #[test]
 fn free_direction_solver_covers_the_whole_range() {
-    use crate::solvers::tangential_2d::solve_tangential_2d;
     let f = 0.2;
     for (name, c) in [
         ("sphere 32", sphere_n(0.3, 32)),
@@ -363,8 +370,7 @@ fn free_direction_solver_covers_the_whole_range() {
             let mut last_stick = usize::MAX;
             for r in FREE_RATIOS {
                 let label = format!("free, {name}, angle {angle}, Q/fP = {r}");
-                let s = solve_with(solve_tangential_2d, &c, r, angle)
-                    .unwrap_or_else(|e| panic!("{label}: {e}"));
+                let s = solve_with(free, &c, r, angle).unwrap_or_else(|e| panic!("{label}: {e}"));
                 let sticking = check(&c, &s, r, angle, 2.0, true, &label);
                 assert!(
                     sticking <= last_stick,
@@ -397,7 +403,7 @@ fn free_direction_solver_covers_the_whole_range() {
                     );
                 }
             }
-            let refused = solve_with(solve_tangential_2d, &c, 1.0 - 1e-10, angle);
+            let refused = solve_with(free, &c, 1.0 - 1e-10, angle);
             assert!(
                 matches!(
                     &refused,
@@ -450,7 +456,6 @@ fn free_direction_solver_matches_a_dense_gauss_seidel_near_gross_slip() {
 /// 1e-6 relative, for Q along x, along y and at 30 deg.
 #[test]
 fn free_direction_solver_is_load_parallel_without_coupling_up_to_gross_slip() {
-    use crate::solvers::tangential_2d::solve_tangential_2d;
     let c = sphere_n(0.0, 32);
     let f = 0.2;
     let p0 = c.pressure.iter().fold(0.0f64, |a, &b| a.max(b));
@@ -461,8 +466,7 @@ fn free_direction_solver_is_load_parallel_without_coupling_up_to_gross_slip() {
     ] {
         for r in FREE_RATIOS {
             let label = format!("nu = 0, angle {angle}, Q/fP = {r}");
-            let two = solve_with(solve_tangential_2d, &c, r, angle)
-                .unwrap_or_else(|e| panic!("{label}: {e}"));
+            let two = solve_with(free, &c, r, angle).unwrap_or_else(|e| panic!("{label}: {e}"));
             let one = solve(&c, r, angle).unwrap_or_else(|e| panic!("{label}: {e}"));
             for k in 0..c.grid.len() {
                 let d = (one.traction_x[k] - two.traction_x[k])

@@ -10,10 +10,10 @@
 //! the grid's elements (Love 1929, [`crate::kernels::love::normal_compliance`]) and either
 //! the force `F_N = sum p dA` or the approach `delta` prescribed.
 //!
-//! Two independent solvers:
-//! - [`solve_normal_cg`]: the constrained conjugate gradient method of Polonsky & Keer
-//!   (1999, Wear 231:206-219) on the FFT operator, O(N log N) per iteration;
-//! - [`solve_normal_active_set`]: the paper's direct "matrix inversion": an active set over
+//! One entry point, [`solve_normal`], with two independent methods ([`NormalMethod`]):
+//! - [`NormalMethod::ConjugateGradient`]: the constrained conjugate gradient method of
+//!   Polonsky & Keer (1999, Wear 231:206-219) on the FFT operator, O(N log N) per iteration;
+//! - [`NormalMethod::ActiveSet`]: the paper's direct "matrix inversion": an active set over
 //!   a dense Cholesky factorization of the contact block (Kalker 1990 style), for small grids.
 //!
 //! Both stop on the same measure (see [`complementarity_residual`]) and report it.
@@ -26,7 +26,7 @@ use crate::error::{Error, Result};
 use crate::grid::SurfaceGrid;
 use crate::kernels::love;
 use crate::operators::{ConvolutionOperator, ConvolutionWorkspace, DenseInfluence};
-use crate::solvers::nan_max;
+use crate::solvers::{nan_max, SolveError, SolveResult};
 
 /// How the normal contact is loaded.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -37,15 +37,36 @@ pub enum NormalLoading {
     Approach(f64),
 }
 
-/// Parameters of the normal contact solvers.
+/// The algorithm of [`solve_normal`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NormalMethod {
+    /// The constrained conjugate gradient method of Polonsky & Keer (1999) on the FFT
+    /// operator (any grid).
+    #[default]
+    ConjugateGradient,
+    /// The paper's "matrix inversion": an active set over the dense influence matrix (grids
+    /// up to [`crate::operators::dense::MAX_DENSE_ELEMENTS`] elements).
+    ActiveSet,
+}
+
+/// Parameters of the normal contact solver: plain data, checked by [`solve_normal`] on entry
+/// (and by the validating [`NormalContactParams::new`] and `with_*` setters).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct NormalContactParams {
     /// Tolerance on the complementarity residual ([`complementarity_residual`]), relative to
-    /// the maximum pressure. The default 1e-10 is about 1e6 machine epsilons: round-off in
-    /// the operator limits what can be reached to ~1e-13 on grids up to 1024^2.
+    /// the maximum pressure, in (0, 1). The default 1e-10 is about 1e6 machine epsilons: the
+    /// residual is a max-norm of values scaled to order 1, and round-off in the FFT operator
+    /// limits what can be reached to ~1e-13 on grids up to 1024^2, so 1e-10 is reached with
+    /// three digits of margin on every grid the crate accepts while being far below any
+    /// discretization error (which is O(dx/a)).
     pub tolerance: f64,
-    /// Iteration limit (CG iterations, or active-set sweeps).
+    /// Iteration limit (CG iterations, or active-set sweeps), >= 1. The default 10 000 is
+    /// ample: the CG converges in O(sqrt(N)) iterations (a few hundred at 1024^2).
     pub max_iterations: usize,
+    /// The algorithm (default: the conjugate gradient).
+    #[serde(default)]
+    pub method: NormalMethod,
 }
 
 impl Default for NormalContactParams {
@@ -53,11 +74,47 @@ impl Default for NormalContactParams {
         Self {
             tolerance: 1e-10,
             max_iterations: 10_000,
+            method: NormalMethod::ConjugateGradient,
         }
     }
 }
 
 impl NormalContactParams {
+    /// Parameters with the given tolerance and iteration limit and the default method.
+    ///
+    /// Errors: the rules of [`NormalContactParams::validate`].
+    pub fn new(tolerance: f64, max_iterations: usize) -> Result<Self> {
+        let params = Self {
+            tolerance,
+            max_iterations,
+            ..Self::default()
+        };
+        params.validate()?;
+        Ok(params)
+    }
+
+    /// These parameters with another tolerance (in (0, 1)).
+    pub fn with_tolerance(self, tolerance: f64) -> Result<Self> {
+        let params = Self { tolerance, ..self };
+        params.validate()?;
+        Ok(params)
+    }
+
+    /// These parameters with another iteration limit (>= 1).
+    pub fn with_max_iterations(self, max_iterations: usize) -> Result<Self> {
+        let params = Self {
+            max_iterations,
+            ..self
+        };
+        params.validate()?;
+        Ok(params)
+    }
+
+    /// These parameters with another method.
+    pub fn with_method(self, method: NormalMethod) -> Self {
+        Self { method, ..self }
+    }
+
     /// Check the parameters (tolerance finite in (0, 1), at least one iteration).
     pub fn validate(&self) -> Result<()> {
         if !(self.tolerance.is_finite() && self.tolerance > 0.0 && self.tolerance < 1.0) {
@@ -244,7 +301,7 @@ fn validate_problem(
 }
 
 /// Refuse a solution whose contact reaches the window's border.
-fn check_window(grid: &SurfaceGrid, pressure: &[f64]) -> Result<()> {
+pub(crate) fn check_window(grid: &SurfaceGrid, pressure: &[f64]) -> Result<()> {
     for iy in 0..grid.ny() {
         for ix in 0..grid.nx() {
             if grid.is_border(ix, iy) && pressure[grid.index(ix, iy)] > 0.0 {
@@ -261,24 +318,19 @@ fn check_window(grid: &SurfaceGrid, pressure: &[f64]) -> Result<()> {
     Ok(())
 }
 
-fn finish(
+/// The solution record of a pressure / gap pair (also for a partial solution).
+fn assemble(
     grid: &SurfaceGrid,
     pressure: Vec<f64>,
     gap: Vec<f64>,
     approach: f64,
     iterations: usize,
     residual: f64,
-) -> Result<NormalContactSolution> {
-    check_window(grid, &pressure)?;
+) -> NormalContactSolution {
     let area = grid.element_area();
     let contact_elements = pressure.iter().filter(|&&p| p > 0.0).count();
-    if contact_elements == 0 {
-        return Err(Error::NoContact {
-            detail: "the solution has no element in contact".into(),
-        });
-    }
     let normal_load = area * pressure.iter().sum::<f64>();
-    Ok(NormalContactSolution {
+    NormalContactSolution {
         pressure,
         gap,
         approach,
@@ -287,42 +339,131 @@ fn finish(
         contact_elements,
         iterations,
         residual,
-    })
+    }
 }
 
-/// Solve by the constrained conjugate gradient method of Polonsky & Keer (1999) on the FFT
-/// operator. See [`solve_normal_cg_with`] for the fast path with a prebuilt operator and a
-/// progress observer.
-pub fn solve_normal_cg(
-    problem: &NormalContactProblem<'_>,
-    params: &NormalContactParams,
-) -> Result<NormalContactSolution> {
-    solve_normal_cg_observed(problem, params, &mut |_, _| {})
+/// The converged solution, refused (with the solution as the error's output) where its
+/// contact reaches the window's border, and refused where nothing is in contact.
+fn finish(
+    grid: &SurfaceGrid,
+    pressure: Vec<f64>,
+    gap: Vec<f64>,
+    approach: f64,
+    iterations: usize,
+    residual: f64,
+) -> SolveResult<NormalContactSolution> {
+    let window = check_window(grid, &pressure);
+    let solution = assemble(grid, pressure, gap, approach, iterations, residual);
+    if let Err(kind) = window {
+        return Err(SolveError::with_output(kind, solution));
+    }
+    if solution.contact_elements == 0 {
+        return Err(Error::NoContact {
+            detail: "the solution has no element in contact".into(),
+        }
+        .into());
+    }
+    Ok(solution)
 }
 
-/// [`solve_normal_cg`] with a progress observer, called as `observer(iteration, residual)`
-/// once per iteration (e.g. to drive a progress bar).
-pub fn solve_normal_cg_observed(
-    problem: &NormalContactProblem<'_>,
-    params: &NormalContactParams,
-    observer: &mut dyn FnMut(usize, f64),
-) -> Result<NormalContactSolution> {
-    validate_problem(problem, params)?;
-    let operator = normal_compliance_operator(problem.grid, problem.composite_modulus);
-    let mut workspace = operator.workspace();
-    solve_normal_cg_with(
-        &operator,
-        &mut workspace,
-        problem.initial_gap,
-        problem.loading,
-        params,
-        observer,
+/// A stop at the iteration limit: [`Error::NotConverged`] with the last iterate, whose
+/// `residual` is the one reported.
+fn not_converged(
+    solver: &'static str,
+    tolerance: f64,
+    partial: NormalContactSolution,
+) -> SolveError<NormalContactSolution> {
+    SolveError::with_output(
+        Error::NotConverged {
+            solver,
+            iterations: partial.iterations,
+            residual: partial.residual,
+            tolerance,
+        },
+        partial,
     )
 }
 
-/// The Polonsky-Keer constrained conjugate gradient method with a caller-built compliance
-/// operator ([`normal_compliance_operator`]) and workspace; `observer(iteration, residual)`
-/// is called once per iteration (progress reporting).
+/// Solve the normal contact problem (module docs) with the method of `params`.
+///
+/// `operator`: the FFT compliance operator of the problem,
+/// [`normal_compliance_operator`]`(problem.grid, problem.composite_modulus)`, where the
+/// caller reuses one over many solves (e.g. a load sweep); `None` builds it. The dense
+/// active set builds its own matrix and ignores it. `observer(iteration, residual)` is
+/// called once per CG iteration or active-set sweep (progress reporting).
+///
+/// Errors: [`Error::InvalidParameter`] for a problem, params or operator breaking a rule;
+/// [`Error::NoContact`]; [`Error::NotConverged`] at the iteration limit, with the last
+/// iterate as the output (its `residual` is the one reported);
+/// [`Error::ContactReachesWindow`] with the converged solution as the output;
+/// [`Error::Numerical`] where the iteration breaks down.
+pub fn solve_normal(
+    problem: &NormalContactProblem<'_>,
+    params: &NormalContactParams,
+    operator: Option<&ConvolutionOperator>,
+    observer: Option<&mut dyn FnMut(usize, f64)>,
+) -> SolveResult<NormalContactSolution> {
+    validate_problem(problem, params)?;
+    let mut silent = |_: usize, _: f64| {};
+    let observer = observer.unwrap_or(&mut silent);
+    match params.method {
+        NormalMethod::ActiveSet => active_set(problem, params, observer),
+        NormalMethod::ConjugateGradient => {
+            let built;
+            let operator = match operator {
+                Some(op) => {
+                    check_operator(op, problem)?;
+                    op
+                }
+                None => {
+                    built = normal_compliance_operator(problem.grid, problem.composite_modulus);
+                    &built
+                }
+            };
+            let mut workspace = operator.workspace();
+            conjugate_gradient(
+                operator,
+                &mut workspace,
+                problem.initial_gap,
+                problem.loading,
+                params,
+                observer,
+            )
+        }
+    }
+}
+
+/// A caller-built operator must be the problem's: same grid, and the diagonal of
+/// [`normal_compliance_kernel`] for the problem's E* (computed the same way, so equal
+/// exactly).
+fn check_operator(
+    operator: &ConvolutionOperator,
+    problem: &NormalContactProblem<'_>,
+) -> Result<()> {
+    if operator.grid() != problem.grid {
+        return Err(Error::invalid(
+            "operator",
+            format!("{} x {} grid", operator.grid().nx(), operator.grid().ny()),
+            "must be built on the problem's grid (normal_compliance_operator)",
+        ));
+    }
+    let diagonal = normal_compliance_kernel(problem.grid, problem.composite_modulus)(0, 0);
+    if operator.diagonal() != diagonal {
+        return Err(Error::invalid(
+            "operator",
+            format!("diagonal {:e} m/Pa", operator.diagonal()),
+            format!(
+                "must be the normal compliance of the problem's composite modulus (diagonal \
+                 {diagonal:e} m/Pa; normal_compliance_operator)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The Polonsky-Keer constrained conjugate gradient method on a compliance operator
+/// ([`normal_compliance_operator`]) with its workspace, for a validated problem;
+/// `observer(iteration, residual)` is called once per iteration (progress reporting).
 ///
 /// Algorithm (Polonsky & Keer 1999, sec. 3): conjugate gradients on the contact set
 /// `I_c = {p > 0}`; under force control the mean gap over `I_c` is subtracted (it is the
@@ -330,24 +471,15 @@ pub fn solve_normal_cg_observed(
 /// `I_c` with negative gap re-enter the contact set, and the conjugate direction is reset
 /// when they do. Under approach control the gap includes the prescribed approach and no
 /// rescaling is done. Convergence: [`complementarity_residual`] <= `params.tolerance`.
-pub fn solve_normal_cg_with(
+fn conjugate_gradient(
     operator: &ConvolutionOperator,
     workspace: &mut ConvolutionWorkspace,
     initial_gap: &[f64],
     loading: NormalLoading,
     params: &NormalContactParams,
     observer: &mut dyn FnMut(usize, f64),
-) -> Result<NormalContactSolution> {
+) -> SolveResult<NormalContactSolution> {
     let grid = *operator.grid();
-    validate_problem(
-        &NormalContactProblem {
-            grid: &grid,
-            initial_gap,
-            composite_modulus: 1.0,
-            loading,
-        },
-        params,
-    )?;
     let n = grid.len();
     let area = grid.element_area();
     let diagonal = operator.diagonal();
@@ -369,6 +501,7 @@ pub fn solve_normal_cg_with(
     let mut norm_old = 1.0;
     let mut conjugate = false;
     let mut residual;
+    let mut approach;
     // `displacement = K p` is recomputed by FFT when `fresh` is false; after a step that
     // changes no element's contact status it is updated from `K t` instead (the update is
     // linear then), halving the FFTs per iteration. A full recomputation every
@@ -398,7 +531,7 @@ pub fn solve_normal_cg_with(
                 gap_sum += gap[i];
             }
         }
-        let approach = match loading {
+        approach = match loading {
             NormalLoading::Force(_) => gap_sum / n_contact.max(1) as f64,
             NormalLoading::Approach(delta) => delta,
         };
@@ -422,7 +555,8 @@ pub fn solve_normal_cg_with(
         if n_contact == 0 {
             return Err(Error::NoContact {
                 detail: "no element carries pressure".into(),
-            });
+            }
+            .into());
         }
         iteration += 1;
 
@@ -467,7 +601,8 @@ pub fn solve_normal_cg_with(
             return Err(Error::Numerical {
                 context: "Polonsky-Keer CG",
                 detail: format!("non-positive curvature {den:e} along the search direction"),
-            });
+            }
+            .into());
         }
         let step = num / den;
 
@@ -504,7 +639,8 @@ pub fn solve_normal_cg_with(
                 return Err(Error::Numerical {
                     context: "Polonsky-Keer CG",
                     detail: "the pressure vanished during the iteration".into(),
-                });
+                }
+                .into());
             }
             scale = force / total;
             for p in pressure.iter_mut() {
@@ -528,26 +664,26 @@ pub fn solve_normal_cg_with(
             since_refresh += 1;
         }
     }
-    Err(Error::NotConverged {
-        solver: "Polonsky-Keer conjugate gradient",
-        iterations: params.max_iterations,
-        residual,
-        tolerance: params.tolerance,
-    })
+    Err(not_converged(
+        "Polonsky-Keer conjugate gradient",
+        params.tolerance,
+        assemble(&grid, pressure, gap, approach, iteration, residual),
+    ))
 }
 
-/// Solve by the paper's direct "matrix inversion" (section 3, its ref. 8): an active set over
+/// The paper's direct "matrix inversion" (section 3, its ref. 8): an active set over
 /// the dense influence matrix. Each sweep factorizes the contact block `K_cc` (Cholesky;
 /// `K` is symmetric positive definite) and solves `K_cc p_c = delta - h_c` (approach
 /// control) or the same with `delta` unknown and `sum p dA = F_N` (force control, by the
 /// Schur complement of the bordered system); elements with negative pressure leave the set,
 /// elements outside it with negative gap enter. For grids up to
-/// [`crate::operators::dense::MAX_DENSE_ELEMENTS`] elements.
-pub fn solve_normal_active_set(
+/// [`crate::operators::dense::MAX_DENSE_ELEMENTS`] elements. For a validated problem;
+/// `observer(sweep, residual)` after each sweep that keeps every pressure >= 0.
+fn active_set(
     problem: &NormalContactProblem<'_>,
     params: &NormalContactParams,
-) -> Result<NormalContactSolution> {
-    validate_problem(problem, params)?;
+    observer: &mut dyn FnMut(usize, f64),
+) -> SolveResult<NormalContactSolution> {
     let grid = *problem.grid;
     let dense = DenseInfluence::new(
         &grid,
@@ -565,14 +701,18 @@ pub fn solve_normal_active_set(
         NormalLoading::Force(_) => vec![true; n],
     };
     let mut pressure = vec![0.0; n];
-    let mut residual = f64::INFINITY;
+    let mut approach = match problem.loading {
+        NormalLoading::Approach(delta) => delta,
+        NormalLoading::Force(_) => 0.0,
+    };
     for sweep in 1..=params.max_iterations {
         let index: Vec<usize> = (0..n).filter(|&i| active[i]).collect();
         let nc = index.len();
         if nc == 0 {
             return Err(Error::NoContact {
                 detail: "the active set emptied".into(),
-            });
+            }
+            .into());
         }
         let block = Mat::from_fn(nc, nc, |a, b| matrix[(index[a], index[b])]);
         let cholesky = block.llt(Side::Lower).map_err(|e| Error::Numerical {
@@ -582,7 +722,7 @@ pub fn solve_normal_active_set(
         let mut rhs = Mat::from_fn(nc, 2, |a, col| if col == 0 { -h[index[a]] } else { 1.0 });
         cholesky.solve_in_place(&mut rhs);
         // p_c = x0 + delta x1 with K x0 = -h, K x1 = 1.
-        let approach = match problem.loading {
+        approach = match problem.loading {
             NormalLoading::Approach(delta) => delta,
             NormalLoading::Force(force) => {
                 let s0: f64 = (0..nc).map(|a| rhs[(a, 0)]).sum();
@@ -611,7 +751,8 @@ pub fn solve_normal_active_set(
         let displacement = dense.apply(&pressure);
         let gap: Vec<f64> = (0..n).map(|i| displacement[i] + h[i] - approach).collect();
         let displacement_scale = displacement.iter().fold(0.0f64, |m, u| nan_max(m, u.abs()));
-        residual = complementarity_residual(&pressure, &gap, displacement_scale);
+        let residual = complementarity_residual(&pressure, &gap, displacement_scale);
+        observer(sweep, residual);
         let mut entered = false;
         for i in 0..n {
             if !active[i] && gap[i] < 0.0 {
@@ -621,20 +762,33 @@ pub fn solve_normal_active_set(
         }
         if !entered {
             if residual > params.tolerance {
-                return Err(Error::NotConverged {
-                    solver: "active-set (matrix inversion)",
-                    iterations: sweep,
-                    residual,
-                    tolerance: params.tolerance,
-                });
+                return Err(not_converged(
+                    ACTIVE_SET,
+                    params.tolerance,
+                    assemble(&grid, pressure, gap, approach, sweep, residual),
+                ));
             }
             return finish(&grid, pressure, gap, approach, sweep, residual);
         }
     }
-    Err(Error::NotConverged {
-        solver: "active-set (matrix inversion)",
-        iterations: params.max_iterations,
-        residual,
-        tolerance: params.tolerance,
-    })
+    // The sweep limit: the last pressures (negative ones dropped) with their gap.
+    let displacement = dense.apply(&pressure);
+    let gap: Vec<f64> = (0..n).map(|i| displacement[i] + h[i] - approach).collect();
+    let displacement_scale = displacement.iter().fold(0.0f64, |m, u| nan_max(m, u.abs()));
+    let residual = complementarity_residual(&pressure, &gap, displacement_scale);
+    Err(not_converged(
+        ACTIVE_SET,
+        params.tolerance,
+        assemble(
+            &grid,
+            pressure,
+            gap,
+            approach,
+            params.max_iterations,
+            residual,
+        ),
+    ))
 }
+
+/// The active set's name in [`Error::NotConverged`].
+const ACTIVE_SET: &str = "active-set (matrix inversion)";

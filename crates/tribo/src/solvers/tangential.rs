@@ -35,8 +35,8 @@
 //!
 //! Scope: for bodies of equal elastic constants (Dundurs beta = 0) the tangential traction
 //! does not act back on the pressure; for dissimilar materials the problems couple, and
-//! [`crate::solvers::coupled`] alternates this solver (through
-//! [`solve_tangential_with_offset`]) with the normal one.
+//! [`crate::solvers::coupled`] alternates this solver (with the pressure's tangential
+//! displacement as [`TangentialProblem::offset`]) with the normal one.
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -46,7 +46,7 @@ use crate::grid::SurfaceGrid;
 use crate::kernels::love;
 use crate::material::ElasticMaterial;
 use crate::operators::{ConvolutionOperator, ConvolutionWorkspace};
-use crate::solvers::nan_max;
+use crate::solvers::{nan_max, SolveError, SolveResult};
 
 /// How the tangential contact is loaded.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -74,12 +74,18 @@ pub enum TangentialLoading {
 /// the problem is refused (use [`TangentialLoading::Sliding`]).
 pub const PARTIAL_SLIP_LIMIT: f64 = 1.0 - 1e-10;
 
-/// Parameters of the tangential solver.
+/// Parameters of the tangential solvers (load-parallel and free-direction): plain data,
+/// checked by the solvers on entry (and by the validating [`TangentialParams::new`] and
+/// `with_*` setters).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct TangentialParams {
-    /// Tolerance on the residual (see [`TangentialSolution::residual`]).
+    /// Tolerance on the residual (see [`TangentialSolution::residual`]), in (0, 1). The
+    /// default 1e-10, about 1e6 machine epsilons, is the normal solver's: the residual is a
+    /// max-norm of displacements scaled by the largest one (order 1), whose round-off floor
+    /// in the FFT operator is ~1e-13, and it is also the margin [`PARTIAL_SLIP_LIMIT`] keeps
+    /// below f F_N, where the stick zone's force would fall below the force tolerance.
     pub tolerance: f64,
-    /// Iteration limit.
+    /// Iteration limit, >= 1 (default 10 000; the tested problems need 10-400).
     pub max_iterations: usize,
 }
 
@@ -92,8 +98,51 @@ impl Default for TangentialParams {
     }
 }
 
+impl TangentialParams {
+    /// Parameters with the given tolerance and iteration limit.
+    ///
+    /// Errors: the rules of [`TangentialParams::validate`].
+    pub fn new(tolerance: f64, max_iterations: usize) -> Result<Self> {
+        let params = Self {
+            tolerance,
+            max_iterations,
+        };
+        params.validate()?;
+        Ok(params)
+    }
+
+    /// These parameters with another tolerance (in (0, 1)).
+    pub fn with_tolerance(self, tolerance: f64) -> Result<Self> {
+        Self::new(tolerance, self.max_iterations)
+    }
+
+    /// These parameters with another iteration limit (>= 1).
+    pub fn with_max_iterations(self, max_iterations: usize) -> Result<Self> {
+        Self::new(self.tolerance, max_iterations)
+    }
+
+    /// Check the parameters (tolerance finite in (0, 1), at least one iteration).
+    pub fn validate(&self) -> Result<()> {
+        if !(self.tolerance.is_finite() && self.tolerance > 0.0 && self.tolerance < 1.0) {
+            return Err(Error::invalid(
+                "solver.tolerance",
+                self.tolerance,
+                "must be in (0, 1)",
+            ));
+        }
+        if self.max_iterations == 0 {
+            return Err(Error::invalid(
+                "solver.max_iterations",
+                0,
+                "must be at least 1",
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// The tangential problem: a grid, the contact pressure on it, the friction coefficient,
-/// the two materials and the loading.
+/// the two materials, the loading and an optional prescribed tangential displacement.
 #[derive(Debug, Clone, Copy)]
 pub struct TangentialProblem<'a> {
     /// The surface window.
@@ -108,6 +157,12 @@ pub struct TangentialProblem<'a> {
     pub body2: ElasticMaterial,
     /// Force (partial slip) or full sliding.
     pub loading: TangentialLoading,
+    /// A prescribed relative tangential displacement `[o_x, o_y]` (m, grid layout) added to
+    /// `C q`: the stick condition becomes `C q + offset = W`. The normal-tangential coupling
+    /// of dissimilar materials ([`crate::solvers::coupled`]) puts the pressure's tangential
+    /// displacement here. The load-parallel solver uses its part along the load,
+    /// `e . offset`; full sliding ignores it (q = f p along the load is exact). `None`: zero.
+    pub offset: Option<[&'a [f64]; 2]>,
 }
 
 /// The solution of a tangential contact problem, with its convergence record.
@@ -125,7 +180,7 @@ pub struct TangentialSolution {
     /// Rigid shift W of body 2 relative to body 1 along the load direction, m (partial slip:
     /// the tangential displacement of the stick zone, finite up to gross slip, where it tends
     /// to the displacement of the last sticking element; 0 for full sliding, where no stick
-    /// zone defines it). For the free-direction solver ([`crate::solvers::tangential_2d`])
+    /// zone defines it). For the free-direction solver ([`crate::solvers::tangential_free`])
     /// near gross slip, where no element sticks, the Lagrange multiplier that the slip
     /// directions fix, which grows without bound as Q -> f F_N.
     pub shift: f64,
@@ -163,6 +218,25 @@ pub fn direction(angle: f64) -> (f64, f64) {
     }
 }
 
+/// The even and odd parts of `e.(C_1 + C_2) e` at the offset (x, y) >= 0 (m), for e =
+/// (cos, sin): `cos^2 u_x(q_x) + sin^2 u_y(q_y)` and `sin cos (u_y(q_x) + u_x(q_y))`.
+fn compliance_parts(
+    bodies: &[ElasticMaterial; 2],
+    (x, y): (f64, f64),
+    (hx, hy): (f64, f64),
+    (sin, cos): (f64, f64),
+) -> (f64, f64) {
+    bodies.iter().fold((0.0, 0.0), |(even, odd), m| {
+        let (g, nu) = (m.shear_modulus(), m.poisson_ratio());
+        let ux = love::shear_x_displacement(x, y, hx, hy, g, nu);
+        let uy = love::shear_y_displacement(x, y, hx, hy, g, nu);
+        (
+            even + cos * cos * ux[0] + sin * sin * uy[1],
+            odd + sin * cos * (ux[1] + uy[0]),
+        )
+    })
+}
+
 /// The combined tangential compliance along a direction e of two bodies on a grid,
 /// `C_ee = e.(C_1 + C_2) e` per unit uniform shear along e on an element, m/Pa.
 pub fn tangential_compliance_operator(
@@ -188,15 +262,7 @@ pub fn tangential_compliance_operator(
             let y = dj as f64 * dy;
             for (di, value) in row.iter_mut().enumerate() {
                 let x = di as f64 * dx;
-                *value = bodies.iter().fold((0.0, 0.0), |(even, odd), m| {
-                    let (g, nu) = (m.shear_modulus(), m.poisson_ratio());
-                    let ux = love::shear_x_displacement(x, y, hx, hy, g, nu);
-                    let uy = love::shear_y_displacement(x, y, hx, hy, g, nu);
-                    (
-                        even + cos * cos * ux[0] + sin * sin * uy[1],
-                        odd + sin * cos * (ux[1] + uy[0]),
-                    )
-                });
+                *value = compliance_parts(&bodies, (x, y), (hx, hy), (sin, cos));
             }
         });
     ConvolutionOperator::new(grid, move |di: isize, dj: isize| {
@@ -207,28 +273,22 @@ pub fn tangential_compliance_operator(
 }
 
 /// The input rules of the tangential problem (lengths, finite values, friction, the force
-/// below f F_N), shared with [`crate::solvers::tangential_2d`].
+/// below f F_N, the offset), shared with [`crate::solvers::tangential_free`].
 pub(crate) fn validate_problem(
     problem: &TangentialProblem<'_>,
     params: &TangentialParams,
 ) -> Result<()> {
-    validate(problem, params)
-}
-
-fn validate(problem: &TangentialProblem<'_>, params: &TangentialParams) -> Result<()> {
-    if !(params.tolerance.is_finite() && params.tolerance > 0.0 && params.tolerance < 1.0) {
-        return Err(Error::invalid(
-            "solver.tolerance",
-            params.tolerance,
-            "must be in (0, 1)",
-        ));
-    }
-    if params.max_iterations == 0 {
-        return Err(Error::invalid(
-            "solver.max_iterations",
-            0,
-            "must be at least 1",
-        ));
+    params.validate()?;
+    if let Some(o) = problem.offset {
+        for (c, part) in o.iter().enumerate() {
+            if part.len() != problem.grid.len() || part.iter().any(|v| !v.is_finite()) {
+                return Err(Error::invalid(
+                    format!("offset[{c}]"),
+                    format!("{} values", part.len()),
+                    "must hold one finite value per element",
+                ));
+            }
+        }
     }
     if problem.pressure.len() != problem.grid.len() {
         return Err(Error::invalid(
@@ -305,54 +365,117 @@ fn validate(problem: &TangentialProblem<'_>, params: &TangentialParams) -> Resul
     Ok(())
 }
 
-/// Solve the tangential problem: full sliding in closed form, partial slip by the
-/// constrained conjugate gradient method of the module docs.
+/// Solve the tangential problem with the traction parallel to the load: full sliding in
+/// closed form, partial slip by the constrained conjugate gradient method of the module docs.
+///
+/// `operator`: the compliance along the load direction,
+/// [`tangential_compliance_operator`]`(grid, body1, body2, angle)`, where the caller reuses
+/// one over many solves; `None` builds it (full sliding needs none).
+/// `observer(iteration, residual)` is called once per iteration (progress reporting).
+///
+/// Errors: [`Error::InvalidParameter`] for a problem, params or operator breaking a rule
+/// (the field named); [`Error::NoContact`] where the pressure carries no load;
+/// [`Error::NotConverged`] at the iteration limit, with the last iterate as the output (its
+/// `residual` is the one reported); [`Error::Numerical`] where the iteration breaks down.
 pub fn solve_tangential(
     problem: &TangentialProblem<'_>,
     params: &TangentialParams,
-) -> Result<TangentialSolution> {
-    validate(problem, params)?;
+    operator: Option<&ConvolutionOperator>,
+    observer: Option<&mut dyn FnMut(usize, f64)>,
+) -> SolveResult<TangentialSolution> {
+    validate_problem(problem, params)?;
     let angle = match problem.loading {
-        TangentialLoading::Force { angle, .. } | TangentialLoading::Sliding { angle } => angle,
+        TangentialLoading::Sliding { angle } => return Ok(sliding(problem, angle)),
+        TangentialLoading::Force { angle, .. } => angle,
     };
-    let operator =
-        tangential_compliance_operator(problem.grid, &problem.body1, &problem.body2, angle);
-    let mut workspace = operator.workspace();
-    solve_tangential_with(&operator, &mut workspace, problem, params)
-}
-
-/// [`solve_tangential`] with a caller-built operator ([`tangential_compliance_operator`] for
-/// the load direction) and workspace.
-pub fn solve_tangential_with(
-    operator: &ConvolutionOperator,
-    workspace: &mut ConvolutionWorkspace,
-    problem: &TangentialProblem<'_>,
-    params: &TangentialParams,
-) -> Result<TangentialSolution> {
-    solve_tangential_with_offset(operator, workspace, problem, params, None)
-}
-
-/// [`solve_tangential_with`] with a prescribed relative tangential displacement `offset`
-/// along the load direction (m, grid layout) added to `C_ee tau`: the stick condition becomes
-/// `C_ee tau + offset = W`. Used for the normal-tangential coupling of dissimilar materials
-/// ([`crate::solvers::coupled`]), where the pressure moves the surfaces tangentially.
-pub fn solve_tangential_with_offset(
-    operator: &ConvolutionOperator,
-    workspace: &mut ConvolutionWorkspace,
-    problem: &TangentialProblem<'_>,
-    params: &TangentialParams,
-    offset: Option<&[f64]>,
-) -> Result<TangentialSolution> {
-    validate(problem, params)?;
-    if let Some(o) = offset {
-        if o.len() != problem.grid.len() || o.iter().any(|v| !v.is_finite()) {
-            return Err(Error::invalid(
-                "offset",
-                format!("{} values", o.len()),
-                "must hold one finite value per element",
-            ));
+    let built;
+    let operator = match operator {
+        Some(op) => {
+            check_operator(op, problem, angle)?;
+            op
         }
+        None => {
+            built =
+                tangential_compliance_operator(problem.grid, &problem.body1, &problem.body2, angle);
+            &built
+        }
+    };
+    let mut workspace = operator.workspace();
+    let mut silent = |_: usize, _: f64| {};
+    partial_slip(
+        operator,
+        &mut workspace,
+        problem,
+        params,
+        observer.unwrap_or(&mut silent),
+    )
+}
+
+/// A caller-built operator must be the problem's: same grid, and the diagonal of
+/// [`tangential_compliance_operator`] for the problem's bodies and load direction (computed
+/// the same way, so equal exactly).
+fn check_operator(
+    operator: &ConvolutionOperator,
+    problem: &TangentialProblem<'_>,
+    angle: f64,
+) -> Result<()> {
+    let grid = problem.grid;
+    if operator.grid() != grid {
+        return Err(Error::invalid(
+            "operator",
+            format!("{} x {} grid", operator.grid().nx(), operator.grid().ny()),
+            "must be built on the problem's grid (tangential_compliance_operator)",
+        ));
     }
+    let (even, odd) = compliance_parts(
+        &[problem.body1, problem.body2],
+        (0.0, 0.0),
+        (0.5 * grid.dx(), 0.5 * grid.dy()),
+        direction(angle),
+    );
+    let diagonal = even + odd;
+    if operator.diagonal() != diagonal {
+        return Err(Error::invalid(
+            "operator",
+            format!("diagonal {:e} m/Pa", operator.diagonal()),
+            format!(
+                "must be the tangential compliance of the problem's bodies along its load \
+                 direction (diagonal {diagonal:e} m/Pa; tangential_compliance_operator)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Full sliding: q = f p along the direction at `angle`.
+fn sliding(problem: &TangentialProblem<'_>, angle: f64) -> TangentialSolution {
+    let n = problem.grid.len();
+    let bound: Vec<f64> = problem
+        .pressure
+        .iter()
+        .map(|p| problem.friction * p)
+        .collect();
+    summarize(
+        problem.grid,
+        &bound,
+        &bound,
+        angle,
+        vec![0.0; n],
+        vec![false; n],
+        0.0,
+        0,
+        0.0,
+    )
+}
+
+/// Partial slip (module docs) for a validated problem under force control.
+fn partial_slip(
+    operator: &ConvolutionOperator,
+    workspace: &mut ConvolutionWorkspace,
+    problem: &TangentialProblem<'_>,
+    params: &TangentialParams,
+    observer: &mut dyn FnMut(usize, f64),
+) -> SolveResult<TangentialSolution> {
     let grid = problem.grid;
     let n = grid.len();
     let area = grid.element_area();
@@ -363,23 +486,14 @@ pub fn solve_tangential_with_offset(
         .collect();
     let total_bound: f64 = bound.iter().sum();
     let (magnitude, angle) = match problem.loading {
-        TangentialLoading::Sliding { angle } => {
-            let tau = bound.clone();
-            let slip = vec![0.0; n];
-            return Ok(summarize(
-                grid,
-                &bound,
-                &tau,
-                angle,
-                slip,
-                vec![false; n],
-                0.0,
-                0,
-                0.0,
-            ));
-        }
+        TangentialLoading::Sliding { angle } => return Ok(sliding(problem, angle)),
         TangentialLoading::Force { magnitude, angle } => (magnitude, angle),
     };
+    // The prescribed displacement along the load direction e, e . offset.
+    let (sin, cos) = direction(angle);
+    let offset: Option<Vec<f64>> = problem
+        .offset
+        .map(|[ox, oy]| ox.iter().zip(oy).map(|(x, y)| cos * x + sin * y).collect());
     // Target sum of tau over the elements (the force divided by the element area).
     let target = magnitude / area;
 
@@ -397,7 +511,7 @@ pub fn solve_tangential_with_offset(
 
     for iteration in 0..=params.max_iterations {
         operator.apply_into(&tau, &mut displacement, workspace);
-        if let Some(o) = offset {
+        if let Some(o) = &offset {
             for (u, d) in displacement.iter_mut().zip(o) {
                 *u += d;
             }
@@ -445,7 +559,8 @@ pub fn solve_tangential_with_offset(
         }
         let force_error = (tau.iter().sum::<f64>() - target).abs() / target;
         residual = nan_max(worst / u_scale, force_error);
-        if residual <= params.tolerance {
+        observer(iteration, residual);
+        if residual <= params.tolerance || iteration == params.max_iterations {
             let slip: Vec<f64> = (0..n)
                 .map(|i| {
                     if bound[i] > 0.0 && !free[i] {
@@ -455,7 +570,7 @@ pub fn solve_tangential_with_offset(
                     }
                 })
                 .collect();
-            return Ok(summarize(
+            let solution = summarize(
                 grid,
                 &bound,
                 &tau,
@@ -465,10 +580,19 @@ pub fn solve_tangential_with_offset(
                 shift,
                 iteration,
                 residual,
+            );
+            if residual <= params.tolerance {
+                return Ok(solution);
+            }
+            return Err(SolveError::with_output(
+                Error::NotConverged {
+                    solver: "tangential constrained conjugate gradient",
+                    iterations: iteration,
+                    residual,
+                    tolerance: params.tolerance,
+                },
+                solution,
             ));
-        }
-        if iteration == params.max_iterations {
-            break;
         }
 
         // Conjugate direction on the stick zone, mean removed (keeps the force).
@@ -505,7 +629,8 @@ pub fn solve_tangential_with_offset(
             return Err(Error::Numerical {
                 context: "tangential CG",
                 detail: "NaN curvature along the search direction".into(),
-            });
+            }
+            .into());
         }
         // With one stick element (near gross slip) or the stick residual already zero the
         // direction vanishes (den = 0: C is positive definite, so den > 0 for any nonzero
@@ -547,12 +672,14 @@ pub fn solve_tangential_with_offset(
         }
         conjugate = !changed && cg_step;
     }
+    // The loop returns at `iteration == params.max_iterations` at the latest.
     Err(Error::NotConverged {
         solver: "tangential constrained conjugate gradient",
         iterations: params.max_iterations,
         residual,
         tolerance: params.tolerance,
-    })
+    }
+    .into())
 }
 
 /// Restore `sum tau = target` after a projection, keeping `|tau_i| <= bound_i`: a common
@@ -739,8 +866,9 @@ mod tests {
             loading: TangentialLoading::Sliding {
                 angle: std::f64::consts::FRAC_PI_2,
             },
+            offset: None,
         };
-        let s = solve_tangential(&problem, &TangentialParams::default()).unwrap();
+        let s = solve_tangential(&problem, &TangentialParams::default(), None, None).unwrap();
         for (k, p) in pressure.iter().enumerate() {
             assert!((s.traction_y[k] - 0.25 * p).abs() <= 1e-9 * p.max(1.0));
             assert!(s.traction_x[k].abs() <= 1e-6 * p.max(1.0));
@@ -791,9 +919,13 @@ mod tests {
                 body1: steel,
                 body2: steel,
                 loading,
+                offset: None,
             };
-            match solve_tangential(&problem, &TangentialParams::default()) {
-                Err(Error::InvalidParameter { field: f, .. }) => assert_eq!(f, field),
+            match solve_tangential(&problem, &TangentialParams::default(), None, None) {
+                Err(SolveError {
+                    kind: Error::InvalidParameter { field: f, .. },
+                    output: None,
+                }) => assert_eq!(f, field),
                 other => panic!("expected InvalidParameter({field}), got {other:?}"),
             }
         }
@@ -813,18 +945,39 @@ mod tests {
                 magnitude: 0.5 * 0.3 * normal,
                 angle: 0.3,
             },
+            offset: None,
         };
         let params = TangentialParams {
             tolerance: 1e-12,
             max_iterations: 2,
         };
-        assert!(matches!(
-            solve_tangential(&problem, &params),
-            Err(Error::NotConverged { iterations: 2, .. })
-        ));
-        // And without the limit it converges, with the force along the direction.
-        let s = solve_tangential(&problem, &TangentialParams::default()).unwrap();
+        // Stopped by the limit, the error carries the last iterate: its residual is the one
+        // reported, above the tolerance, and it already carries the force (restored exactly
+        // after every step, so to the sums' round-off, 1e-9 Q). The observer saw iterations
+        // 0, 1 and 2 with that residual last.
+        let mut seen = Vec::new();
+        let err = solve_tangential(&problem, &params, None, Some(&mut |k, r| seen.push((k, r))))
+            .unwrap_err();
+        let Error::NotConverged {
+            iterations,
+            residual,
+            ..
+        } = err.kind
+        else {
+            panic!("expected NotConverged, got {:?}", err.kind);
+        };
+        assert_eq!(iterations, 2);
+        let partial = err.into_output().expect("the partial solution");
+        assert_eq!(partial.iterations, 2);
+        assert_eq!(partial.residual, residual);
+        assert!(residual > 1e-12 && residual.is_finite(), "{residual}");
+        assert_eq!(seen.iter().map(|s| s.0).collect::<Vec<_>>(), [0, 1, 2]);
+        assert_eq!(seen[2].1, residual);
         let q = 0.5 * 0.3 * normal;
+        let (qx, qy) = partial.tangential_force;
+        assert!((qx.hypot(qy) - q).abs() < 1e-9 * q, "{qx:e} {qy:e}");
+        // And without the limit it converges, with the force along the direction.
+        let s = solve_tangential(&problem, &TangentialParams::default(), None, None).unwrap();
         assert!((s.tangential_force.0 - q * 0.3f64.cos()).abs() < 1e-9 * q);
         assert!((s.tangential_force.1 - q * 0.3f64.sin()).abs() < 1e-9 * q);
         assert!(s.stick_area > 0.0 && s.slip_area > 0.0);

@@ -442,11 +442,11 @@ impl BemMesh {
                             }
                         }
                     }
-                    nodes.extend(
-                        fresh
-                            .into_iter()
-                            .map(|n| n.expect("every node is on an element")),
-                    );
+                    let fresh: Option<Vec<Node>> = fresh.into_iter().collect();
+                    nodes.extend(fresh.ok_or_else(|| Error::Numerical {
+                        context: "BEM mesh",
+                        detail: format!("a node of segment {s} is on none of its elements"),
+                    })?);
                     let matching: Vec<usize> = (0..*n_nodes).map(local_of).collect();
                     if reversed {
                         segments[s].partner = Some((r, matching));

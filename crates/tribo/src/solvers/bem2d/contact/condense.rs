@@ -6,6 +6,10 @@ use super::*;
 impl ContactProblem {
     /// Response of the displacement component (region, node, d) as (external, per body
     /// parameter) coefficients: the body and its row.
+    #[allow(
+        clippy::expect_used,
+        reason = "the bodies partition the regions and hold their columns by construction (from_problem): a failure is a bug, not bad input"
+    )]
     pub(super) fn displacement_row(&self, region: usize, node: usize, d: usize) -> (usize, usize) {
         let col = match self.dofs[region][node][d] {
             Dof::U { col, .. } => col,
@@ -24,6 +28,10 @@ impl ContactProblem {
     }
 
     /// Builds W_n, W_t, K and the external-load responses.
+    #[allow(
+        clippy::expect_used,
+        reason = "the bodies partition the regions and hold their columns by construction (from_problem): a failure is a bug, not bad input"
+    )]
     pub(super) fn condense(&mut self) {
         let n = self.n;
         let nz = self.pz.ncols();

@@ -49,16 +49,16 @@
 //! solution is exact and this solver gives it, near gross slip included (tested); otherwise
 //! it also finds the slip across Q that the coupling induces.
 
-use crate::error::{Error, Result};
+use crate::error::Error;
 use crate::grid::SurfaceGrid;
 use crate::kernels::love;
 use crate::material::ElasticMaterial;
 use crate::operators::{ConvolutionOperator, ConvolutionWorkspace};
-use crate::solvers::nan_max;
 use crate::solvers::tangential::{
     direction, solve_tangential, TangentialLoading, TangentialParams, TangentialProblem,
     TangentialSolution,
 };
+use crate::solvers::{nan_max, SolveError, SolveResult};
 use rayon::prelude::*;
 
 /// The 2 x 2 block tangential compliance of two bodies on a grid: C_xx, C_yy (even in both
@@ -67,6 +67,8 @@ pub struct TangentialBlockOperator {
     xx: ConvolutionOperator,
     yy: ConvolutionOperator,
     xy: ConvolutionOperator,
+    /// The two bodies it was built for.
+    bodies: [ElasticMaterial; 2],
 }
 
 impl TangentialBlockOperator {
@@ -107,7 +109,18 @@ impl TangentialBlockOperator {
             xx: build(0, false),
             yy: build(1, false),
             xy: build(2, true),
+            bodies,
         }
+    }
+
+    /// The grid the operator acts on.
+    pub fn grid(&self) -> &SurfaceGrid {
+        self.xx.grid()
+    }
+
+    /// The two bodies (body 1, body 2) it was built for.
+    pub fn bodies(&self) -> &[ElasticMaterial; 2] {
+        &self.bodies
     }
 
     /// A workspace for [`TangentialBlockOperator::apply_into`].
@@ -140,42 +153,51 @@ impl TangentialBlockOperator {
 /// 0 < |Q| < [`crate::solvers::tangential::PARTIAL_SLIP_LIMIT`] f F_N. Full sliding is
 /// delegated to [`solve_tangential`]: q = f p along the given direction is exact there. The
 /// returned `slip` is |W - u| on the slip elements and `shift` the component of W along Q, m.
-pub fn solve_tangential_2d(
+/// A prescribed displacement [`TangentialProblem::offset`] enters as `C q + offset = W` on
+/// the stick elements and the slip `W - C q - offset`.
+///
+/// `operator`: the block compliance [`TangentialBlockOperator::new`]`(grid, body1, body2)`,
+/// where the caller reuses one over many solves; `None` builds it.
+/// `observer(iteration, residual)` is called once per iteration (progress reporting).
+///
+/// Errors: those of [`solve_tangential`]; [`Error::NotConverged`] carries the last iterate
+/// as the output (its `residual` is the one reported).
+pub fn solve_tangential_free(
     problem: &TangentialProblem<'_>,
     params: &TangentialParams,
-) -> Result<TangentialSolution> {
-    solve_tangential_2d_with_offset(problem, params, None)
-}
-
-/// [`solve_tangential_2d`] with a prescribed relative tangential displacement
-/// `offset = [o_x, o_y]` (m, grid layout) added to `C q`: the stick condition becomes
-/// `C q + offset = W` and the slip `W - C q - offset`. Used for the normal-tangential
-/// coupling of dissimilar materials ([`crate::solvers::coupled`]), where the pressure moves
-/// the surfaces tangentially. Full sliding ignores it (q = f p along the load is exact).
-pub fn solve_tangential_2d_with_offset(
-    problem: &TangentialProblem<'_>,
-    params: &TangentialParams,
-    offset: Option<[&[f64]; 2]>,
-) -> Result<TangentialSolution> {
+    operator: Option<&TangentialBlockOperator>,
+    observer: Option<&mut dyn FnMut(usize, f64)>,
+) -> SolveResult<TangentialSolution> {
     let (magnitude, angle) = match problem.loading {
-        TangentialLoading::Sliding { .. } => return solve_tangential(problem, params),
+        TangentialLoading::Sliding { .. } => return solve_tangential(problem, params, None, None),
         TangentialLoading::Force { magnitude, angle } => (magnitude, angle),
     };
     // The 1D validation (lengths, finite values, friction, force below (1 - 1e-10) f F_N).
     crate::solvers::tangential::validate_problem(problem, params)?;
     let grid = problem.grid;
     let n = grid.len();
-    if let Some(o) = offset {
-        for (c, part) in o.iter().enumerate() {
-            if part.len() != n || part.iter().any(|v| !v.is_finite()) {
+    let built;
+    let operator = match operator {
+        Some(op) => {
+            if op.grid() != grid || op.bodies() != &[problem.body1, problem.body2] {
                 return Err(Error::invalid(
-                    format!("offset[{c}]"),
-                    format!("{} values", part.len()),
-                    "must hold one finite value per element",
-                ));
+                    "operator",
+                    format!("{} x {} grid", op.grid().nx(), op.grid().ny()),
+                    "must be built on the problem's grid for its two bodies \
+                     (TangentialBlockOperator::new)",
+                )
+                .into());
             }
+            op
         }
-    }
+        None => {
+            built = TangentialBlockOperator::new(grid, &problem.body1, &problem.body2);
+            &built
+        }
+    };
+    let mut silent = |_: usize, _: f64| {};
+    let observer = observer.unwrap_or(&mut silent);
+    let offset = problem.offset;
     let area = grid.element_area();
     let bound: Vec<f64> = problem
         .pressure
@@ -187,9 +209,8 @@ pub fn solve_tangential_2d_with_offset(
     let (sin, cos) = direction(angle);
     let target = [magnitude * cos / area, magnitude * sin / area];
     let target_norm = magnitude / area;
-    let operator = TangentialBlockOperator::new(grid, &problem.body1, &problem.body2);
     let mut apply = Apply {
-        operator: &operator,
+        operator,
         workspace: operator.workspace(),
         scratch: vec![0.0; n],
         offset,
@@ -216,7 +237,8 @@ pub fn solve_tangential_2d_with_offset(
         return Err(Error::Numerical {
             context: "tangential 2D solver",
             detail: format!("step {step:e} from the compliance's largest eigenvalue"),
-        });
+        }
+        .into());
     }
 
     let mut q_old = q.clone();
@@ -240,15 +262,25 @@ pub fn solve_tangential_2d_with_offset(
             return Err(Error::Numerical {
                 context: "tangential 2D solver",
                 detail: format!("NaN residual at iteration {iteration}"),
-            });
+            }
+            .into());
         }
+        observer(iteration, residual);
         if residual <= params.tolerance {
             return Ok(summarize(
                 grid, &bound, q, &kkt, stick, cos, sin, iteration, residual,
             ));
         }
         if iteration == params.max_iterations {
-            break;
+            return Err(SolveError::with_output(
+                Error::NotConverged {
+                    solver: NAME,
+                    iterations: iteration,
+                    residual,
+                    tolerance: params.tolerance,
+                },
+                summarize(grid, &bound, q, &kkt, stick, cos, sin, iteration, residual),
+            ));
         }
 
         // Extrapolated point y = q + beta (q - q_old) and its gradient (C is linear).
@@ -289,7 +321,8 @@ pub fn solve_tangential_2d_with_offset(
                 return Err(Error::Numerical {
                     context: "tangential 2D solver",
                     detail: format!("non-finite step at iteration {iteration}"),
-                });
+                }
+                .into());
             }
             // Accepted also where the step is at round-off (d.C d is then noise).
             let size: f64 = contact
@@ -305,7 +338,8 @@ pub fn solve_tangential_2d_with_offset(
                 return Err(Error::Numerical {
                     context: "tangential 2D solver",
                     detail: "the step backtracking did not find a descent step".into(),
-                });
+                }
+                .into());
             }
             step *= 0.5;
         }
@@ -330,13 +364,18 @@ pub fn solve_tangential_2d_with_offset(
         std::mem::swap(&mut u_old, &mut u);
         std::mem::swap(&mut u, &mut u_new);
     }
+    // The loop returns at `iteration == params.max_iterations` at the latest.
     Err(Error::NotConverged {
-        solver: "tangential 2D accelerated projected gradient",
+        solver: NAME,
         iterations: params.max_iterations,
         residual,
         tolerance: params.tolerance,
-    })
+    }
+    .into())
 }
+
+/// The solver's name in [`Error::NotConverged`].
+const NAME: &str = "tangential 2D accelerated projected gradient";
 
 /// The gradient u = C q + offset of the energy, with the operator's scratch space.
 struct Apply<'a> {
@@ -700,6 +739,7 @@ mod tests {
                 magnitude: ratio * 0.3 * load,
                 angle,
             },
+            offset: None,
         }
     }
 
@@ -722,8 +762,8 @@ mod tests {
         let p0 = p.iter().fold(0.0f64, |a, &b| a.max(b));
         for angle in [0.0, 0.5] {
             let pr = problem(&grid, &p, m, 0.5, angle);
-            let one = solve_tangential(&pr, &TangentialParams::default()).unwrap();
-            let two = solve_tangential_2d(&pr, &TangentialParams::default()).unwrap();
+            let one = solve_tangential(&pr, &TangentialParams::default(), None, None).unwrap();
+            let two = solve_tangential_free(&pr, &TangentialParams::default(), None, None).unwrap();
             for i in 0..grid.len() {
                 let d = (one.traction_x[i] - two.traction_x[i])
                     .hypot(one.traction_y[i] - two.traction_y[i]);
@@ -748,7 +788,7 @@ mod tests {
         let load: f64 = p.iter().sum::<f64>() * grid.element_area();
         for ratio in [1e-6, 0.5, 0.999, 1.0 - 1e-8] {
             let pr = problem(&grid, &p, m, ratio, 1.0);
-            let s = solve_tangential_2d(&pr, &TangentialParams::default())
+            let s = solve_tangential_free(&pr, &TangentialParams::default(), None, None)
                 .unwrap_or_else(|e| panic!("{ratio}: {e}"));
             assert!(s.residual <= 1e-10, "{ratio}: {}", s.residual);
             let q = ratio * 0.3 * load;
@@ -782,8 +822,8 @@ mod tests {
         let p0 = p.iter().fold(0.0f64, |x, &y| x.max(y));
         let pr = problem(&grid, &p, m, 0.5, 0.0);
         let params = TangentialParams::default();
-        let one = solve_tangential(&pr, &params).unwrap();
-        let two = solve_tangential_2d(&pr, &params).unwrap();
+        let one = solve_tangential(&pr, &params, None, None).unwrap();
+        let two = solve_tangential_free(&pr, &params, None, None).unwrap();
         assert!(two.residual <= 1e-10, "{}", two.residual);
         let q = 0.5 * 0.3 * p.iter().sum::<f64>() * grid.element_area();
         assert!((two.tangential_force.0 / q - 1.0).abs() < 1e-9);
