@@ -19,19 +19,29 @@ pub const TEMP_PREFIX: &str = ".tribo-tmp-";
 /// rather than follow it) under an unpredictable name. The final name stays the suffix:
 /// plotters picks the image format from the extension. Removed when dropped unless persisted.
 fn temp_file(dir: &Path, name: &str) -> IoResult<tempfile::NamedTempFile> {
-    let mut builder = tempfile::Builder::new();
-    // Outputs are ordinary files: mode 0666 less the umask, as `File::create` makes them
-    // (tempfile's default is 0600).
-    #[cfg(unix)]
-    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-    builder
+    tempfile::Builder::new()
         .prefix(TEMP_PREFIX)
         .suffix(&format!("-{name}"))
         .rand_bytes(12)
-        .tempfile_in(dir)
-        .map_err(|source| IoError::Write {
-            path: dir.join(name),
-            source,
+        .make_in(dir, |path| {
+            // Remembered before the file exists: a signal that arrives between its creation
+            // and the first write still removes it (remembering it after creation left a
+            // window in which a SIGINT left the temporary behind).
+            signals::remember(path);
+            let mut options = std::fs::OpenOptions::new();
+            options.write(true).create_new(true);
+            // Outputs are ordinary files: mode 0666 less the umask, as `File::create` makes
+            // them (tempfile's default is 0600).
+            #[cfg(unix)]
+            std::os::unix::fs::OpenOptionsExt::mode(&mut options, 0o666);
+            options.open(path)
+        })
+        .map_err(|source| {
+            signals::forget();
+            IoError::Write {
+                path: dir.join(name),
+                source,
+            }
         })
 }
 
@@ -50,7 +60,6 @@ fn commit(tmp: tempfile::NamedTempFile, dir: &Path, name: &str) -> IoResult<()> 
 /// Write `bytes` to `dir/name` atomically (exclusive temporary file + rename).
 pub fn write_atomic(dir: &Path, name: &str, bytes: &[u8]) -> IoResult<()> {
     let mut tmp = temp_file(dir, name)?;
-    signals::remember(tmp.path());
     let result = (|| {
         tmp.as_file_mut().write_all(bytes)?;
         tmp.as_file().sync_all()
@@ -74,7 +83,6 @@ pub fn draw_atomic(
     draw: impl FnOnce(&Path) -> Result<(), String>,
 ) -> IoResult<()> {
     let tmp = temp_file(dir, name)?;
-    signals::remember(tmp.path());
     if let Err(detail) = draw(tmp.path()) {
         signals::forget();
         return Err(IoError::Draw {
