@@ -683,3 +683,102 @@ fn bem_results_serialise_to_json_and_read_back() {
     );
     assert_eq!(v["main"]["dof"].as_u64(), Some(out.main.dof as u64));
 }
+
+// ------------------------------------------------------------------ the BEM summary
+
+/// The clamp-knife-base summary (`tribo_case::bem::summary::BemSummary`, what summary.json
+/// holds): the segment forces balance, the base carries the bolt and cutting loads, the
+/// cutting load shortens both contacts (Fig. 7b), the damage sweep and the comparison rows.
+#[test]
+fn the_clamp_knife_base_summary_balances_and_reports_the_papers_effects() {
+    use tribo_case::bem::summary::BemSummary;
+    let ex = examples::find("clamp-knife-base").expect("embedded");
+    let case = case_in(ex.text, Path::new("."));
+    let out = run(&case);
+    let s = BemSummary::new(&case, &out, Vec::new()).expect("a summary");
+    assert_eq!(s.steps.len(), 2);
+    let bolt = 48.4e6 * 12e-3;
+    let cutting = 16.475e3;
+    for (k, step) in s.steps.iter().enumerate() {
+        let cut = if k == 1 { cutting } else { 0.0 };
+        // The tractions on all segments balance (no body forces): each body's boundary is
+        // in equilibrium, the free clamp's by its free-body equation (round-off), the base
+        // to the discretization (measured 1.1e-5 of the bolt force), and the supports carry
+        // the bolt and cutting loads: base_bottom's reaction is p_n w - p_b.
+        let sum = |region: Option<&str>, d: usize| -> f64 {
+            step.segment_forces
+                .iter()
+                .filter(|f| region.is_none_or(|r| f.region == r))
+                .map(|f| f.force_n_per_m[d])
+                .sum()
+        };
+        for d in 0..2 {
+            assert!(
+                sum(None, d).abs() < 1e-4 * bolt,
+                "step {k}: net {}",
+                sum(None, d)
+            );
+            assert!(sum(Some("clamp"), d).abs() < 1e-9 * bolt, "step {k}: clamp");
+        }
+        let base = step
+            .segment_forces
+            .iter()
+            .find(|f| f.segment == "base_bottom")
+            .expect("the base's bottom");
+        assert!(base.support);
+        let fy = base.force_n_per_m[1];
+        assert!(
+            (fy - (bolt - cut)).abs() < 1e-4 * bolt,
+            "step {k}: base reaction {fy}"
+        );
+    }
+    // Fig. 7b: the cutting load reduces the actual contact at both interfaces.
+    for pair in 0..2 {
+        let l0 = s.steps[0].pairs[pair].contact_length_m;
+        let l1 = s.steps[1].pairs[pair].contact_length_m;
+        assert!(l1 < 0.95 * l0, "pair {pair}: contact {l0} -> {l1}");
+    }
+    let d = s.damage.as_ref().expect("a damage section");
+    let f = d.sweep_factors.expect("sweep factors");
+    // The sweep's third factor is 3 by construction of the example's sweep (exact).
+    assert!((f[2].expect("a factor") - 3.0).abs() < 1e-9, "{f:?}");
+    assert_eq!(d.sweep.len(), 7);
+    assert_eq!(d.paper_sweep_factors.map(|p| p[0]), Some(27.0));
+    let c = s.compare.as_ref().expect("a comparison");
+    assert_eq!(c.rows[0].material, "steel");
+    assert_eq!(c.rows[1].material, "cast_iron");
+    assert!(c.rows[0].change_percent.iter().all(|&x| x == 0.0));
+    assert!(c.paper_change_percent.is_some());
+}
+
+/// Lame's ring: the rollers' reactions in the summary are the hoop force across a section
+/// of the ring, the integral of sigma_t over [a, b] = p a (half the ring's equilibrium),
+/// carried by y0 as -y and by x0 as -x (measured 9e-6 at this mesh, so 1e-4).
+#[test]
+fn a_gmsh_rings_summary_gives_the_rollers_reactions() {
+    use tribo_case::bem::summary::BemSummary;
+    let case = ring("lame_o2_n8.msh", &[("ring", "steel")], "inner")
+        .build()
+        .expect("a valid case");
+    let out = run(&case);
+    let s = BemSummary::new(&case, &out, Vec::new()).expect("a summary");
+    let force = |name: &str, d: usize| {
+        s.steps[0]
+            .segment_forces
+            .iter()
+            .find(|f| f.segment == name)
+            .expect("a roller segment")
+            .force_n_per_m[d]
+    };
+    let pa = 100e6 * 0.010;
+    assert!(
+        (force("y0", 1) / pa + 1.0).abs() < 1e-4,
+        "{}",
+        force("y0", 1)
+    );
+    assert!(
+        (force("x0", 0) / pa + 1.0).abs() < 1e-4,
+        "{}",
+        force("x0", 0)
+    );
+}

@@ -202,68 +202,14 @@ fn the_clamp_knife_base_run_derives_its_summary_and_writes_its_files() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let s = read_json(&out.join("summary.json"));
     summary::assert_layout(&s);
-    let steps = s["steps"].as_array().unwrap();
-    assert_eq!(steps.len(), 2);
-    let bolt = 48.4e6 * 12e-3;
-    let cutting = 16.475e3;
-    for k in 0..2 {
-        let cut = if k == 1 { cutting } else { 0.0 };
-        // The tractions on all segments balance (no body forces): each body's boundary is
-        // in equilibrium, the free clamp's by its free-body equation (round-off), the base
-        // to the discretization (measured 1.1e-5 of the bolt force), and the supports carry
-        // the bolt and cutting loads: base_bottom's reaction is p_n w - p_b.
-        let forces = steps[k]["segment_forces"].as_array().unwrap();
-        let sum = |region: Option<&str>, d: usize| -> f64 {
-            forces
-                .iter()
-                .filter(|f| region.is_none_or(|r| f["region"] == r))
-                .map(|f| f["force_n_per_m"][d].as_f64().unwrap())
-                .sum()
-        };
-        for d in 0..2 {
-            assert!(
-                sum(None, d).abs() < 1e-4 * bolt,
-                "step {k}: net force {}",
-                sum(None, d)
-            );
-            assert!(sum(Some("clamp"), d).abs() < 1e-9 * bolt, "step {k}: clamp");
-        }
-        let base = forces
-            .iter()
-            .find(|f| f["segment"] == "base_bottom")
-            .unwrap();
-        assert_eq!(base["support"], true);
-        let fy = base["force_n_per_m"][1].as_f64().unwrap();
-        assert!(
-            (fy - (bolt - cut)).abs() < 1e-4 * bolt,
-            "step {k}: base reaction {fy}"
-        );
+    // The numbers (equilibrium, Fig. 7b, the sweep, the comparison) are checked on the
+    // typed summary in tribo-case's tests/bem.rs; here, that summary.json carries them.
+    assert_eq!(s["steps"].as_array().unwrap().len(), 2);
+    for key in ["segment_forces", "pairs"] {
+        assert!(s["steps"][1][key].is_array(), "steps[1].{key}");
     }
-    // Fig. 7b: the cutting load reduces the actual contact at both interfaces
-    for pair in 0..2 {
-        let l0 = steps[0]["pairs"][pair]["contact_length_m"]
-            .as_f64()
-            .unwrap();
-        let l1 = steps[1]["pairs"][pair]["contact_length_m"]
-            .as_f64()
-            .unwrap();
-        assert!(l1 < 0.95 * l0, "pair {pair}: contact {l0} -> {l1}");
-    }
-    let d = &s["damage"];
-    let f = d["sweep_factors"].as_array().unwrap();
-    assert!((f[2].as_f64().unwrap() - 3.0).abs() < 1e-9, "{f:?}");
-    assert_eq!(d["sweep"].as_array().unwrap().len(), 7);
-    assert_eq!(d["paper_sweep_factors"][0].as_f64(), Some(27.0));
-    let c = &s["compare"];
-    let rows = c["rows"].as_array().unwrap();
-    assert_eq!(rows[0]["material"], "steel");
-    assert_eq!(rows[1]["material"], "cast_iron");
-    assert!(rows[0]["change_percent"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .all(|c| c.as_f64() == Some(0.0)));
-    assert!(c["paper_change_percent"].is_array());
+    assert_eq!(s["damage"]["sweep"].as_array().unwrap().len(), 7);
+    assert!(s["compare"]["rows"].is_array());
     assert_files(
         &out,
         &[
@@ -320,11 +266,10 @@ pressure = "100 MPa"
 size = "1 mm"
 "#;
 
-/// Lame's ring: the summary lists the mesh it read, and the rollers' reactions (the
-/// segment forces of the summary) are the hoop force across a section of the ring, the
-/// integral of sigma_t over [a, b] = p a (half the ring's equilibrium), carried by y0 as -y
-/// and by x0 as -x (measured 9e-6 at this mesh). (The stresses: the library test
-/// `a_gmsh_ring_gives_lames_stresses`.)
+/// Lame's ring: the summary lists the mesh it read and the rollers' segment forces (their
+/// values, the hoop force p a: the library test
+/// `a_gmsh_rings_summary_gives_the_rollers_reactions`; the stresses:
+/// `a_gmsh_ring_gives_lames_stresses`).
 #[test]
 fn a_gmsh_ring_reports_its_mesh_and_the_rollers_reactions() {
     let text = GMSH_RING.replace("FILE", &gmsh_fixture("lame_o2_n8.msh"));
@@ -336,24 +281,12 @@ fn a_gmsh_ring_reports_its_mesh_and_the_rollers_reactions() {
     assert_eq!(m["order"], 2);
     assert_eq!(m["surfaces"]["ring"][0], "ring");
     assert_eq!(m["curves"]["inner"][0], "inner");
-    let p = 100e6;
+    // The reactions' values: tribo-case's tests/bem.rs
+    // (`a_gmsh_rings_summary_gives_the_rollers_reactions`).
     let forces = s["steps"][0]["segment_forces"].as_array().unwrap();
-    let force = |name: &str, d: usize| {
-        forces.iter().find(|f| f["segment"] == name).unwrap()["force_n_per_m"][d]
-            .as_f64()
-            .unwrap()
-    };
-    let pa = p * 0.010;
-    assert!(
-        (force("y0", 1) / pa + 1.0).abs() < 1e-4,
-        "{}",
-        force("y0", 1)
-    );
-    assert!(
-        (force("x0", 0) / pa + 1.0).abs() < 1e-4,
-        "{}",
-        force("x0", 0)
-    );
+    for name in ["x0", "y0"] {
+        assert!(forces.iter().any(|f| f["segment"] == name), "{name}");
+    }
 }
 
 /// Two bonded rings from one gmsh file: the dry run lists the parts of a physical curve
