@@ -1,5 +1,7 @@
 //! The library's front door: a case built in code (no TOML text, no file, no subprocess), run
 //! with the silent progress, its typed results checked against closed forms.
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::f64::consts::PI;
 use tribo_case::builder::CaseBuilder;

@@ -4,6 +4,8 @@
 //! used to run the `tribo` binary and read `summary.json` by string keys
 //! (crates/tribo-cli/tests/bem_cli.rs); cases built in code with [`BemCaseBuilder`] are
 //! checked against their TOML twins.
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::{Path, PathBuf};
 use tribo::solvers::bem2d::contact::{ContactState, PairResult};

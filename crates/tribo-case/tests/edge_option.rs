@@ -3,6 +3,8 @@
 //! (`tribo::analysis::edge_refinement`), checked against Hamilton's closed-form surface
 //! stresses of the sliding sphere on every path of the pipeline's stress stage, and its
 //! validation.
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use tribo::analysis::edge_refinement::refine_tractions;
 use tribo::analysis::stress_field::{stress_field_interpolated, FieldGrid, SurfaceTractions};

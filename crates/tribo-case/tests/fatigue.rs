@@ -3,6 +3,8 @@
 //! `tests/fixtures/pylife_woehler.json` (provenance inside), the diagram's closed-form
 //! quotients and its state check. These are the checks that used to run `tribo fatigue` and
 //! read its JSON by string keys (crates/tribo-cli/tests/fatigue_cli.rs).
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use serde_json::Value;
 use std::path::{Path, PathBuf};

@@ -3,6 +3,8 @@
 //! cases built from them. These are the checks that used to run the `tribo` binary and read
 //! `summary.json` by string keys (crates/tribo-cli/tests/cli.rs, free_direction.rs); the
 //! CLI tests keep the plumbing (exit codes, files, `--json`, notes on stderr).
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod common;
 

@@ -3,6 +3,8 @@
 //! message naming the field (and, where it says so, the rule); rules that need the solution
 //! (a contact that reaches the window, |Q| >= f F_N) are refused by the run. The command-line
 //! tests keep a sample of these for the exit code and the files not written.
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod common;
 

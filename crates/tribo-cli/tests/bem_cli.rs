@@ -2,7 +2,8 @@
 //! line: the files written, the summary's derived numbers (segment forces, contact lengths,
 //! node counts), the dry run's listing, and bad input (exit 2 naming the item). The physics
 //! values on typed results: crates/tribo-case/tests/bem.rs.
-
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 #![allow(clippy::needless_range_loop)] // step and pair indices read like the summary
 mod common;
 #[path = "common/summary.rs"]

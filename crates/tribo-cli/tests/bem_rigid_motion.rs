@@ -27,6 +27,8 @@
 //! the contact tractions amplify by about 7e5 per metre of input error (measured in the
 //! library, `solvers::bem2d::rigid_motion_tests::inexact_bound`): the bound is
 //! 1e-9 + 5e-10 |s|/m relative there, 1e-9 elsewhere.
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod common;
 use common::tribo;

@@ -2,6 +2,8 @@
 //! files written, `--json`, `--dry-run`, the notes on stderr. The physics values of the
 //! same cases are checked on typed results in crates/tribo-case/tests (halfspace.rs,
 //! validation.rs).
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod common;
 #[path = "common/vtk.rs"]

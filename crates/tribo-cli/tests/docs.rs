@@ -11,6 +11,8 @@
 //!   table and compares everything but the computed values and errors (machine-dependent in
 //!   the last digits). Regenerate it with `bench/verification_page.sh` (which runs this test
 //!   with `TRIBO_REGENERATE_DOCS=1`).
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};

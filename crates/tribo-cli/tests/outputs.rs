@@ -1,6 +1,8 @@
 //! Output integrity: write failures on stdout/stderr (closed pipe, full disk) for every
 //! subcommand, and the output directory's contract (safe temporaries, leftovers removed, the
 //! earlier run's outputs removed, the summary gone while a run writes).
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::fs;
 use std::io::Read;

@@ -2,6 +2,8 @@
 //! and the docs cite is in the repository, every relative link of the docs resolves), the
 //! licence files Cargo names are there, and the declared minimum Rust version is not below
 //! what the locked dependencies need.
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};

@@ -1,5 +1,7 @@
 //! Atomic writes: a file is written whole or not at all; an error leaves neither a partial
 //! file nor a temporary behind; the earlier run's listed files are removed first.
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::Path;
 use tribo_io::atomic::{draw_atomic, prepare_dir, write_atomic, TEMP_PREFIX};

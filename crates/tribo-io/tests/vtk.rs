@@ -1,5 +1,7 @@
 //! Binary VTK: what the writer puts in the file reads back bit-equal with a reader of the
 //! tests' own (tests/common), header and appended block checked.
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod common;
 

@@ -1,5 +1,7 @@
 //! The writers on a real run: the files listed in the summary are exactly the files in the
 //! directory, `summary.json` last and parseable; without plots no PNG is written or listed.
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::Path;
 use tribo_case::{examples, Case, Results, Silent};
