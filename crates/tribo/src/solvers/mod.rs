@@ -109,6 +109,30 @@ pub use normal::{
     NormalMethod,
 };
 
+/// The rule shared by the iterative solvers' params: a tolerance finite in (0, 1) and at
+/// least one iteration (errors name the case keys `solver.tolerance` and
+/// `solver.max_iterations`).
+pub(crate) fn validate_iteration_params(
+    tolerance: f64,
+    max_iterations: usize,
+) -> crate::error::Result<()> {
+    if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {
+        return Err(Error::invalid(
+            "solver.tolerance",
+            tolerance,
+            "must be in (0, 1)",
+        ));
+    }
+    if max_iterations == 0 {
+        return Err(Error::invalid(
+            "solver.max_iterations",
+            0,
+            "must be at least 1",
+        ));
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -117,21 +117,7 @@ impl NormalContactParams {
 
     /// Check the parameters (tolerance finite in (0, 1), at least one iteration).
     pub fn validate(&self) -> Result<()> {
-        if !(self.tolerance.is_finite() && self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(Error::invalid(
-                "solver.tolerance",
-                self.tolerance,
-                "must be in (0, 1)",
-            ));
-        }
-        if self.max_iterations == 0 {
-            return Err(Error::invalid(
-                "solver.max_iterations",
-                0,
-                "must be at least 1",
-            ));
-        }
-        Ok(())
+        super::validate_iteration_params(self.tolerance, self.max_iterations)
     }
 }
 
