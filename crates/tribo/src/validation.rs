@@ -1306,20 +1306,13 @@ fn refined_surface_errors(
     Ok(out)
 }
 
-/// Rows of the sliding sphere's surface lines through the contact edge (issue 11 item 1),
-/// with the edge-aware tractions refined x8 ([`crate::analysis::edge_refinement`]): 64 x 64
-/// elements over 2.4a, q = f p, the surface stresses along y = 0 and along x = 0 over
-/// [-1.3a, 1.3a] (81 points one element apart: on element edges and 0.3 element off, the
-/// latter 0.033 element from the edge) against Hamilton (1983) at every
-/// point, contact edge included; per f for the element-averaged Hertz pressure by the FFT
-/// path; all f for the solved contact (CG) by the FFT path, and for points within two
-/// elements of x = +-a by the direct sum.
-pub fn sliding_sphere_edge_rows() -> Result<Vec<ValidationRow>> {
-    let mut rows = Vec::new();
-    let source = "Hamilton 1983, Proc. IMechE 197C:53 (explicit equations)";
-    let nu = 0.3;
+/// The sliding sphere of the edge rows (R = 10 mm, E* = 110 GPa, 1000 N; 64 x 64 elements
+/// over 2.4a): Hertz's contact, the grid, the element-averaged Hertz pressure (Pa) and the
+/// pressure solved by the CG on the same grid (gap r^2 / 2R, Pa).
+pub(crate) fn sliding_sphere_pressures() -> Result<(HertzContact, SurfaceGrid, Vec<f64>, Vec<f64>)>
+{
     let hertz = HertzContact::circle(0.01, 1.1e11, 1000.0)?;
-    let (a, p0) = (hertz.semi_major, hertz.max_pressure);
+    let a = hertz.semi_major;
     let grid = SurfaceGrid::centred(64, 64, 1.2 * a, 1.2 * a)?;
     let (hx, hy) = (0.5 * grid.dx(), 0.5 * grid.dy());
     let averaged = grid.sample(|x, y| hertz.mean_pressure_over_rectangle(x, y, hx, hy));
@@ -1336,6 +1329,23 @@ pub fn sliding_sphere_edge_rows() -> Result<Vec<ValidationRow>> {
         None,
     )?
     .pressure;
+    Ok((hertz, grid, averaged, solved))
+}
+
+/// Rows of the sliding sphere's surface lines through the contact edge (issue 11 item 1),
+/// with the edge-aware tractions refined x8 ([`crate::analysis::edge_refinement`]): 64 x 64
+/// elements over 2.4a, q = f p, the surface stresses along y = 0 and along x = 0 over
+/// [-1.3a, 1.3a] (81 points one element apart: on element edges and 0.3 element off, the
+/// latter 0.033 element from the edge) against Hamilton (1983) at every
+/// point, contact edge included; per f for the element-averaged Hertz pressure by the FFT
+/// path; all f for the solved contact (CG) by the FFT path, and for points within two
+/// elements of x = +-a by the direct sum.
+pub fn sliding_sphere_edge_rows() -> Result<Vec<ValidationRow>> {
+    let mut rows = Vec::new();
+    let source = "Hamilton 1983, Proc. IMechE 197C:53 (explicit equations)";
+    let nu = 0.3;
+    let (hertz, grid, averaged, solved) = sliding_sphere_pressures()?;
+    let (a, p0) = (hertz.semi_major, hertz.max_pressure);
     let dx = grid.dx();
     let line = |shift: f64| -> Vec<f64> {
         (0..=80)

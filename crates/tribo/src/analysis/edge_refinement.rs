@@ -274,9 +274,6 @@ mod tests {
     };
     use crate::kernels::hamilton::sliding_sphere_stress;
     use crate::kernels::hertz::HertzContact;
-    use crate::solvers::normal::{
-        solve_normal, NormalContactParams, NormalContactProblem, NormalLoading,
-    };
 
     /// The validation's sliding sphere: R = 10 mm, E* = 1.1e11 Pa, 1000 N, 64 x 64 elements
     /// over 2.4a.
@@ -413,27 +410,10 @@ mod tests {
         worst
     }
 
-    /// The element-averaged Hertz pressure (the validation's) and the solved contact (CG on
-    /// the same grid, gap r^2 / 2R, 1000 N) of the sliding sphere.
+    /// The element-averaged Hertz pressure and the solved contact of the sliding sphere
+    /// (the validation's: [`crate::validation::sliding_sphere_pressures`]).
     fn sphere_pressures() -> (HertzContact, SurfaceGrid, Vec<f64>, Vec<f64>) {
-        let (hertz, grid) = sphere();
-        let (hx, hy) = (0.5 * grid.dx(), 0.5 * grid.dy());
-        let averaged = grid.sample(|x, y| hertz.mean_pressure_over_rectangle(x, y, hx, hy));
-        let gap = grid.sample(|x, y| (x * x + y * y) / (2.0 * 0.01));
-        let solved = solve_normal(
-            &NormalContactProblem {
-                grid: &grid,
-                initial_gap: &gap,
-                composite_modulus: 1.1e11,
-                loading: NormalLoading::Force(1000.0),
-            },
-            &NormalContactParams::default(),
-            None,
-            None,
-        )
-        .unwrap()
-        .pressure;
-        (hertz, grid, averaged, solved)
+        crate::validation::sliding_sphere_pressures().unwrap()
     }
 
     /// Largest surface error against Hamilton over f = 0, 0.1, ..., 0.5 on `field` (z = 0),
