@@ -26,6 +26,7 @@
 #![deny(missing_docs)]
 
 pub mod analysis;
+pub mod dynamics;
 pub mod error;
 pub mod geometry;
 pub mod grid;
