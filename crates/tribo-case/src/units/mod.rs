@@ -6,7 +6,10 @@
 
 mod quantity;
 
-pub use quantity::{Angle, Dimension, Dimensionless, Force, Length, LineForce, Pressure, Quantity};
+pub use quantity::{
+    Angle, Density, Dimension, Dimensionless, Force, Frequency, Length, LineForce, Pressure,
+    Quantity, Time, Velocity,
+};
 
 use crate::error::{CaseError, CaseResult};
 use toml::Value;
@@ -25,6 +28,14 @@ pub enum Dim {
     LineForce,
     /// Angle in degrees (the keys `*_angle_deg`): a plain number, or `"30 deg"`.
     Angle,
+    /// Mass density: kg/m^3, g/cm^3.
+    Density,
+    /// Time: s, ms, us (or µs), ns.
+    Time,
+    /// Frequency: Hz, kHz, MHz, GHz.
+    Frequency,
+    /// Velocity: m/s, mm/s, km/s.
+    Velocity,
 }
 
 impl Dim {
@@ -46,6 +57,10 @@ impl Dim {
             Dim::Force => &[("kN", 3), ("MN", 6), ("mN", -3), ("N", 0)],
             Dim::LineForce => &[("kN/m", 3), ("MN/m", 6), ("N/mm", 3), ("N/m", 0)],
             Dim::Angle => &[("deg", 0)],
+            Dim::Density => &[("kg/m^3", 0), ("g/cm^3", 3)],
+            Dim::Time => &[("ms", -3), ("us", -6), ("µs", -6), ("ns", -9), ("s", 0)],
+            Dim::Frequency => &[("kHz", 3), ("MHz", 6), ("GHz", 9), ("Hz", 0)],
+            Dim::Velocity => &[("mm/s", -3), ("km/s", 3), ("m/s", 0)],
         }
     }
 
@@ -57,6 +72,10 @@ impl Dim {
             Dim::Force => "a force",
             Dim::LineForce => "a force per unit length",
             Dim::Angle => "an angle",
+            Dim::Density => "a density",
+            Dim::Time => "a time",
+            Dim::Frequency => "a frequency",
+            Dim::Velocity => "a velocity",
         }
     }
 
@@ -67,6 +86,10 @@ impl Dim {
             Dim::Force => "N",
             Dim::LineForce => "N/m",
             Dim::Angle => "deg",
+            Dim::Density => "kg/m^3",
+            Dim::Time => "s",
+            Dim::Frequency => "Hz",
+            Dim::Velocity => "m/s",
         }
     }
 }
@@ -317,6 +340,23 @@ mod tests {
         assert_eq!(q("3 N/mm", Dim::LineForce).unwrap(), 3000.0);
         assert_eq!(q("7 N/m", Dim::LineForce).unwrap(), 7.0);
         assert!(q("7 N", Dim::LineForce).is_err());
+        assert_eq!(q("7850 kg/m^3", Dim::Density).unwrap(), 7850.0);
+        assert_eq!(q("7.85 g/cm^3", Dim::Density).unwrap(), 7850.0);
+        assert_eq!(q("2 ms", Dim::Time).unwrap(), 2e-3);
+        assert_eq!(q("1 us", Dim::Time).unwrap(), 1e-6);
+        assert_eq!(q("1 µs", Dim::Time).unwrap(), 1e-6);
+        assert_eq!(q("3 ns", Dim::Time).unwrap(), 3e-9);
+        assert_eq!(q("0.5 s", Dim::Time).unwrap(), 0.5);
+        assert_eq!(q("5 kHz", Dim::Frequency).unwrap(), 5000.0);
+        assert_eq!(q("2 MHz", Dim::Frequency).unwrap(), 2e6);
+        assert_eq!(q("50 Hz", Dim::Frequency).unwrap(), 50.0);
+        assert_eq!(q("5 m/s", Dim::Velocity).unwrap(), 5.0);
+        assert_eq!(q("-20 mm/s", Dim::Velocity).unwrap(), -0.02);
+        assert_eq!(q("1.2 km/s", Dim::Velocity).unwrap(), 1200.0);
+        assert!(q("7850 kg/m3", Dim::Density).is_err());
+        assert!(q("2 m", Dim::Time).is_err());
+        assert!(q("5 m/s", Dim::Time).is_err());
+        assert!(q("5 s", Dim::Velocity).is_err());
         assert!(q("10 mm", Dim::Pressure).is_err());
         assert!(q("ten mm", Dim::Length).is_err());
         assert!(q("10", Dim::Length).is_err());
@@ -381,6 +421,10 @@ mod tests {
             Dim::Force,
             Dim::LineForce,
             Dim::Angle,
+            Dim::Density,
+            Dim::Time,
+            Dim::Frequency,
+            Dim::Velocity,
         ] {
             for &(u, p) in d.units() {
                 v.push((d, u, p));

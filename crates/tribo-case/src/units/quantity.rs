@@ -38,6 +38,14 @@ dimension! {
     /// Angle, deg: a plain number is in degrees, as the keys `*_angle_deg` say (also
     /// `"30 deg"`; [`Quantity::si`] is then in degrees).
     Angle => Some(Dim::Angle);
+    /// Mass density, kg/m^3 (also g/cm^3).
+    Density => Some(Dim::Density);
+    /// Time, s (also ms, us, µs, ns).
+    Time => Some(Dim::Time);
+    /// Frequency, Hz (also kHz, MHz, GHz).
+    Frequency => Some(Dim::Frequency);
+    /// Velocity, m/s (also mm/s, km/s).
+    Velocity => Some(Dim::Velocity);
     /// A plain number (a ratio, a coefficient, a number of cycles): no unit strings.
     Dimensionless => None;
 }
@@ -131,6 +139,19 @@ mod tests {
         );
         assert_eq!(q::<Angle>("12.5").unwrap().si(), 12.5);
         assert!(q::<Angle>("\"30 rad\"").unwrap_err().contains("an angle"));
+        assert_eq!(
+            q::<Density>("\"7.85 g/cm^3\"").unwrap().si().to_bits(),
+            7850f64.to_bits()
+        );
+        assert_eq!(
+            q::<Time>("\"1 us\"").unwrap().si().to_bits(),
+            1e-6f64.to_bits()
+        );
+        assert_eq!(q::<Frequency>("\"5 kHz\"").unwrap().si(), 5e3);
+        assert_eq!(q::<Velocity>("\"-3 m/s\"").unwrap().si(), -3.0);
+        assert!(q::<Density>("\"7850 kg\"")
+            .unwrap_err()
+            .contains("a density"));
     }
 
     #[test]

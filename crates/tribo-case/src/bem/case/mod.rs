@@ -4,6 +4,7 @@
 //! field, damage and comparison outputs. See `tribo example clamp-knife-base` and
 //! docs/user/case-bem2d.md.
 mod conditions;
+pub mod dynamics;
 mod outline;
 mod schema;
 mod validate;
