@@ -37,6 +37,7 @@
 pub mod atomic;
 pub mod bem;
 pub mod csv;
+pub mod dynamics;
 pub mod error;
 pub mod fatigue;
 pub mod halfspace;
@@ -46,6 +47,7 @@ mod plot;
 pub mod vtk;
 
 pub use bem::write_bem;
+pub use dynamics::write_dynamics;
 pub use error::{IoError, IoResult};
 pub use fatigue::{write_diagram, write_fit};
 pub use halfspace::write_halfspace;

@@ -6,6 +6,7 @@
 
 pub mod bem;
 pub mod canvas;
+pub mod dynamics;
 pub mod fatigue;
 pub mod halfspace;
 pub mod style;

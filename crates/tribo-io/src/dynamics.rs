@@ -1,0 +1,345 @@
+//! The files of a dynamic run ([`tribo::dynamics::history::DynamicHistory`]):
+//!
+//! - `probes.csv` (with probes): per sample time and probe, displacement, velocity, stress;
+//! - `contacts.csv` (with contact pairs): per sample time and pair, contact length, normal
+//!   and tangential force per unit thickness, stick and slip extents;
+//! - `energy.csv` (with energy terms): per sample time the computed energies and, with all
+//!   four, their balance W - U - K - D;
+//! - `fields_NNNN.vtu` per snapshot (binary VTK XML unstructured grids, raw appended data)
+//!   and `fields.pvd`, the collection ParaView plays as an animation (its `DataSet`
+//!   elements name each file with its `timestep`, the time in s);
+//! - with the feature `png`: `probes.png`, `contacts.png`, `energy.png`.
+//!
+//! Every CSV starts with the time column; units are in the headers. Nothing is written
+//! when a number is not finite or the history breaks an invariant
+//! ([`DynamicHistory::check`]); every file is written atomically ([`crate::atomic`]). The
+//! caller prepares the directory and writes its summary last ([`crate::bem`] does both).
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use tribo::dynamics::history::DynamicHistory;
+
+use crate::atomic::write_atomic;
+use crate::error::{check_finite, IoError, IoResult};
+use crate::vtk::AppendedFile;
+use crate::{WriteOptions, Written};
+
+/// The header of `probes.csv`.
+pub const PROBES_HEADER: &str = "time_s,probe,x_m,y_m,ux_m,uy_m,vx_m_per_s,vy_m_per_s,\
+sigma_xx_Pa,sigma_yy_Pa,sigma_xy_Pa,sigma_zz_Pa";
+
+/// The header of `contacts.csv`.
+pub const CONTACTS_HEADER: &str = "time_s,slave,master,contact_length_m,normal_force_N_per_m,\
+tangential_force_N_per_m,stick_length_m,slip_length_m";
+
+/// The collection of the field snapshots.
+pub const PVD: &str = "fields.pvd";
+
+/// `-0` written as `0`, otherwise Rust's shortest round-trip `{:e}`.
+fn num(x: f64) -> String {
+    format!("{:e}", x + 0.0)
+}
+
+/// `probes.csv`: one line per sample time and probe (time first, probes in order).
+pub fn probes_csv(h: &DynamicHistory) -> String {
+    let mut s = String::with_capacity(160 * h.times.len() * h.probes.len() + 128);
+    s.push_str(PROBES_HEADER);
+    s.push('\n');
+    for (k, &t) in h.times.iter().enumerate() {
+        for p in &h.probes {
+            let (u, v, st) = (p.displacement[k], p.velocity[k], p.stress[k]);
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{},{},{},{},{},{},{}",
+                num(t),
+                p.name,
+                num(p.point[0]),
+                num(p.point[1]),
+                num(u[0]),
+                num(u[1]),
+                num(v[0]),
+                num(v[1]),
+                num(st.xx),
+                num(st.yy),
+                num(st.xy),
+                num(st.zz)
+            );
+        }
+    }
+    s
+}
+
+/// `contacts.csv`: one line per sample time and pair.
+pub fn contacts_csv(h: &DynamicHistory) -> String {
+    let mut s = String::from(CONTACTS_HEADER);
+    s.push('\n');
+    for (k, &t) in h.times.iter().enumerate() {
+        for c in &h.contacts {
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{},{},{}",
+                num(t),
+                c.slave,
+                c.master,
+                num(c.length[k]),
+                num(c.normal_force[k]),
+                num(c.tangential_force[k]),
+                num(c.stick_length[k]),
+                num(c.slip_length[k])
+            );
+        }
+    }
+    s
+}
+
+/// The header of `energy.csv`: `time_s`, the computed series (J/m), and `balance_J_per_m`
+/// where all four are computed.
+pub fn energy_header(h: &DynamicHistory) -> String {
+    let mut s = String::from("time_s");
+    for (name, _) in h.energy.series() {
+        s.push(',');
+        s.push_str(name);
+    }
+    if h.energy.balance().is_some() {
+        s.push_str(",balance_J_per_m");
+    }
+    s
+}
+
+/// `energy.csv`: one line per sample time.
+pub fn energy_csv(h: &DynamicHistory) -> String {
+    let mut s = energy_header(h);
+    s.push('\n');
+    let series = h.energy.series();
+    let balance = h.energy.balance();
+    for (k, &t) in h.times.iter().enumerate() {
+        s.push_str(&num(t));
+        for (_, v) in &series {
+            s.push(',');
+            s.push_str(&num(v[k]));
+        }
+        if let Some(b) = &balance {
+            s.push(',');
+            s.push_str(&num(b[k]));
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// The snapshot file of snapshot `k` of `n`: `fields_0003.vtu` (at least 4 digits, so that
+/// the names sort in time order).
+pub fn snapshot_file(k: usize, n: usize) -> String {
+    let width = n.saturating_sub(1).to_string().len().max(4);
+    format!("fields_{k:0width$}.vtu")
+}
+
+/// VTK XML unstructured grid of snapshot `k` (binary, raw appended data): points (z = 0),
+/// triangles (VTK type 5), cell data `region` (the model's region index), point data
+/// `displacement_m` (3 components, z = 0), the stresses (Pa) and strains as in the static
+/// `fields_<step>.vtu`.
+pub fn snapshot_vtu(h: &DynamicHistory, k: usize) -> Vec<u8> {
+    let mesh = &h.snapshot_mesh.regions;
+    let snap = &h.snapshots[k];
+    let npts: usize = mesh.iter().map(|r| r.nodes.len()).sum();
+    let ncells: usize = mesh.iter().map(|r| r.triangles.len()).sum();
+    let mut f = AppendedFile::new("UnstructuredGrid");
+    f.xml(&format!(
+        "  <UnstructuredGrid>\n    <FieldData>\n      <DataArray type=\"Float64\" \
+         Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">{:e}</DataArray>\n    \
+         </FieldData>\n    <Piece NumberOfPoints=\"{npts}\" NumberOfCells=\"{ncells}\">\n      <Points>\n",
+        snap.time
+    ));
+    let points: Vec<f64> = mesh
+        .iter()
+        .flat_map(|r| r.nodes.iter().flat_map(|p| [p[0], p[1], 0.0]))
+        .collect();
+    f.array("        ", "", 3, points.into_iter());
+    f.xml("      </Points>\n      <Cells>\n");
+    let mut connectivity: Vec<i64> = Vec::with_capacity(3 * ncells);
+    let mut offset = 0;
+    for r in mesh {
+        for t in &r.triangles {
+            connectivity.extend(t.iter().map(|&i| (i + offset) as i64));
+        }
+        offset += r.nodes.len();
+    }
+    f.array("        ", "connectivity", 1, connectivity.into_iter());
+    f.array(
+        "        ",
+        "offsets",
+        1,
+        (1..ncells + 1).map(|c| 3 * c as i64),
+    );
+    f.array("        ", "types", 1, std::iter::repeat_n(5u8, ncells));
+    f.xml("      </Cells>\n      <CellData Scalars=\"region\">\n");
+    let region: Vec<i32> = mesh
+        .iter()
+        .flat_map(|r| std::iter::repeat_n(r.index as i32, r.triangles.len()))
+        .collect();
+    f.array("        ", "region", 1, region.into_iter());
+    f.xml(
+        "      </CellData>\n      <PointData Scalars=\"sigma_xx_Pa\" Vectors=\"displacement_m\">\n",
+    );
+    let samples = || snap.samples.iter().flatten();
+    let displacement: Vec<f64> = samples()
+        .flat_map(|x| [x.displacement[0] + 0.0, x.displacement[1] + 0.0, 0.0])
+        .collect();
+    f.array("        ", "displacement_m", 3, displacement.into_iter());
+    type Get = fn(&tribo::analysis::bem_field::FieldSample) -> f64;
+    let scalars: [(&str, Get); 8] = [
+        ("sigma_xx_Pa", |x| x.stress.xx),
+        ("sigma_yy_Pa", |x| x.stress.yy),
+        ("sigma_xy_Pa", |x| x.stress.xy),
+        ("sigma_zz_Pa", |x| x.stress.zz),
+        ("eps_xx", |x| x.strain.xx),
+        ("eps_yy", |x| x.strain.yy),
+        ("eps_xy", |x| x.strain.xy),
+        ("eps_zz", |x| x.strain.zz),
+    ];
+    for (name, get) in scalars {
+        let values: Vec<f64> = samples().map(|x| get(x) + 0.0).collect();
+        f.array("        ", name, 1, values.into_iter());
+    }
+    f.xml("      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n");
+    f.finish()
+}
+
+/// `fields.pvd`: a VTK `Collection` with one `DataSet` per snapshot (`timestep` the time in
+/// s, `file` the snapshot's `.vtu`), times increasing: ParaView's PVD reader opens it as
+/// one time-dependent dataset.
+pub fn pvd(h: &DynamicHistory) -> String {
+    let n = h.snapshots.len();
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" \
+         byte_order=\"LittleEndian\">\n  <Collection>\n",
+    );
+    for (k, snap) in h.snapshots.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "    <DataSet timestep=\"{:e}\" group=\"\" part=\"0\" file=\"{}\"/>",
+            snap.time,
+            snapshot_file(k, n)
+        );
+    }
+    s.push_str("  </Collection>\n</VTKFile>\n");
+    s
+}
+
+/// The names of the files [`write_dynamics`] writes, in order (without `plots`, no PNG).
+pub fn dynamics_files(h: &DynamicHistory, plots: bool) -> Vec<String> {
+    let mut f: Vec<String> = Vec::new();
+    if !h.probes.is_empty() {
+        f.extend(["probes.csv".into(), "probes.png".into()]);
+    }
+    if !h.contacts.is_empty() {
+        f.extend(["contacts.csv".into(), "contacts.png".into()]);
+    }
+    if !h.energy.series().is_empty() {
+        f.extend(["energy.csv".into(), "energy.png".into()]);
+    }
+    let n = h.snapshots.len();
+    if n > 0 {
+        f.extend((0..n).map(|k| snapshot_file(k, n)));
+        f.push(PVD.into());
+    }
+    if !plots {
+        f.retain(|name| !name.ends_with(".png"));
+    }
+    f
+}
+
+/// Every number the files show must be finite, and the history whole (nothing written
+/// otherwise).
+fn check(h: &DynamicHistory) -> IoResult<()> {
+    check_finite("sample times", &h.times)?;
+    for p in &h.probes {
+        let values: Vec<f64> = p
+            .point
+            .iter()
+            .chain(p.displacement.iter().flatten())
+            .chain(p.velocity.iter().flatten())
+            .copied()
+            .chain(p.stress.iter().flat_map(|s| [s.xx, s.yy, s.xy, s.zz]))
+            .collect();
+        check_finite(&format!("probes.csv (probe {})", p.name), &values)?;
+    }
+    for c in &h.contacts {
+        for v in [
+            &c.length,
+            &c.normal_force,
+            &c.tangential_force,
+            &c.stick_length,
+            &c.slip_length,
+        ] {
+            check_finite(&format!("contacts.csv (pair {}-{})", c.slave, c.master), v)?;
+        }
+    }
+    for (name, v) in h.energy.series() {
+        check_finite(&format!("energy.csv ({name})"), v)?;
+    }
+    for (k, s) in h.snapshots.iter().enumerate() {
+        let values: Vec<f64> = s
+            .samples
+            .iter()
+            .flatten()
+            .flat_map(|x| {
+                [
+                    x.displacement[0],
+                    x.displacement[1],
+                    x.stress.xx,
+                    x.stress.yy,
+                    x.stress.xy,
+                    x.stress.zz,
+                    x.strain.xx,
+                    x.strain.yy,
+                    x.strain.xy,
+                    x.strain.zz,
+                ]
+            })
+            .chain([s.time])
+            .collect();
+        check_finite(&format!("fields snapshot {k}"), &values)?;
+    }
+    h.check().map_err(|e| IoError::Shape {
+        what: "dynamic history".into(),
+        detail: e.to_string(),
+    })
+}
+
+/// Writes the files of a dynamic run into the existing directory `dir` (see the module
+/// docs) and returns their names ([`dynamics_files`]). The caller prepares `dir`
+/// ([`crate::atomic::prepare_dir`]) and writes its summary, listing these names, last.
+pub fn write_dynamics(
+    dir: &Path,
+    h: &DynamicHistory,
+    opts: &WriteOptions,
+) -> IoResult<Written<()>> {
+    check(h)?;
+    let plots = opts.draws_plots();
+    if !h.probes.is_empty() {
+        write_atomic(dir, "probes.csv", probes_csv(h).as_bytes())?;
+    }
+    if !h.contacts.is_empty() {
+        write_atomic(dir, "contacts.csv", contacts_csv(h).as_bytes())?;
+    }
+    if !h.energy.series().is_empty() {
+        write_atomic(dir, "energy.csv", energy_csv(h).as_bytes())?;
+    }
+    let n = h.snapshots.len();
+    for k in 0..n {
+        write_atomic(dir, &snapshot_file(k, n), &snapshot_vtu(h, k))?;
+    }
+    if n > 0 {
+        write_atomic(dir, PVD, pvd(h).as_bytes())?;
+    }
+    #[cfg(feature = "png")]
+    if plots {
+        crate::plot::dynamics::write_plots(dir, h)?;
+    }
+    Ok(Written {
+        summary: (),
+        files: dynamics_files(h, plots),
+    })
+}
