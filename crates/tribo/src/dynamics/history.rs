@@ -802,6 +802,12 @@ mod tests {
         assert!(h.energy.strain_energy.is_none() && h.energy.balance().is_none());
         assert_eq!(h.energy.series().len(), 1);
         h.check().unwrap();
+        // What a consumer (Python, JSON) reads: plain arrays, null where not computed.
+        let json = serde_json::to_value(&h).unwrap();
+        assert_eq!(json["times"][3], 1.5);
+        assert_eq!(json["probes"][0]["displacement"][3][0], 1.5);
+        assert_eq!(json["probes"][0]["stress"][2]["xx"], 1.0);
+        assert!(json["energy"]["strain_energy"].is_null());
     }
 
     #[test]

@@ -767,7 +767,7 @@ fn probe_specs(raw: Vec<RawProbe>, ctx: &DynamicsContext<'_>) -> CaseResult<Vec<
 
 // ---------------------------------------------------------------- locators
 
-/// A closed polyline per loop of a region (arcs as 256 chords, gmsh curves 8 per piece).
+/// A closed polyline per loop of a region (arcs as 4096 chords, gmsh curves 64 per quadratic piece).
 fn polylines<'a>(
     loops: &'a [Vec<LoopItem>],
     owned: &BTreeMap<&str, &'a SegmentShape>,
@@ -784,8 +784,8 @@ fn polylines<'a>(
                 let Some(shape) = shape else { continue };
                 let n = match shape {
                     SegmentShape::Line { .. } => 1,
-                    SegmentShape::Arc { .. } => 256,
-                    SegmentShape::Meshed(c) => 8 * c.pieces().max(1),
+                    SegmentShape::Arc { .. } => 4096,
+                    SegmentShape::Meshed(c) => 64 * c.pieces().max(1),
                 };
                 for j in 0..n {
                     let t = j as f64 / n as f64;
@@ -859,7 +859,7 @@ fn locator_of<'a>(
 }
 
 /// The region of the case's outlines holding a point (on the boundary counts as inside;
-/// arcs are taken as 256 chords, so a point within 8e-5 of the radius of an arc may be
+/// arcs are taken as 4096 chords, so a point within 3e-7 of the radius of an arc may be
 /// misjudged). Regions from gmsh files are not covered: use [`model_locator`].
 pub fn outline_locator(regions: &[RegionSpec]) -> impl Fn([f64; 2]) -> Option<String> + '_ {
     locator_of(

@@ -482,6 +482,11 @@ fn locators_of_outlines_and_models_agree() {
     assert_eq!(b([0.0, -1.999]).as_deref(), Some("ring"));
     assert_eq!(b([0.0, 0.5]), None);
     assert_eq!(b([0.0, 2.01]), None);
+    // 1e-5 inside the outer arc between two vertices of a 256-chord polygon (whose chords
+    // cut 1.5e-4 deep into the ring there): inside with 4096 chords (3e-7 deep).
+    let a = 2.0 * std::f64::consts::PI / 256.0 * 10.5;
+    let r = 2.0 - 1e-5;
+    assert_eq!(b([r * a.cos(), r * a.sin()]).as_deref(), Some("ring"));
 }
 
 // ---------------------------------------------------------------- hostile input
