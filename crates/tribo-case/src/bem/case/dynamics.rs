@@ -660,7 +660,8 @@ pub(crate) fn time_function(
 }
 
 /// A tabulated time function from a CSV file: two columns, time (s) and factor, one row
-/// per line; an optional header line first (any first line that is not two numbers);
+/// per line; an optional header line first (a first line none of whose fields is a number,
+/// so that a malformed first data row such as `0.001,abc` is an error, not a skipped header);
 /// blank lines and lines starting with `#` skipped. Errors ([`CaseError::DataFile`]) carry
 /// the 1-based line number: not two columns, not numbers, not finite, a time not after the
 /// one before; fewer than two rows.
@@ -692,7 +693,8 @@ pub fn read_time_csv(field: &str, path: &Path) -> CaseResult<TimeFunction> {
         let parsed: Option<Vec<f64>> = cols.iter().map(|c| c.parse::<f64>().ok()).collect();
         let (cols, values) = match parsed {
             Some(v) if v.len() == 2 => (cols, v),
-            _ if first => continue, // the header
+            // The header: no field of it reads as a number.
+            _ if first && cols.iter().all(|c| c.parse::<f64>().is_err()) => continue,
             Some(v) => {
                 return Err(data_error(
                     n,

@@ -425,6 +425,9 @@ fn csv_time_tables() {
         ("t,f\n0,0\n1,2,3\n", 3, "2 columns"),
         ("t,f\n0,0\n1,x\n", 3, "two numbers"),
         ("0,0\nt,f\n", 2, "two numbers"),
+        // A malformed first data row is not taken for a header (it has a number in it).
+        ("1e-4,x\n2e-4,1\n3e-4,0\n", 1, "two numbers"),
+        ("1e-4\n2e-4,1\n3e-4,0\n", 1, "2 columns"),
         ("t,f\n0,0\n1,inf\n", 3, "finite"),
         ("t,f\n0,0\n", 2, "at least 2 rows"),
         ("", 0, "at least 2 rows"),
