@@ -5,16 +5,16 @@
 //! from it) -> volume damageability (`[damage]`). Every stage reports to a [`Progress`].
 
 use crate::case::{
-    CycleAmplitude, CycleKind, FieldMethod, FieldPoints, HalfSpaceCase, Length, LimitSource,
-    LoadKind, Method, Shape, Window,
+    CycleAmplitude, CycleKind, CycleSpec, FieldMethod, FieldPoints, HalfSpaceCase, Length,
+    LimitSource, LoadKind, Shape, StudySpec, Window,
 };
 use crate::error::{CaseError, CaseResult};
 use crate::progress::{Progress, WithoutNotes};
 use std::time::Instant;
 use tribo::analysis::damage::{
     accumulate, dangerous_region, faces_reached, relative_damage, roller_shaft_sweep, BoxFace,
-    CycleDamage, CyclesDamage, DamageAssessment, DamageMesh, Execution, Limit, RollerShaftStudy,
-    RollingContact, RotatingBentShaft, StudyResult,
+    CycleDamage, CyclesDamage, DamageAssessment, DamageMesh, DamageQuantity, Execution, Limit,
+    RollerShaftStudy, RollingContact, RotatingBentShaft, StudyResult,
 };
 use tribo::analysis::edge_refinement::{refine_tractions, RefinedTractions};
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
@@ -138,8 +138,9 @@ pub struct Stress {
     pub time_s: f64,
 }
 
-/// The body a stress field is computed in (`field.body`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+/// A body of a half-space case, "body1" or "body2" in a case and the results: the body a
+/// stress field is computed in (`field.body`) and the shaft (`bulk.shaft`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FieldBody {
     /// Body 1.
@@ -517,8 +518,10 @@ pub fn solve(
         ));
     };
     let result = match case.method {
-        Method::Cg => solve_normal(&problem, &case.params, None, Some(&mut report)),
-        Method::ActiveSet => {
+        NormalMethod::ConjugateGradient => {
+            solve_normal(&problem, &case.params, None, Some(&mut report))
+        }
+        NormalMethod::ActiveSet => {
             let params = NormalContactParams {
                 method: NormalMethod::ActiveSet,
                 ..case.params
@@ -1133,31 +1136,8 @@ pub fn damage(
     let limiting = limiting.and_then(|l| l.field);
     let mut criteria = Vec::new();
     for (quantity, source) in &spec.criteria {
-        let (limit, label) = match *source {
-            LimitSource::Given(v) => (Limit::new(*quantity, v)?, LimitOrigin::Given),
-            LimitSource::OverP0(r) => (Limit::new(*quantity, r * p0)?, LimitOrigin::P0Multiple),
-            LimitSource::LimitingLoad(load) => {
-                let Some(field) = &limiting else {
-                    return Err(CaseError::field(
-                        "damage.limit_load",
-                        load,
-                        "the limiting run produced no stress field",
-                    ));
-                };
-                let limit = Limit::from_limiting_field(*quantity, &field.stress, &st.material)
-                    .map_err(|e| {
-                        CaseError::field(
-                            format!("damage.limits.{}", quantity.name()),
-                            "(from damage.limit_load)",
-                            format!(
-                                "no limit from the limiting field ({e}); give it in \
-                                 [damage.limits]"
-                            ),
-                        )
-                    })?;
-                (limit, LimitOrigin::LimitingLoad)
-            }
-        };
+        let (limit, label) =
+            criterion_limit(*quantity, source, p0, limiting.as_ref(), &st.material)?;
         let psi = relative_damage(&limit, &st.field.stress, &st.material)?;
         let region = dangerous_region(&mesh, &psi, Execution::Parallel)?;
         let window_note = match spec.cycle.as_ref().map(|c| &c.kind) {
@@ -1174,47 +1154,9 @@ pub fn damage(
         }
         let cycle = match &spec.cycle {
             None => None,
-            Some(c) => {
-                progress.status(&format!(
-                    "{}: accumulation over a cycle ({} steps)",
-                    quantity.name(),
-                    c.steps
-                ));
-                let one = match c.kind {
-                    CycleKind::RotatingBending { amplitude } => {
-                        let sigma_a = match amplitude {
-                            CycleAmplitude::Pascal(v) => v,
-                            CycleAmplitude::OverP0(r) => r * p0,
-                        };
-                        let radius = case.bulk.as_ref().map_or(0.0, |b| b.shaft_radius);
-                        let history = RotatingBentShaft::new(
-                            st.field.clone(),
-                            sigma_a,
-                            radius,
-                            c.period,
-                            c.steps,
-                        )?;
-                        accumulate(&mesh, &history, &limit, &st.material, Execution::Parallel)?
-                    }
-                    CycleKind::Rolling { speed } => {
-                        let bulk = match (&case.bulk, &st.bulk) {
-                            (Some(b), Some((kind, sigma))) => {
-                                Some((kind.load(*sigma), b.shaft_radius))
-                            }
-                            _ => None,
-                        };
-                        // The contact field alone moves; the bulk stress stays.
-                        let mut contact = st.field.clone();
-                        if let Some((load, radius)) = &bulk {
-                            contact.add_bulk(&load.scaled(-1.0), *radius);
-                        }
-                        let history = RollingContact::new(contact, speed, c.period, c.steps, bulk)?;
-                        accumulate(&mesh, &history, &limit, &st.material, Execution::Parallel)?
-                    }
-                };
-                let total = one.over_cycles(c.cycles)?;
-                Some((one, total))
-            }
+            Some(c) => Some(cycle_damage(
+                case, st, c, p0, &mesh, &limit, *quantity, progress,
+            )?),
         };
         criteria.push(DamageCriterion {
             assessment: DamageAssessment {
@@ -1233,46 +1175,7 @@ pub fn damage(
     }
     let study = match &spec.study {
         None => None,
-        Some(study) => {
-            let (Some(hertz), Some(bulk)) = (&out.prepared.hertz, &case.bulk) else {
-                progress.finish();
-                return Err(CaseError::field(
-                    "damage.study",
-                    "given",
-                    "needs a Hertzian gap (both bodies given by radii: the field is sized by \
-                     the semi-axis a) and a [bulk] section",
-                ));
-            };
-            let (qx, qy) = field_tractions(out, st.body.name());
-            let tractions = SurfaceTractions {
-                grid: &out.prepared.grid,
-                pressure: &out.solution.pressure,
-                shear_x: qx.as_deref(),
-                shear_y: qy.as_deref(),
-            };
-            let points = [
-                st.field.grid.x.len(),
-                st.field.grid.y.len(),
-                st.field.grid.z.len(),
-            ];
-            progress.status(&format!(
-                "Sec. 6 study: fields n and n+tau, {} bending stresses",
-                study.bending_over_p0.len()
-            ));
-            let results = roller_shaft_sweep(
-                &RollerShaftStudy {
-                    tractions,
-                    material: st.material,
-                    semi_axis: hertz.contact.semi_major,
-                    points,
-                    limit_over_p0: study.limit_over_p0,
-                    bending_over_p0: 0.0,
-                    shaft_radius: bulk.shaft_radius,
-                },
-                &study.bending_over_p0,
-            )?;
-            Some(results)
-        }
+        Some(study) => Some(sec6_study(case, out, st, study, progress)?),
     };
     progress.finish();
     Ok(Some(Damage {
@@ -1284,4 +1187,135 @@ pub fn damage(
         // The limiting state's run counts into the damage stage, as it always has.
         time_s: start.elapsed().as_secs_f64() + limiting_time_s,
     }))
+}
+
+/// The limit of one criterion and where it comes from: given, a multiple of p0, or the
+/// extreme of the field of the run at the limiting load.
+fn criterion_limit(
+    quantity: DamageQuantity,
+    source: &LimitSource,
+    p0: f64,
+    limiting: Option<&StressField>,
+    material: &ElasticMaterial,
+) -> CaseResult<(Limit, LimitOrigin)> {
+    Ok(match *source {
+        LimitSource::Given(v) => (Limit::new(quantity, v)?, LimitOrigin::Given),
+        LimitSource::OverP0(r) => (Limit::new(quantity, r * p0)?, LimitOrigin::P0Multiple),
+        LimitSource::LimitingLoad(load) => {
+            let Some(field) = limiting else {
+                return Err(CaseError::field(
+                    "damage.limit_load",
+                    load,
+                    "the limiting run produced no stress field",
+                ));
+            };
+            let limit =
+                Limit::from_limiting_field(quantity, &field.stress, material).map_err(|e| {
+                    CaseError::field(
+                        format!("damage.limits.{}", quantity.name()),
+                        "(from damage.limit_load)",
+                        format!(
+                            "no limit from the limiting field ({e}); give it in \
+                             [damage.limits]"
+                        ),
+                    )
+                })?;
+            (limit, LimitOrigin::LimitingLoad)
+        }
+    })
+}
+
+/// psi accumulated over one cycle of the case's `[damage.cycle]` and over its cycles.
+#[allow(clippy::too_many_arguments)]
+fn cycle_damage(
+    case: &HalfSpaceCase,
+    st: &Stress,
+    c: &CycleSpec,
+    p0: f64,
+    mesh: &DamageMesh,
+    limit: &Limit,
+    quantity: DamageQuantity,
+    progress: &mut dyn Progress,
+) -> CaseResult<(CycleDamage, CyclesDamage)> {
+    progress.status(&format!(
+        "{}: accumulation over a cycle ({} steps)",
+        quantity.name(),
+        c.steps
+    ));
+    let one = match c.kind {
+        CycleKind::RotatingBending { amplitude } => {
+            let sigma_a = match amplitude {
+                CycleAmplitude::Pascal(v) => v,
+                CycleAmplitude::OverP0(r) => r * p0,
+            };
+            let radius = case.bulk.as_ref().map_or(0.0, |b| b.shaft_radius);
+            let history =
+                RotatingBentShaft::new(st.field.clone(), sigma_a, radius, c.period, c.steps)?;
+            accumulate(mesh, &history, limit, &st.material, Execution::Parallel)?
+        }
+        CycleKind::Rolling { speed } => {
+            let bulk = match (&case.bulk, &st.bulk) {
+                (Some(b), Some((kind, sigma))) => Some((kind.load(*sigma), b.shaft_radius)),
+                _ => None,
+            };
+            // The contact field alone moves; the bulk stress stays.
+            let mut contact = st.field.clone();
+            if let Some((load, radius)) = &bulk {
+                contact.add_bulk(&load.scaled(-1.0), *radius);
+            }
+            let history = RollingContact::new(contact, speed, c.period, c.steps, bulk)?;
+            accumulate(mesh, &history, limit, &st.material, Execution::Parallel)?
+        }
+    };
+    let total = one.over_cycles(c.cycles)?;
+    Ok((one, total))
+}
+
+/// The paper's Sec. 6 study (`[damage.study]`): the damage of the fields n and n + tau over
+/// the bending stresses.
+fn sec6_study(
+    case: &HalfSpaceCase,
+    out: &Outcome,
+    st: &Stress,
+    study: &StudySpec,
+    progress: &mut dyn Progress,
+) -> CaseResult<Vec<StudyResult>> {
+    let (Some(hertz), Some(bulk)) = (&out.prepared.hertz, &case.bulk) else {
+        progress.finish();
+        return Err(CaseError::field(
+            "damage.study",
+            "given",
+            "needs a Hertzian gap (both bodies given by radii: the field is sized by \
+                 the semi-axis a) and a [bulk] section",
+        ));
+    };
+    let (qx, qy) = field_tractions(out, st.body.name());
+    let tractions = SurfaceTractions {
+        grid: &out.prepared.grid,
+        pressure: &out.solution.pressure,
+        shear_x: qx.as_deref(),
+        shear_y: qy.as_deref(),
+    };
+    let points = [
+        st.field.grid.x.len(),
+        st.field.grid.y.len(),
+        st.field.grid.z.len(),
+    ];
+    progress.status(&format!(
+        "Sec. 6 study: fields n and n+tau, {} bending stresses",
+        study.bending_over_p0.len()
+    ));
+    let results = roller_shaft_sweep(
+        &RollerShaftStudy {
+            tractions,
+            material: st.material,
+            semi_axis: hertz.contact.semi_major,
+            points,
+            limit_over_p0: study.limit_over_p0,
+            bending_over_p0: 0.0,
+            shaft_radius: bulk.shaft_radius,
+        },
+        &study.bending_over_p0,
+    )?;
+    Ok(results)
 }

@@ -13,7 +13,7 @@
 use crate::error::{CaseError, CaseResult};
 use crate::units::show;
 use serde::de::{DeserializeOwned, Error as _};
-use serde::{Deserialize, Deserializer};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 use toml::Value;
 
@@ -174,6 +174,24 @@ impl FromToml for Flag {
 }
 
 leaf_deserialize!(Count, Flag);
+
+impl Serialize for Count {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_u64(self.n as u64)
+    }
+}
+
+impl Serialize for Flag {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_bool(self.on)
+    }
+}
+
+impl<E: Serialize> Serialize for Choice<E> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        self.value.serialize(serializer)
+    }
+}
 
 /// An enum of a case file's choices (serde parses the strings: `rename_all`, `alias`), with
 /// the rule naming them for a string that is none of them.

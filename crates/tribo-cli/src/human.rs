@@ -342,12 +342,9 @@ fn bem_steps(s: &mut String, summary: &BemSummary) {
 
 /// The damage lines of a 2D summary.
 fn bem_damage(s: &mut String, d: &tribo_case::bem::summary::DamageSummary) {
-    let scale = if d.unit == "Pa" { 1e-6 } else { 1.0 };
-    let unit = if d.unit == "Pa" {
-        "MPa"
-    } else {
-        d.unit.as_str()
-    };
+    let pascal = d.unit == tribo_case::bem::pipeline::DamageUnit::Pascal;
+    let scale = if pascal { 1e-6 } else { 1.0 };
+    let unit = if pascal { "MPa" } else { d.unit.symbol() };
     let _ = writeln!(
         s,
         "  damage of {} ({} / limit, step {}):",

@@ -8,7 +8,7 @@ mod memory;
 mod progress;
 mod term;
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use exit::{EXIT_OK, EXIT_OTHER};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -58,6 +58,23 @@ Examples:
   tribo validate                        the verification table
   tribo fatigue fit data.csv -o fit     Woehler curve fits (E739, max. likelihood), Fig. 3
   tribo example fatigue-diagram | tribo fatigue diagram -   limiting states, Fig. 4";
+
+/// Where a command writes (`-o DIR`) and whether it prints its JSON (`--json`): the options
+/// of every command that writes results.
+#[derive(Debug, Args)]
+pub struct OutputArgs {
+    /// Output directory (created if needed).
+    #[arg(
+        short = 'o',
+        long = "out",
+        value_name = "DIR",
+        default_value = "tribo-out"
+    )]
+    pub out: PathBuf,
+    /// Print the summary as JSON on stdout instead of the human summary.
+    #[arg(long)]
+    pub json: bool,
+}
 
 #[derive(Debug, Parser)]
 #[command(name = "tribo", version, about = ABOUT, long_about = LONG_ABOUT, after_help = AFTER_HELP)]
@@ -121,17 +138,8 @@ Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3
     Run {
         /// Case file (TOML); `-` reads stdin; default: the embedded `roller-shaft` case.
         case: Option<PathBuf>,
-        /// Output directory (created if needed).
-        #[arg(
-            short = 'o',
-            long = "out",
-            value_name = "DIR",
-            default_value = "tribo-out"
-        )]
-        out: PathBuf,
-        /// Print the summary as JSON on stdout instead of the human summary.
-        #[arg(long)]
-        json: bool,
+        #[command(flatten)]
+        output: OutputArgs,
         /// No progress on stderr.
         #[arg(short, long)]
         quiet: bool,
@@ -192,8 +200,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Run {
             case,
-            out,
-            json,
+            output: OutputArgs { out, json },
             quiet,
             dry_run,
             max_memory,

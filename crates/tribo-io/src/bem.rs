@@ -139,7 +139,7 @@ fn write_data(dir: &Path, case: &BemCase, out: &BemOutcome, summary: &BemSummary
     }
     if let Some(d) = &summary.damage {
         if !d.sweep.is_empty() {
-            let csv = crate::csv::damage_sweep(&d.unit, &d.sweep);
+            let csv = crate::csv::damage_sweep(d.unit.symbol(), &d.sweep);
             write_atomic(dir, "damage_sweep.csv", csv.as_bytes())?;
         }
     }

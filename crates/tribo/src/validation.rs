@@ -838,31 +838,19 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
         ));
         // Traction: mean |q - q_CM| / (f p0) over the contact elements; like eps_avg of the
         // pressure it is dominated by the elements cut by the contact and stick edges.
-        let c = a * (1.0 - ratio).cbrt();
-        let p0 = hertz.max_pressure;
-        let (mut sum, mut count) = (0.0, 0usize);
-        for iy in 0..grid.ny() {
-            for ix in 0..grid.nx() {
-                let k = grid.index(ix, iy);
-                if normal.pressure[k] <= 0.0 {
-                    continue;
-                }
-                let r2 = grid.x(ix).powi(2) + grid.y(iy).powi(2);
-                let outer = (1.0 - r2 / (a * a)).max(0.0).sqrt();
-                let inner = if r2 < c * c {
-                    (c / a) * (1.0 - r2 / (c * c)).sqrt()
-                } else {
-                    0.0
-                };
-                sum += (s.traction_x[k] - f * p0 * (outer - inner)).abs() / (f * p0);
-                count += 1;
-            }
-        }
+        let mean_error = cattaneo_mindlin_traction_error(
+            &grid,
+            &normal.pressure,
+            &s.traction_x,
+            &hertz,
+            ratio,
+            f,
+        );
         rows.push(ValidationRow::new(
             &case,
             "mean |q_x - q_CM| / (f p0) over the contact",
             0.0,
-            sum / count as f64,
+            mean_error,
             ErrorMeasure::Bound,
             // Edge-band argument as for eps_avg: O((dx/a)^1.5) = 4.4e-3 here; observed
             // 1.1e-3 - 1.3e-3, bound 0.6 (dx/a)^1.5.
@@ -909,7 +897,48 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
             "the load (solver force tolerance 1e-10, sums' round-off)",
         ));
     }
-    // The paper's ellipse, Q/fP = 0.5: stick area / contact area = (1 - Q/fP)^(2/3).
+    rows.push(paper_ellipse_stick_row()?);
+    Ok(rows)
+}
+
+/// The mean of |q_x - q_CM| / (f p0) over the contact elements of a sphere's partial slip
+/// at Q = `ratio` f P along x: q_CM = f p0 (sqrt(1 - r^2/a^2) - (c/a) sqrt(1 - r^2/c^2)),
+/// c = a (1 - Q/fP)^(1/3) (Johnson 1985 sec. 7.1).
+fn cattaneo_mindlin_traction_error(
+    grid: &SurfaceGrid,
+    pressure: &[f64],
+    traction_x: &[f64],
+    hertz: &HertzContact,
+    ratio: f64,
+    f: f64,
+) -> f64 {
+    let a = hertz.semi_major;
+    let c = a * (1.0 - ratio).cbrt();
+    let p0 = hertz.max_pressure;
+    let (mut sum, mut count) = (0.0, 0usize);
+    for iy in 0..grid.ny() {
+        for ix in 0..grid.nx() {
+            let k = grid.index(ix, iy);
+            if pressure[k] <= 0.0 {
+                continue;
+            }
+            let r2 = grid.x(ix).powi(2) + grid.y(iy).powi(2);
+            let outer = (1.0 - r2 / (a * a)).max(0.0).sqrt();
+            let inner = if r2 < c * c {
+                (c / a) * (1.0 - r2 / (c * c)).sqrt()
+            } else {
+                0.0
+            };
+            sum += (traction_x[k] - f * p0 * (outer - inner)).abs() / (f * p0);
+            count += 1;
+        }
+    }
+    sum / count as f64
+}
+
+/// The paper's ellipse at Q/fP = 0.5: stick area / contact area = (1 - Q/fP)^(2/3)
+/// (Mindlin 1949: the stick zone is an ellipse similar to the contact).
+fn paper_ellipse_stick_row() -> Result<ValidationRow> {
     let (curvature, e_star) = paper_case_curvature()?;
     let paper_steel = ElasticMaterial::new(2.01e11, 0.3)?;
     let hertz = HertzContact::from_load(&curvature, e_star, 2000.0)?;
@@ -935,7 +964,7 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
         offset: None,
     };
     let s = solve_tangential(&problem, &TangentialParams::default(), None, None)?;
-    rows.push(ValidationRow::new(
+    Ok(ValidationRow::new(
         "Mindlin, paper ellipse (b/a = 0.886), Q/fP = 0.5, 96x96",
         "sqrt(stick area / contact area) = (1 - Q/fP)^(1/3)",
         0.5f64.cbrt(),
@@ -943,8 +972,7 @@ pub fn tangential_rows() -> Result<Vec<ValidationRow>> {
         ErrorMeasure::Absolute,
         0.5 * grid.dx() / hertz.semi_minor,
         "Mindlin 1949: similar elliptical stick zone (docs/theory/HALFSPACE.md 3.4)",
-    ));
-    Ok(rows)
+    ))
 }
 
 /// Rows of the sliding sphere (Hamilton 1983): the stress field of the element-averaged

@@ -72,6 +72,47 @@ pub struct Extremes {
     pub eps_int: (f64, [f64; 2]),
 }
 
+/// The unit of a damage quantity's values and limits (serialized as its symbol).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub enum DamageUnit {
+    /// Pa: stresses.
+    #[serde(rename = "Pa")]
+    Pascal,
+    /// 1: strains.
+    #[serde(rename = "1")]
+    One,
+    /// J/m^3: strain energy densities.
+    #[serde(rename = "J/m^3")]
+    JoulePerCubicMetre,
+}
+
+impl DamageUnit {
+    /// The unit of `quantity` ([`DamageQuantity::unit`]'s symbol; a test checks every
+    /// quantity of the vocabulary).
+    pub fn of(quantity: &DamageQuantity) -> Self {
+        match quantity.unit() {
+            "Pa" => DamageUnit::Pascal,
+            "1" => DamageUnit::One,
+            _ => DamageUnit::JoulePerCubicMetre,
+        }
+    }
+
+    /// Its symbol: "Pa", "1" or "J/m^3".
+    pub fn symbol(self) -> &'static str {
+        match self {
+            DamageUnit::Pascal => "Pa",
+            DamageUnit::One => "1",
+            DamageUnit::JoulePerCubicMetre => "J/m^3",
+        }
+    }
+}
+
+impl std::fmt::Display for DamageUnit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.symbol())
+    }
+}
+
 /// The damage of one region.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct DamageOutcome {
@@ -82,7 +123,7 @@ pub struct DamageOutcome {
     /// Quantity name (e.g. sigma_int).
     pub quantity: String,
     /// Its unit.
-    pub unit: &'static str,
+    pub unit: DamageUnit,
     /// The limit of the maps, in `unit`.
     pub limit: f64,
     /// psi at the field nodes of the region at `limit`.
@@ -585,68 +626,15 @@ pub fn run_variant(
         }
         steps_time = t1.elapsed().as_secs_f64();
     }
-    // Fields.
     progress.stage(&format!("interior fields{label}"), None);
     let t2 = Instant::now();
-    let field_size = case.field.size.unwrap_or_else(|| default_field_size(&mesh));
-    let mut fields = Vec::new();
-    for r in field_regions(case, &mesh, only_regions)? {
-        let tri = triangulate_region(&mesh, r, field_size)?;
-        let mut samples = Vec::with_capacity(steps.len());
-        for s in &steps {
-            samples.push(sample_region(&s.solution, r, &tri.nodes)?);
-        }
-        fields.push(RegionField {
-            region: mesh.regions[r].name.clone(),
-            index: r,
-            material: mesh.regions[r].material,
-            nodes: tri.nodes,
-            triangles: tri.triangles,
-            samples,
-        });
-    }
+    let fields = region_fields(case, &mesh, &steps, only_regions)?;
     let fields_time = t2.elapsed().as_secs_f64();
     // Damage.
     let t3 = Instant::now();
     let damage = match &case.damage {
         None => None,
-        Some(d) => {
-            let Some(f) = fields.iter().find(|f| f.region == d.region) else {
-                return Err(CaseError::field(
-                    "damage.region",
-                    format!("{:?}", d.region),
-                    "is not among field.regions (its field is needed)",
-                ));
-            };
-            let dm = DamageMesh::triangles(f.nodes.clone(), f.triangles.clone())?;
-            let phi: Vec<f64> = f.samples[d.step]
-                .iter()
-                .map(|s| d.quantity.value(&tensor(&s.stress), &f.material))
-                .collect();
-            let region_at = |limit: f64| -> CaseResult<(Vec<f64>, DangerousRegion)> {
-                let psi: Vec<f64> = phi.iter().map(|v| v / limit).collect();
-                let r = dangerous_region(&dm, &psi, Execution::Parallel)?;
-                Ok((psi, r))
-            };
-            let (psi, at_limit) = region_at(d.limit)?;
-            let mut sweep = Vec::new();
-            if let Some((a, b, n)) = d.sweep {
-                for k in 0..n {
-                    let limit = a + (b - a) * k as f64 / (n - 1) as f64;
-                    sweep.push((limit, region_at(limit)?.1));
-                }
-            }
-            Some(DamageOutcome {
-                region: d.region.clone(),
-                step: case.steps[d.step].name.clone(),
-                quantity: d.quantity.name(),
-                unit: d.quantity.unit(),
-                limit: d.limit,
-                psi,
-                at_limit,
-                sweep,
-            })
-        }
+        Some(d) => Some(region_damage(case, d, &fields)?),
     };
     let damage_time = t3.elapsed().as_secs_f64();
     progress.finish();
@@ -665,6 +653,78 @@ pub fn run_variant(
             fields: fields_time,
             damage: damage_time,
         },
+    })
+}
+
+/// The interior fields of the sampled regions (`[field]`): each region triangulated and its
+/// stresses and strains sampled at the nodes in every step.
+fn region_fields(
+    case: &BemCase,
+    mesh: &BemMesh,
+    steps: &[StepOutcome],
+    only_regions: Option<&[&str]>,
+) -> CaseResult<Vec<RegionField>> {
+    let field_size = case.field.size.unwrap_or_else(|| default_field_size(mesh));
+    let mut fields = Vec::new();
+    for r in field_regions(case, mesh, only_regions)? {
+        let tri = triangulate_region(mesh, r, field_size)?;
+        let mut samples = Vec::with_capacity(steps.len());
+        for s in steps {
+            samples.push(sample_region(&s.solution, r, &tri.nodes)?);
+        }
+        fields.push(RegionField {
+            region: mesh.regions[r].name.clone(),
+            index: r,
+            material: mesh.regions[r].material,
+            nodes: tri.nodes,
+            triangles: tri.triangles,
+            samples,
+        });
+    }
+    Ok(fields)
+}
+
+/// The damage of the region `d` names in its step: psi = phi / limit at the field nodes,
+/// the dangerous region at the limit and over the sweep.
+fn region_damage(
+    case: &BemCase,
+    d: &super::case::DamageSpec,
+    fields: &[RegionField],
+) -> CaseResult<DamageOutcome> {
+    let Some(f) = fields.iter().find(|f| f.region == d.region) else {
+        return Err(CaseError::field(
+            "damage.region",
+            format!("{:?}", d.region),
+            "is not among field.regions (its field is needed)",
+        ));
+    };
+    let dm = DamageMesh::triangles(f.nodes.clone(), f.triangles.clone())?;
+    let phi: Vec<f64> = f.samples[d.step]
+        .iter()
+        .map(|s| d.quantity.value(&tensor(&s.stress), &f.material))
+        .collect();
+    let region_at = |limit: f64| -> CaseResult<(Vec<f64>, DangerousRegion)> {
+        let psi: Vec<f64> = phi.iter().map(|v| v / limit).collect();
+        let r = dangerous_region(&dm, &psi, Execution::Parallel)?;
+        Ok((psi, r))
+    };
+    let (psi, at_limit) = region_at(d.limit)?;
+    let mut sweep = Vec::new();
+    if let Some((a, b, n)) = d.sweep {
+        for k in 0..n {
+            let limit = a + (b - a) * k as f64 / (n - 1) as f64;
+            sweep.push((limit, region_at(limit)?.1));
+        }
+    }
+    Ok(DamageOutcome {
+        region: d.region.clone(),
+        step: case.steps[d.step].name.clone(),
+        quantity: d.quantity.name(),
+        unit: DamageUnit::of(&d.quantity),
+        limit: d.limit,
+        psi,
+        at_limit,
+        sweep,
     })
 }
 
@@ -713,5 +773,22 @@ pub fn plane_name(p: PlaneCondition) -> &'static str {
     match p {
         PlaneCondition::Strain => "strain",
         PlaneCondition::Stress => "stress",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::DamageUnit;
+
+    /// The typed unit is the library's unit of every quantity a case may assess.
+    #[test]
+    fn damage_units_are_the_quantities_units() {
+        let vocabulary = crate::halfspace::damage_vocabulary();
+        assert!(vocabulary.len() > 5);
+        for q in &vocabulary {
+            assert_eq!(DamageUnit::of(q).symbol(), q.unit(), "{}", q.name());
+            let json = serde_json::to_value(DamageUnit::of(q)).unwrap_or_default();
+            assert_eq!(json, serde_json::Value::String(q.unit().into()));
+        }
     }
 }

@@ -10,7 +10,7 @@ use tribo::analysis::damage::{DamageQuantity, DangerousRegion, TensorKind};
 use tribo::solvers::bem2d::contact::{ContactState, PairResult};
 
 use super::case::{BcKind, BemCase, ComponentSpec};
-use super::pipeline::{extremes, plane_name, tensor, BemOutcome, RegionField, Variant};
+use super::pipeline::{extremes, plane_name, tensor, BemOutcome, DamageUnit, RegionField, Variant};
 use crate::error::CaseResult;
 
 /// The paper's Sec. 7 statements, for the clamp-knife-base template.
@@ -214,7 +214,7 @@ pub struct DamageSummary {
     /// Quantity.
     pub quantity: String,
     /// Unit of the limits.
-    pub unit: String,
+    pub unit: DamageUnit,
     /// At the case's limit.
     pub at_limit: Dangerous,
     /// The sweep.
@@ -648,7 +648,7 @@ fn damage_summary(case: &BemCase, v: &Variant) -> Option<DamageSummary> {
         region: d.region.clone(),
         step: d.step.clone(),
         quantity: d.quantity.clone(),
-        unit: d.unit.to_string(),
+        unit: d.unit,
         at_limit: Dangerous::new(d.limit, &d.at_limit),
         sweep,
         sweep_factors,

@@ -30,11 +30,11 @@
 //! only), then `clamping+cutting` (both), so that Fig. 7b's with/without comparison is the
 //! two steps of one path.
 
-use toml::Value;
+use serde::Deserialize;
 
-use super::case::{RawBc, RawPair, RawRegion, RawStep};
+use super::case::{Point, Profile, RawBc, RawClampKnifeBase, RawItem, RawPair, RawRegion, RawStep};
 use crate::error::{CaseError, CaseResult};
-use crate::units::{number, quantity, show, Dim};
+use crate::units::Quantity;
 
 /// The parameters (SI units).
 #[derive(Debug, Clone, PartialEq)]
@@ -125,50 +125,51 @@ fn bad(field: &str, value: impl std::fmt::Display, rule: impl Into<String>) -> C
 const SLAVE_MARGIN: f64 = 0.0;
 
 impl ClampKnifeBase {
-    /// Reads the table (every key optional; defaults above) and checks the geometry.
+    /// Reads the table (every key optional; defaults above) and checks the geometry; errors
+    /// name the key as a case file writes it (`clamp_knife_base.knife_length`).
     pub fn from_table(t: &toml::Table) -> CaseResult<Self> {
-        let mut p = Self::default();
-        for (key, v) in t {
-            let length = |v: &Value| quantity(&format!("clamp_knife_base.{key}"), v, Dim::Length);
-            let name = |v: &Value| match v {
-                Value::String(s) => Ok(s.clone()),
-                other => Err(bad(key, show(other), "must be a material name")),
-            };
-            match key.as_str() {
-                "knife_length" => p.knife_length = length(v)?,
-                "knife_thickness" => p.knife_thickness = length(v)?,
-                "bevel_length" => p.bevel_length = length(v)?,
-                "edge_thickness" => p.edge_thickness = length(v)?,
-                "cutting_length" => p.cutting_length = length(v)?,
-                "base_left" => p.base_left = length(v)?,
-                "base_thickness" => p.base_thickness = length(v)?,
-                "clamp_left" => p.clamp_left = length(v)?,
-                "clamp_thickness" => p.clamp_thickness = length(v)?,
-                "bolt_center" => p.bolt_center = length(v)?,
-                "bolt_width" => p.bolt_width = length(v)?,
-                "contact_element_size" => p.contact_element_size = length(v)?,
-                "element_size" => p.element_size = length(v)?,
-                "bolt_pressure" => {
-                    p.bolt_pressure = quantity(&format!("clamp_knife_base.{key}"), v, Dim::Pressure)?
-                }
-                "cutting_load" => {
-                    p.cutting_load = quantity(&format!("clamp_knife_base.{key}"), v, Dim::LineForce)?
-                }
-                "friction" => p.friction = number(&format!("clamp_knife_base.{key}"), v)?,
-                "knife_material" => p.knife_material = name(v)?,
-                "clamp_material" => p.clamp_material = name(v)?,
-                "base_material" => p.base_material = name(v)?,
-                other => {
-                    return Err(bad(
-                        other,
-                        show(v),
-                        "unknown parameter (knife_length, knife_thickness, bevel_length, edge_thickness, cutting_length, \
-                         base_left, base_thickness, clamp_left, clamp_thickness, bolt_center, bolt_width, bolt_pressure, \
-                         cutting_load, friction, contact_element_size, element_size, knife_material, clamp_material, base_material)",
-                    ))
-                }
-            }
+        #[derive(Deserialize)]
+        struct Section {
+            clamp_knife_base: RawClampKnifeBase,
         }
+        let mut section = toml::Table::new();
+        section.insert("clamp_knife_base".into(), toml::Value::Table(t.clone()));
+        let s: Section =
+            crate::schema::from_value(toml::Value::Table(section), "[clamp_knife_base]")?;
+        Self::from_raw(&s.clamp_knife_base)
+    }
+
+    /// The parameters given (the defaults for the others), with the geometry checked.
+    pub(super) fn from_raw(raw: &RawClampKnifeBase) -> CaseResult<Self> {
+        let d = Self::default();
+        let si = |q: &Option<Quantity<_>>, default: f64| q.as_ref().map_or(default, |q| q.si());
+        let p = Self {
+            knife_length: si(&raw.knife_length, d.knife_length),
+            knife_thickness: si(&raw.knife_thickness, d.knife_thickness),
+            bevel_length: si(&raw.bevel_length, d.bevel_length),
+            edge_thickness: si(&raw.edge_thickness, d.edge_thickness),
+            cutting_length: si(&raw.cutting_length, d.cutting_length),
+            base_left: si(&raw.base_left, d.base_left),
+            base_thickness: si(&raw.base_thickness, d.base_thickness),
+            clamp_left: si(&raw.clamp_left, d.clamp_left),
+            clamp_thickness: si(&raw.clamp_thickness, d.clamp_thickness),
+            bolt_center: si(&raw.bolt_center, d.bolt_center),
+            bolt_width: si(&raw.bolt_width, d.bolt_width),
+            bolt_pressure: raw
+                .bolt_pressure
+                .as_ref()
+                .map_or(d.bolt_pressure, Quantity::si),
+            cutting_load: raw
+                .cutting_load
+                .as_ref()
+                .map_or(d.cutting_load, Quantity::si),
+            friction: raw.friction.as_ref().map_or(d.friction, Quantity::si),
+            contact_element_size: si(&raw.contact_element_size, d.contact_element_size),
+            element_size: si(&raw.element_size, d.element_size),
+            knife_material: raw.knife_material.clone().unwrap_or(d.knife_material),
+            clamp_material: raw.clamp_material.clone().unwrap_or(d.clamp_material),
+            base_material: raw.base_material.clone().unwrap_or(d.base_material),
+        };
         p.check()?;
         Ok(p)
     }
@@ -242,13 +243,12 @@ impl ClampKnifeBase {
         let m = SLAVE_MARGIN * t;
         let h = self.element_size;
         let hc = self.contact_element_size;
-        let pt = |x: f64, y: f64| Value::Array(vec![Value::Float(x), Value::Float(y)]);
-        let seg = |name: &str, to: Value, size: f64| {
-            let mut tab = toml::Table::new();
-            tab.insert("name".into(), Value::String(name.into()));
-            tab.insert("to".into(), to);
-            tab.insert("size".into(), Value::Float(size));
-            tab
+        let pt = |x: f64, y: f64| Point::from_si([x, y]);
+        let seg = |name: &str, to: Point, size: f64| RawItem {
+            name: Some(name.into()),
+            to: Some(to),
+            size: Some(Quantity::from_si(size)),
+            ..RawItem::default()
         };
         let knife = RawRegion {
             name: "knife".into(),
@@ -304,24 +304,26 @@ impl ClampKnifeBase {
         let bcs = vec![
             RawBc {
                 segment: "base_bottom".into(),
-                ux: Some(Value::Float(0.0)),
-                uy: Some(Value::Float(0.0)),
+                ux: Some(Profile::Uniform(Quantity::from_si(0.0))),
+                uy: Some(Profile::Uniform(Quantity::from_si(0.0))),
                 ..RawBc::default()
             },
             RawBc {
                 segment: "knife_back".into(),
-                ux: Some(Value::Float(0.0)),
+                ux: Some(Profile::Uniform(Quantity::from_si(0.0))),
                 ..RawBc::default()
             },
             RawBc {
                 segment: "clamp_bolt".into(),
-                pressure: Some(Value::Float(self.bolt_pressure)),
+                pressure: Some(Profile::Uniform(Quantity::from_si(self.bolt_pressure))),
                 group: Some("bolt".into()),
                 ..RawBc::default()
             },
             RawBc {
                 segment: "knife_blade".into(),
-                pressure: Some(Value::Float(self.cutting_load / self.cutting_length)),
+                pressure: Some(Profile::Uniform(Quantity::from_si(
+                    self.cutting_load / self.cutting_length,
+                ))),
                 group: Some("cutting".into()),
                 ..RawBc::default()
             },
@@ -329,12 +331,13 @@ impl ClampKnifeBase {
         let pair = |slave: &str, master: &str| RawPair {
             slave: slave.into(),
             master: master.into(),
-            friction: Value::Float(self.friction),
+            friction: Quantity::from_si(self.friction),
         };
         let step = |name: &str, cutting: f64| {
-            let mut f = toml::Table::new();
-            f.insert("bolt".into(), Value::Float(1.0));
-            f.insert("cutting".into(), Value::Float(cutting));
+            let f = [("bolt", 1.0), ("cutting", cutting)]
+                .into_iter()
+                .map(|(g, x)| (g.to_string(), Quantity::from_si(x)))
+                .collect();
             RawStep {
                 name: Some(name.into()),
                 factors: Some(f),

@@ -108,7 +108,7 @@ pub fn parse_raw<T: serde::de::DeserializeOwned>(
 /// The case as JSON for the summary's echo. JSON has no infinity: TOML's `inf`, `-inf` and
 /// `nan` floats are echoed as the strings "inf", "-inf" and "nan" (serde_json would write
 /// null, which reads back as a different case); dates as their TOML text.
-fn echo_json(v: &Value) -> serde_json::Value {
+pub(crate) fn echo_json(v: &Value) -> serde_json::Value {
     use serde_json::Value as J;
     match v {
         Value::String(s) => J::String(s.clone()),
@@ -129,6 +129,19 @@ fn echo_json(v: &Value) -> serde_json::Value {
 mod tests {
     use super::validate::shaft_radius_from;
     use super::*;
+    use tribo::solvers::NormalMethod;
+
+    /// The case's `solver.method` is the library's [`NormalMethod`]: its name in summaries is
+    /// the string serde reads and writes, so the two cannot drift.
+    #[test]
+    fn solver_method_names_are_the_library_methods_serde_names() {
+        for m in [NormalMethod::ConjugateGradient, NormalMethod::ActiveSet] {
+            let json = serde_json::to_value(m).unwrap();
+            assert_eq!(json, serde_json::Value::String(m.name().into()));
+            let back: NormalMethod = serde_json::from_value(json).unwrap();
+            assert_eq!(back, m);
+        }
+    }
     use tribo::geometry::{Crown, SurfaceProfile};
     use tribo::solvers::NormalLoading;
 
@@ -174,7 +187,7 @@ extent = 1.5
         );
         assert!((c.composite_modulus() / 1.10440e11 - 1.0).abs() < 5e-6);
         assert_eq!(c.echo["body1"]["radii"][1], serde_json::json!(0.05));
-        assert_eq!(c.method, Method::Cg);
+        assert_eq!(c.method, NormalMethod::ConjugateGradient);
     }
 
     #[test]
@@ -289,7 +302,7 @@ extent = 1.5
         assert!(
             matches!(c.body2.shape, Shape::Radii { angle, .. } if (angle - 30f64.to_radians()).abs() < 1e-15)
         );
-        assert_eq!(c.method, Method::ActiveSet);
+        assert_eq!(c.method, NormalMethod::ActiveSet);
         assert_eq!((c.params.tolerance, c.params.max_iterations), (1e-8, 50));
         let t = PAPER.replace(
             "radii = [0.005, 0.05]",

@@ -3,7 +3,7 @@
 use serde::Deserialize;
 use tribo::analysis::damage::{DamageQuantity, TensorKind};
 use tribo::geometry::{QuadraticProfile, SurfaceProfile};
-use tribo::solvers::{NormalContactParams, NormalLoading};
+use tribo::solvers::{NormalContactParams, NormalLoading, NormalMethod};
 use tribo::ElasticMaterial;
 
 /// Largest grid (elements) accepted for the dense active-set solver: its influence matrix
@@ -14,26 +14,6 @@ pub const MAX_ACTIVE_SET_ELEMENTS: usize = 64 * 64;
 pub const DEFAULT_N: usize = 64;
 /// Default window half width in units of the Hertz long semi-axis.
 pub const DEFAULT_EXTENT: f64 = 1.5;
-
-/// The normal contact solver to use.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Method {
-    /// Constrained conjugate gradients (Polonsky & Keer 1999) with FFT convolution.
-    Cg,
-    /// The paper's "matrix inversion": active set with a dense factorization (small grids).
-    ActiveSet,
-}
-
-impl Method {
-    /// The name used in case files and summaries.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Cg => "cg",
-            Method::ActiveSet => "active_set",
-        }
-    }
-}
 
 /// One body's shape.
 #[derive(Debug, Clone, PartialEq)]
@@ -325,8 +305,9 @@ pub struct HalfSpaceCase {
     pub n: [usize; 2],
     /// Window size.
     pub window: Window,
-    /// Solver.
-    pub method: Method,
+    /// Solver (the case's `solver.method`; [`HalfSpaceCase::params`] keeps the default
+    /// method, which the other solves of the pipeline use).
+    pub method: NormalMethod,
     /// Solver parameters.
     pub params: NormalContactParams,
     /// The back effect of bulk loading, where asked for.

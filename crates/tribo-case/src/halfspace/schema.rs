@@ -4,13 +4,14 @@
 //! the rules between values (ranges, exclusive keys, defaults) are checked in
 //! [`super::validate`].
 
-use super::model::{FieldMethod, FieldPoints, Method};
+use super::model::{FieldMethod, FieldPoints};
 use crate::schema::{
     items, leaf_deserialize, Choice, Choices, Count, Flag, FromToml, Pair, Refusal,
 };
 use crate::units::{self, Angle, Dimensionless, Force, Pressure, Quantity};
 use serde::Deserialize;
 use toml::Value;
+use tribo::solvers::NormalMethod;
 
 /// A plain finite number.
 pub(super) type Number = Quantity<Dimensionless>;
@@ -125,12 +126,12 @@ pub(super) struct RawGrid {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawSolver {
-    pub method: Option<Choice<Method>>,
+    pub method: Option<Choice<NormalMethod>>,
     pub tolerance: Option<Number>,
     pub max_iterations: Option<Count>,
 }
 
-impl Choices for Method {
+impl Choices for NormalMethod {
     const RULE: &'static str = "must be \"cg\" (constrained conjugate gradients, Polonsky-Keer) \
                                 or \"active_set\" (dense, small grids)";
 }
@@ -150,23 +151,9 @@ pub(super) struct RawBulk {
     pub bending_side: Option<Choice<BendingSide>>,
 }
 
-/// "body1" or "body2".
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub(super) enum BodyId {
-    Body1,
-    Body2,
-}
-
-impl BodyId {
-    /// The body's key.
-    pub fn name(self) -> &'static str {
-        match self {
-            BodyId::Body1 => "body1",
-            BodyId::Body2 => "body2",
-        }
-    }
-}
+/// "body1" or "body2": the results' body enum, [`crate::pipeline::FieldBody`] (one enum for
+/// the case's `field.body`, `bulk.shaft` and the stress results).
+pub(super) use crate::pipeline::FieldBody as BodyId;
 
 /// `bulk.shaft`: the body that is the shaft.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]

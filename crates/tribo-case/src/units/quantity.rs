@@ -3,7 +3,7 @@
 
 use super::{number_of, quantity_of, show, Dim};
 use crate::schema::{FromToml, Refusal};
-use serde::{Deserialize, Deserializer};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 use std::marker::PhantomData;
 use toml::Value;
@@ -61,6 +61,7 @@ dimension! {
 pub struct Quantity<D> {
     si: f64,
     written: String,
+    value: Value,
     dimension: PhantomData<D>,
 }
 
@@ -75,6 +76,19 @@ impl<D: Dimension> Quantity<D> {
         &self.written
     }
 
+    /// The quantity `si` in SI units (for [`Angle`], in degrees), as a program gives it: it
+    /// is written (and serialized) as the plain number. Not checked: a case's validation
+    /// refuses a non-finite value with the rule of its field.
+    pub fn from_si(si: f64) -> Self {
+        let value = Value::Float(si);
+        Quantity {
+            si,
+            written: show(&value),
+            value,
+            dimension: PhantomData,
+        }
+    }
+
     /// The quantity a TOML value gives, or the rule it breaks.
     pub fn from_value(value: &Value) -> Result<Self, String> {
         let si = match D::DIM {
@@ -84,6 +98,7 @@ impl<D: Dimension> Quantity<D> {
         Ok(Quantity {
             si,
             written: show(value),
+            value: value.clone(),
             dimension: PhantomData,
         })
     }
@@ -99,6 +114,13 @@ impl<D: Dimension> fmt::Display for Quantity<D> {
 impl<D: Dimension> FromToml for Quantity<D> {
     fn from_toml(value: &Value) -> Result<Self, Refusal> {
         Self::from_value(value).map_err(|rule| Refusal::new(value, rule))
+    }
+}
+
+impl<D> Serialize for Quantity<D> {
+    /// The value as written (a number, or the string with its unit).
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        self.value.serialize(serializer)
     }
 }
 

@@ -3,6 +3,7 @@
 //! The fit and the diagram are [`tribo_case::fatigue`]'s, the files [`tribo_io::fatigue`]'s.
 
 use crate::exit::{CliError, CliResult, EXIT_OK};
+use crate::OutputArgs;
 use clap::{Subcommand, ValueEnum};
 use serde::Serialize;
 use std::io::Read;
@@ -77,17 +78,8 @@ it is stated in every output. `-` reads the data from stdin.")]
     Fit {
         /// The data file (CSV), or `-` for stdin.
         data: PathBuf,
-        /// Output directory (created if needed).
-        #[arg(
-            short = 'o',
-            long = "out",
-            value_name = "DIR",
-            default_value = "tribo-out"
-        )]
-        out: PathBuf,
-        /// Print the JSON on stdout instead of the human summary.
-        #[arg(long)]
-        json: bool,
+        #[command(flatten)]
+        output: OutputArgs,
         /// The test kind (paper Fig. 3).
         #[arg(long, value_enum, default_value = "sigma")]
         kind: KindArg,
@@ -113,17 +105,8 @@ limit_diagram.png.")]
     Diagram {
         /// The limits file (TOML), or `-` for stdin.
         limits: PathBuf,
-        /// Output directory (created if needed).
-        #[arg(
-            short = 'o',
-            long = "out",
-            value_name = "DIR",
-            default_value = "tribo-out"
-        )]
-        out: PathBuf,
-        /// Print the JSON on stdout instead of the human summary.
-        #[arg(long)]
-        json: bool,
+        #[command(flatten)]
+        output: OutputArgs,
     },
 }
 
@@ -132,8 +115,7 @@ pub fn run(cmd: FatigueCommand) -> CliResult<u8> {
     match cmd {
         FatigueCommand::Fit {
             data,
-            out,
-            json,
+            output: OutputArgs { out, json },
             kind,
             measure,
             confidence,
@@ -152,7 +134,10 @@ pub fn run(cmd: FatigueCommand) -> CliResult<u8> {
             tribo_io::write_fit(&out, &report, &crate::write_options())?;
             emit(json, &report, || crate::human::fit(&report, &out))
         }
-        FatigueCommand::Diagram { limits, out, json } => {
+        FatigueCommand::Diagram {
+            limits,
+            output: OutputArgs { out, json },
+        } => {
             let (text, base) = read_input(&limits, "limits")?;
             let name = if limits.as_os_str() == "-" {
                 "<stdin>".to_string()

@@ -38,15 +38,9 @@ pub fn assert_files(out: &Path, names: &[&str]) {
     }
 }
 
-/// The files every half-space run writes.
-pub const CONTACT_FILES: [&str; 6] = [
-    "summary.json",
-    "pressure.csv",
-    "gap.csv",
-    "fields.vti",
-    "pressure_map.png",
-    "pressure_profiles.png",
-];
+/// The files every half-space run writes (the writer's list: the tests check the binary
+/// writes them).
+pub const CONTACT_FILES: [&str; 6] = tribo_io::halfspace::FILES;
 
 /// The text of the embedded example `name` (the case files `tribo example NAME` prints).
 pub fn example(name: &str) -> &'static str {

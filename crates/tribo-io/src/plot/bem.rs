@@ -10,7 +10,7 @@ use plotters::prelude::*;
 use std::path::Path;
 use tribo::solvers::bem2d::contact::{ContactNode, ContactState};
 use tribo_case::bem::case::BemCase;
-use tribo_case::bem::pipeline::{BemOutcome, DamageOutcome, Variant};
+use tribo_case::bem::pipeline::{BemOutcome, DamageOutcome, DamageUnit, Variant};
 use tribo_case::bem::summary::{stress_intensity, BemSummary, DamageSummary, Dangerous};
 
 use super::style::{
@@ -741,7 +741,7 @@ fn damage_plots(dir: &Path, v: &Variant, d: &DamageOutcome, ds: &DamageSummary) 
         triangles: &f.triangles,
         values: &d.psi,
     }];
-    let limit_text = if d.unit == "Pa" {
+    let limit_text = if d.unit == DamageUnit::Pascal {
         format!("{:.4} MPa", d.limit / 1e6)
     } else {
         format!("{:.4e} {}", d.limit, d.unit)
@@ -762,8 +762,16 @@ fn damage_plots(dir: &Path, v: &Variant, d: &DamageOutcome, ds: &DamageSummary) 
     if sweep.is_empty() {
         return Ok(());
     }
-    let scale = if d.unit == "Pa" { 1e-6 } else { 1.0 };
-    let unit = if d.unit == "Pa" { "MPa" } else { d.unit };
+    let scale = if d.unit == DamageUnit::Pascal {
+        1e-6
+    } else {
+        1.0
+    };
+    let unit = if d.unit == DamageUnit::Pascal {
+        "MPa"
+    } else {
+        d.unit.symbol()
+    };
     let series = |g: &dyn Fn(&Dangerous) -> f64| -> Vec<(f64, f64)> {
         sweep.iter().map(|s| (s.limit * scale, g(s))).collect()
     };

@@ -37,17 +37,30 @@ pub enum NormalLoading {
     Approach(f64),
 }
 
-/// The algorithm of [`solve_normal`].
+/// The algorithm of [`solve_normal`]; serde names it by [`NormalMethod::name`] (`"cg"`, also
+/// read as `"conjugate_gradient"`, and `"active_set"`), the names of a case file's
+/// `solver.method`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum NormalMethod {
     /// The constrained conjugate gradient method of Polonsky & Keer (1999) on the FFT
     /// operator (any grid).
     #[default]
+    #[serde(rename = "cg", alias = "conjugate_gradient")]
     ConjugateGradient,
     /// The paper's "matrix inversion": an active set over the dense influence matrix (grids
     /// up to [`crate::operators::dense::MAX_DENSE_ELEMENTS`] elements).
     ActiveSet,
+}
+
+impl NormalMethod {
+    /// Its name (as serde writes it): `"cg"` or `"active_set"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            NormalMethod::ConjugateGradient => "cg",
+            NormalMethod::ActiveSet => "active_set",
+        }
+    }
 }
 
 /// Parameters of the normal contact solver: plain data, checked by [`solve_normal`] on entry
@@ -457,6 +470,12 @@ fn check_operator(
 /// `I_c` with negative gap re-enter the contact set, and the conjugate direction is reset
 /// when they do. Under approach control the gap includes the prescribed approach and no
 /// rescaling is done. Convergence: [`complementarity_residual`] <= `params.tolerance`.
+///
+/// Longer than 150 lines on purpose: the iteration is one loop whose state (pressure, gap,
+/// conjugate direction and its reset on re-entry, the previous norm, the approach, the
+/// incremental displacement with its sparse corrections and periodic refresh) every phase
+/// of an iteration reads and updates; split into functions each would take most of that
+/// state, hiding the order of Polonsky & Keer's steps that the loop shows in one place.
 fn conjugate_gradient(
     operator: &ConvolutionOperator,
     workspace: &mut ConvolutionWorkspace,

@@ -455,6 +455,12 @@ fn sliding(problem: &TangentialProblem<'_>, angle: f64) -> TangentialSolution {
 }
 
 /// Partial slip (module docs) for a validated problem under force control.
+///
+/// Longer than 150 lines on purpose: like [`crate::solvers::normal`]'s conjugate gradient,
+/// the iteration is one loop over one state (tau, the stick set, the shift W, the conjugate
+/// direction and its resets, the incremental displacement) whose phases (stick zone and W,
+/// complementarity residual, direction, step with projection and re-entry, force restore)
+/// each read and update most of it; split, each function would take that whole state.
 fn partial_slip(
     operator: &ConvolutionOperator,
     workspace: &mut ConvolutionWorkspace,

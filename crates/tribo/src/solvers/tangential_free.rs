@@ -162,6 +162,11 @@ impl TangentialBlockOperator {
 ///
 /// Errors: those of [`solve_tangential`]; [`Error::NotConverged`] carries the last iterate
 /// as the output (its `residual` is the one reported).
+///
+/// Longer than 150 lines on purpose: the iteration of [`solve_tangential`]'s partial slip
+/// with a vector traction, one loop whose state (both traction components, the stick set,
+/// the shift vector W, the conjugate direction, the incremental displacements) every phase
+/// reads and updates; split into functions each would take most of that state.
 pub fn solve_tangential_free(
     problem: &TangentialProblem<'_>,
     params: &TangentialParams,

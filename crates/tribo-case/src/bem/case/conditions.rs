@@ -3,13 +3,12 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use toml::Value;
 use tribo::solvers::bem2d::contact::Control;
 
-use super::schema::{RawBc, RawStep};
+use super::schema::{written, Number, Profile, RawBc, RawControl, RawStep};
 use super::{bad, BcKind, BcSpec, ComponentSpec, ProfileSpec, StepSpec};
 use crate::error::CaseResult;
-use crate::units::{number, quantity, show, Dim};
+use crate::units::{Dimension, Quantity};
 
 /// The conditions and the load groups they name.
 pub(super) fn bcs(raw: &[RawBc]) -> CaseResult<(Vec<BcSpec>, BTreeSet<String>)> {
@@ -60,7 +59,7 @@ pub(super) fn steps(
 /// A step's factor of each load group (finite; groups not listed 0; all 1 where none given).
 fn factors(
     field: &str,
-    given: Option<&toml::Table>,
+    given: Option<&BTreeMap<String, Number>>,
     groups: &BTreeSet<String>,
 ) -> CaseResult<BTreeMap<String, f64>> {
     let mut factors = BTreeMap::new();
@@ -74,7 +73,7 @@ fn factors(
         if !groups.contains(g) {
             return Err(bad(
                 format!("{field}.factors.{g}"),
-                show(v),
+                v,
                 format!(
                     "names no load group (groups are named by the `group` of [[bc]] entries: {})",
                     if groups.is_empty() {
@@ -85,11 +84,7 @@ fn factors(
                 ),
             ));
         }
-        let f = number(&format!("{field}.factors.{g}"), v)?;
-        if !f.is_finite() {
-            return Err(bad(format!("{field}.factors.{g}"), f, "must be finite"));
-        }
-        factors.insert(g.clone(), f);
+        factors.insert(g.clone(), v.si());
     }
     Ok(factors)
 }
@@ -97,16 +92,16 @@ fn factors(
 /// A step's controls of the rigid segments: each declared one, { fx or ux, fy or uy }.
 fn rigid_controls(
     field: &str,
-    given: Option<&toml::Table>,
+    given: Option<&BTreeMap<String, RawControl>>,
     rigid: &[String],
 ) -> CaseResult<Vec<(String, Control, Control)>> {
-    let empty = toml::Table::new();
+    let empty = BTreeMap::new();
     let given = given.unwrap_or(&empty);
     for (seg, v) in given {
         if !rigid.contains(seg) {
             return Err(bad(
                 format!("{field}.rigid.{seg}"),
-                show(v),
+                written(v),
                 "names no rigid segment (declare it in `rigid = [...]`)",
             ));
         }
@@ -114,111 +109,52 @@ fn rigid_controls(
     let mut controls = Vec::new();
     for seg in rigid {
         let f = format!("{field}.rigid.{seg}");
-        let Some(v) = given.get(seg) else {
+        let Some(t) = given.get(seg) else {
             return Err(bad(
                 f,
                 "(missing)",
                 "every step must control every rigid segment: { fx or ux, fy or uy }",
             ));
         };
-        let Value::Table(t) = v else {
-            return Err(bad(f, show(v), "must be a table { fx or ux, fy or uy }"));
-        };
-        let x = control(&f, t, "fx", "ux")?;
-        let y = control(&f, t, "fy", "uy")?;
-        for key in t.keys() {
-            if !["fx", "ux", "fy", "uy"].contains(&key.as_str()) {
-                return Err(bad(
-                    format!("{f}.{key}"),
-                    show(&t[key]),
-                    "unknown key (fx, ux, fy, uy)",
-                ));
-            }
-        }
+        let x = control(&f, t, (&t.fx, "fx"), (&t.ux, "ux"))?;
+        let y = control(&f, t, (&t.fy, "fy"), (&t.uy, "uy"))?;
         controls.push((seg.clone(), x, y));
     }
     Ok(controls)
 }
 
-fn profile(field: &str, v: &Value, dim: Dim) -> CaseResult<ProfileSpec> {
-    match v {
-        Value::Table(t) => {
-            if let Some(l) = t.get("linear") {
-                if t.len() != 1 {
-                    return Err(bad(
-                        field,
-                        show(v),
-                        "a linear profile is { linear = [start, end] }",
-                    ));
+/// A profile's rules: a table's t increases from 0 to 1 (two rows at least).
+fn profile<D: Dimension>(field: &str, p: &Profile<D>) -> CaseResult<ProfileSpec> {
+    match p {
+        Profile::Uniform(q) => Ok(ProfileSpec::Uniform(q.si())),
+        Profile::Linear([a, b]) => Ok(ProfileSpec::Linear(a.si(), b.si())),
+        Profile::Table(rows) => {
+            let mut out: Vec<(f64, f64)> = Vec::new();
+            for (i, (t, value)) in rows.iter().enumerate() {
+                let t = t.si();
+                if !(0.0..=1.0).contains(&t) || out.last().is_some_and(|&(p, _)| t <= p) {
+                    return Err(bad(format!("{field}.table[{i}][0]"), t, "t must increase within [0, 1] (the fraction of the segment's length from its start)"));
                 }
-                match l {
-                    Value::Array(a) if a.len() == 2 => Ok(ProfileSpec::Linear(
-                        quantity(&format!("{field}.linear[0]"), &a[0], dim)?,
-                        quantity(&format!("{field}.linear[1]"), &a[1], dim)?,
-                    )),
-                    other => Err(bad(
-                        format!("{field}.linear"),
-                        show(other),
-                        "must be [value at the segment's start, value at its end]",
-                    )),
-                }
-            } else if let Some(tab) = t.get("table") {
-                if t.len() != 1 {
-                    return Err(bad(
-                        field,
-                        show(v),
-                        "a tabulated profile is { table = [[t, value], ...] }",
-                    ));
-                }
-                let Value::Array(rows) = tab else {
-                    return Err(bad(
-                        format!("{field}.table"),
-                        show(tab),
-                        "must be [[t, value], ...] with t the fraction of the segment's length",
-                    ));
-                };
-                let mut out = Vec::new();
-                for (i, r) in rows.iter().enumerate() {
-                    let f = format!("{field}.table[{i}]");
-                    let Value::Array(pair) = r else {
-                        return Err(bad(f, show(r), "must be [t, value]"));
-                    };
-                    if pair.len() != 2 {
-                        return Err(bad(f, show(r), "must be [t, value]"));
-                    }
-                    let t = number(&format!("{f}[0]"), &pair[0])?;
-                    let value = quantity(&format!("{f}[1]"), &pair[1], dim)?;
-                    if !(0.0..=1.0).contains(&t)
-                        || out.last().is_some_and(|&(p, _): &(f64, f64)| t <= p)
-                    {
-                        return Err(bad(format!("{f}[0]"), t, "t must increase within [0, 1] (the fraction of the segment's length from its start)"));
-                    }
-                    out.push((t, value));
-                }
-                if out.len() < 2 || out[0].0 != 0.0 || out[out.len() - 1].0 != 1.0 {
-                    return Err(bad(
-                        format!("{field}.table"),
-                        show(tab),
-                        "needs at least two rows, the first at t = 0 and the last at t = 1",
-                    ));
-                }
-                Ok(ProfileSpec::Table(out))
-            } else {
-                Err(bad(
-                    field,
-                    show(v),
-                    "must be a value, { linear = [start, end] } or { table = [[t, value], ...] }",
-                ))
+                out.push((t, value.si()));
             }
+            if out.len() < 2 || out[0].0 != 0.0 || out[out.len() - 1].0 != 1.0 {
+                return Err(bad(
+                    format!("{field}.table"),
+                    written(rows),
+                    "needs at least two rows, the first at t = 0 and the last at t = 1",
+                ));
+            }
+            Ok(ProfileSpec::Table(out))
         }
-        other => Ok(ProfileSpec::Uniform(quantity(field, other, dim)?)),
     }
 }
 
 fn bc_spec(field: &str, b: &RawBc) -> CaseResult<BcSpec> {
-    let comp =
-        |name: &str, u: &Option<Value>, t: &Option<Value>| -> CaseResult<Option<ComponentSpec>> {
-            match (u, t) {
+    let comp = |name: &str,
+                u: &Option<Profile<crate::units::Length>>,
+                t: &Option<Profile<crate::units::Pressure>>|
+     -> CaseResult<Option<ComponentSpec>> {
+        match (u, t) {
             (Some(_), Some(_)) => Err(bad(
                 format!("{field}.{name}"),
                 "(both displacement and traction)",
@@ -227,22 +163,18 @@ fn bc_spec(field: &str, b: &RawBc) -> CaseResult<BcSpec> {
             (Some(u), None) => Ok(Some(ComponentSpec::Displacement(profile(
                 &format!("{field}.u{name}"),
                 u,
-                Dim::Length,
             )?))),
             (None, Some(t)) => Ok(Some(ComponentSpec::Traction(profile(
                 &format!("{field}.t{name}"),
                 t,
-                Dim::Pressure,
             )?))),
             (None, None) => Ok(None),
         }
-        };
+    };
     let x = comp("x", &b.ux, &b.tx)?;
     let y = comp("y", &b.uy, &b.ty)?;
     let kind = match (&b.pressure, x, y) {
-        (Some(p), None, None) => {
-            BcKind::Pressure(profile(&format!("{field}.pressure"), p, Dim::Pressure)?)
-        }
+        (Some(p), None, None) => BcKind::Pressure(profile(&format!("{field}.pressure"), p)?),
         (Some(_), _, _) => {
             return Err(bad(format!("{field}.pressure"), "(with ux/uy/tx/ty)", "a normal pressure is the whole condition of the segment; do not combine it with components"));
         }
@@ -267,10 +199,15 @@ fn bc_spec(field: &str, b: &RawBc) -> CaseResult<BcSpec> {
     })
 }
 
-fn control(field: &str, t: &toml::Table, force: &str, disp: &str) -> CaseResult<Control> {
-    match (t.get(force), t.get(disp)) {
-        (Some(f), None) => Ok(Control::Force(quantity(&format!("{field}.{force}"), f, Dim::LineForce)?)),
-        (None, Some(u)) => Ok(Control::Displacement(quantity(&format!("{field}.{disp}"), u, Dim::Length)?)),
-        _ => Err(bad(field, show(&Value::Table(t.clone())), format!("needs exactly one of {force} (force per unit thickness, N/m) and {disp} (translation, m)"))),
+fn control<F: Dimension, U: Dimension>(
+    field: &str,
+    t: &RawControl,
+    (force, force_key): (&Option<Quantity<F>>, &str),
+    (disp, disp_key): (&Option<Quantity<U>>, &str),
+) -> CaseResult<Control> {
+    match (force, disp) {
+        (Some(f), None) => Ok(Control::Force(f.si())),
+        (None, Some(u)) => Ok(Control::Displacement(u.si())),
+        _ => Err(bad(field, written(t), format!("needs exactly one of {force_key} (force per unit thickness, N/m) and {disp_key} (translation, m)"))),
     }
 }

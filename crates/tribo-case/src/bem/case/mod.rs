@@ -21,7 +21,10 @@ use tribo::ElasticMaterial;
 
 use super::template;
 use crate::error::{CaseError, CaseResult};
-pub(in crate::bem) use schema::{RawBc, RawPair, RawRegion, RawStep};
+pub(in crate::bem) use schema::{
+    Gravity, Plane, Point, Profile, RawBc, RawBemCase, RawBodyForce, RawClampKnifeBase, RawField,
+    RawGrading, RawItem, RawMaterial, RawMesh, RawPair, RawRegion, RawStep,
+};
 
 /// A region built from outlines: geometry and the name of its material.
 #[derive(Debug, Clone)]
@@ -189,6 +192,25 @@ fn bad(
 /// Parse and validate the text of a `kind = "bem2d"` case.
 pub fn parse(text: &str, source: &str, base_dir: &Path) -> CaseResult<BemCase> {
     let (raw, echo) = crate::halfspace::parse_raw::<schema::RawBemCase>(text, source)?;
+    validate::validate(raw, source, base_dir, echo)
+}
+
+/// Validate a case built in code (the schema's structs); the echo is the case as a file
+/// would write it.
+pub(in crate::bem) fn from_raw(
+    raw: schema::RawBemCase,
+    source: &str,
+    base_dir: &Path,
+) -> CaseResult<BemCase> {
+    let echo = match Value::try_from(&raw) {
+        Ok(v) => crate::halfspace::echo_json(&v),
+        Err(e) => {
+            return Err(CaseError::Parse {
+                path: source.to_string(),
+                message: e.to_string(),
+            })
+        }
+    };
     validate::validate(raw, source, base_dir, echo)
 }
 

@@ -3,22 +3,11 @@
 
 use std::collections::BTreeMap;
 
-use toml::Value;
 use tribo::operators::bem2d::{BodyForce, Division, Grading, LoopItem, Segment, SegmentShape};
 
 use super::bad;
+use super::schema::{written, Point, RawBodyForce, RawItem, GRADING_RULE};
 use crate::error::CaseResult;
-use crate::units::{count, number, quantity, show, Dim};
-
-fn point(field: &str, v: &Value) -> CaseResult<[f64; 2]> {
-    match v {
-        Value::Array(a) if a.len() == 2 => Ok([
-            quantity(&format!("{field}[0]"), &a[0], Dim::Length)?,
-            quantity(&format!("{field}[1]"), &a[1], Dim::Length)?,
-        ]),
-        other => Err(bad(field, show(other), "must be a point [x, y] (lengths)")),
-    }
-}
 
 fn close_to(a: [f64; 2], b: [f64; 2], scale: f64) -> bool {
     (a[0] - b[0]).hypot(a[1] - b[1]) <= 1e-9 * scale
@@ -30,8 +19,8 @@ fn close_to(a: [f64; 2], b: [f64; 2], scale: f64) -> bool {
 pub(super) fn parse_loop(
     region: &str,
     field: &str,
-    start: &Value,
-    items: &[toml::Table],
+    start: &Point,
+    items: &[RawItem],
     owned: &mut BTreeMap<String, SegmentShape>,
 ) -> CaseResult<Vec<LoopItem>> {
     if items.is_empty() {
@@ -41,7 +30,7 @@ pub(super) fn parse_loop(
             "an outline needs at least one segment",
         ));
     }
-    let first = point(&format!("{field}.start"), start)?;
+    let first = start.si();
     let mut walk = Walk {
         region,
         current: first,
@@ -50,8 +39,8 @@ pub(super) fn parse_loop(
     let mut out = Vec::new();
     for (k, t) in items.iter().enumerate() {
         let f = format!("{field}.outline[{k}]");
-        let item = match t.get("shared") {
-            Some(v) => walk.shared(&f, t, v, owned)?,
+        let item = match &t.shared {
+            Some(name) => walk.shared(&f, t, name, owned)?,
             None => walk.segment(&f, t, owned)?,
         };
         out.push(item);
@@ -79,26 +68,31 @@ impl Walk<'_> {
     fn shared(
         &mut self,
         f: &str,
-        t: &toml::Table,
-        v: &Value,
+        t: &RawItem,
+        name: &str,
         owned: &BTreeMap<String, SegmentShape>,
     ) -> CaseResult<LoopItem> {
-        for key in t.keys() {
-            if key != "shared" {
-                return Err(bad(
-                    format!("{f}.{key}"),
-                    show(&t[key]),
-                    "a shared item takes only `shared = \"SEGMENT\"`",
-                ));
-            }
-        }
-        let Value::String(name) = v else {
-            return Err(bad(
-                format!("{f}.shared"),
-                show(v),
-                "must be the name of an earlier region's segment",
-            ));
+        let alone = RawItem {
+            shared: t.shared.clone(),
+            ..RawItem::default()
         };
+        if *t != alone {
+            let mut other = t.clone();
+            other.shared = None;
+            let (key, value) = match toml::Value::try_from(&other) {
+                Ok(toml::Value::Table(rest)) => rest
+                    .into_iter()
+                    .next()
+                    .map(|(k, v)| (format!(".{k}"), crate::units::show(&v)))
+                    .unwrap_or_default(),
+                _ => (String::new(), written(&other)),
+            };
+            return Err(bad(
+                format!("{f}{key}"),
+                value,
+                "a shared item takes only `shared = \"SEGMENT\"`",
+            ));
+        }
         let shape = owned.get(name).ok_or_else(|| {
             bad(format!("{f}.shared"), format!("{name:?}"), "names no segment of an earlier region (the region owning a bonded interface must come first)")
         })?;
@@ -117,41 +111,22 @@ impl Walk<'_> {
             ));
         }
         self.current = a;
-        Ok(LoopItem::Shared(name.clone()))
+        Ok(LoopItem::Shared(name.to_string()))
     }
 
     /// A named line or arc from the current point to `to`, with its division and grading.
     fn segment(
         &mut self,
         f: &str,
-        t: &toml::Table,
+        t: &RawItem,
         owned: &mut BTreeMap<String, SegmentShape>,
     ) -> CaseResult<LoopItem> {
-        for key in t.keys() {
-            if ![
-                "name",
-                "to",
-                "center",
-                "clockwise",
-                "elements",
-                "size",
-                "grading",
-            ]
-            .contains(&key.as_str())
-            {
-                return Err(bad(
-                    format!("{f}.{key}"),
-                    show(&t[key]),
-                    "unknown key (name, to, center, clockwise, elements, size, grading; or shared)",
-                ));
-            }
-        }
-        let name = match t.get("name") {
-            Some(Value::String(s)) if !s.trim().is_empty() => s.clone(),
+        let name = match &t.name {
+            Some(s) if !s.trim().is_empty() => s.clone(),
             Some(other) => {
                 return Err(bad(
                     format!("{f}.name"),
-                    show(other),
+                    format!("{other:?}"),
                     "must be a non-empty string",
                 ))
             }
@@ -163,14 +138,16 @@ impl Walk<'_> {
                 ))
             }
         };
-        let to_value = t.get("to").ok_or_else(|| {
-            bad(
-                format!("{f}.to"),
-                "(missing)",
-                "the end point [x, y] of the segment",
-            )
-        })?;
-        let to = point(&format!("{f}.to"), to_value)?;
+        let to =
+            t.to.as_ref()
+                .ok_or_else(|| {
+                    bad(
+                        format!("{f}.to"),
+                        "(missing)",
+                        "the end point [x, y] of the segment",
+                    )
+                })?
+                .si();
         self.scale = self.scale.max(to[0].abs()).max(to[1].abs());
         let shape = segment_shape(f, t, self.current, to)?;
         let division = division(f, t)?;
@@ -196,15 +173,15 @@ impl Walk<'_> {
 /// counter-clockwise unless `clockwise = true`.
 fn segment_shape(
     f: &str,
-    t: &toml::Table,
+    t: &RawItem,
     current: [f64; 2],
     to: [f64; 2],
 ) -> CaseResult<SegmentShape> {
-    let Some(c) = t.get("center") else {
-        if let Some(c) = t.get("clockwise") {
+    let Some(c) = &t.center else {
+        if let Some(c) = &t.clockwise {
             return Err(bad(
                 format!("{f}.clockwise"),
-                show(c),
+                &c.written,
                 "only arcs (with `center`) have a direction",
             ));
         }
@@ -213,18 +190,8 @@ fn segment_shape(
             end: to,
         });
     };
-    let center = point(&format!("{f}.center"), c)?;
-    let clockwise = match t.get("clockwise") {
-        None => false,
-        Some(Value::Boolean(b)) => *b,
-        Some(o) => {
-            return Err(bad(
-                format!("{f}.clockwise"),
-                show(o),
-                "must be true or false",
-            ))
-        }
-    };
+    let center = c.si();
+    let clockwise = t.clockwise.as_ref().is_some_and(|c| c.on);
     let r0 = (current[0] - center[0]).hypot(current[1] - center[1]);
     let r1 = (to[0] - center[0]).hypot(to[1] - center[1]);
     if !(r0 > 0.0 && (r0 - r1).abs() <= 1e-9 * r0.max(r1)) {
@@ -255,98 +222,58 @@ fn segment_shape(
 }
 
 /// `elements = N` or `size = h` (not both; default 4 elements).
-fn division(f: &str, t: &toml::Table) -> CaseResult<Division> {
-    Ok(match (t.get("elements"), t.get("size")) {
-        (Some(_), Some(_)) => {
+fn division(f: &str, t: &RawItem) -> CaseResult<Division> {
+    Ok(match (&t.elements, &t.size) {
+        (Some(_), Some(h)) => {
             return Err(bad(
                 format!("{f}.size"),
-                show(&t["size"]),
+                h,
                 "give `elements` or `size`, not both",
             ))
         }
-        (Some(n), None) => Division::Count(count(&format!("{f}.elements"), n)?),
-        (None, Some(h)) => Division::Size(quantity(&format!("{f}.size"), h, Dim::Length)?),
+        (Some(n), None) => Division::Count(n.n),
+        (None, Some(h)) => Division::Size(h.si()),
         (None, None) => Division::Count(4),
     })
 }
 
 /// `grading = { both = R }`, `{ start = R }` or `{ end = R }`; uniform where not given.
-fn grading(f: &str, t: &toml::Table) -> CaseResult<Grading> {
-    let grading_rule =
-        "grading is { both = R }, { start = R } or { end = R } (R = largest / smallest element)";
-    match t.get("grading") {
-        None => Ok(Grading::Uniform),
-        Some(Value::Table(g)) if g.len() == 1 => {
-            let (k, v) = g
-                .iter()
-                .next()
-                .ok_or_else(|| bad(format!("{f}.grading"), "{}", grading_rule))?;
-            let q = number(&format!("{f}.grading.{k}"), v)?;
-            match k.as_str() {
-                "both" => Ok(Grading::BothEnds(q)),
-                "start" => Ok(Grading::Start(q)),
-                "end" => Ok(Grading::End(q)),
-                _ => Err(bad(format!("{f}.grading.{k}"), show(v), grading_rule)),
-            }
-        }
-        Some(other) => Err(bad(format!("{f}.grading"), show(other), grading_rule)),
+fn grading(f: &str, t: &RawItem) -> CaseResult<Grading> {
+    let Some(g) = &t.grading else {
+        return Ok(Grading::Uniform);
+    };
+    let q = g.ratio.si();
+    match g.at.as_str() {
+        "both" => Ok(Grading::BothEnds(q)),
+        "start" => Ok(Grading::Start(q)),
+        "end" => Ok(Grading::End(q)),
+        k => Err(bad(format!("{f}.grading.{k}"), &g.ratio, GRADING_RULE)),
     }
 }
 
 /// `body_force = { density = 7850, gravity = [gx, gy], angular_velocity = w, center = [x, y] }`:
 /// gravity (m/s^2) and/or rotation (rad/s about the axis through `center`), density in
 /// kg/m^3 (required). The library validates the values and names the region.
-pub(super) fn body_forces(field: &str, t: &toml::Table) -> CaseResult<Vec<BodyForce>> {
-    for key in t.keys() {
-        if !["density", "gravity", "angular_velocity", "center"].contains(&key.as_str()) {
-            return Err(bad(
-                format!("{field}.{key}"),
-                show(&t[key]),
-                "unknown key (density, gravity, angular_velocity, center)",
-            ));
-        }
-    }
-    let density = match t.get("density") {
-        Some(v) => number(&format!("{field}.density"), v)?,
-        None => {
-            return Err(bad(
-                format!("{field}.density"),
-                "(missing)",
-                "a body force needs the density, kg/m^3",
-            ))
-        }
+pub(super) fn body_forces(field: &str, t: &RawBodyForce) -> CaseResult<Vec<BodyForce>> {
+    let Some(density) = &t.density else {
+        return Err(bad(
+            format!("{field}.density"),
+            "(missing)",
+            "a body force needs the density, kg/m^3",
+        ));
     };
+    let density = density.si();
     let mut out = Vec::new();
-    if let Some(g) = t.get("gravity") {
-        let pair = match g {
-            Value::Array(a) if a.len() == 2 => [
-                number(&format!("{field}.gravity[0]"), &a[0])?,
-                number(&format!("{field}.gravity[1]"), &a[1])?,
-            ],
-            other => {
-                return Err(bad(
-                    format!("{field}.gravity"),
-                    show(other),
-                    "must be [gx, gy] in m/s^2",
-                ))
-            }
-        };
-        out.push(BodyForce::gravity(density, pair));
+    if let Some(g) = &t.gravity {
+        out.push(BodyForce::gravity(density, [g.0[0].si(), g.0[1].si()]));
     }
-    match (t.get("angular_velocity"), t.get("center")) {
-        (Some(w), Some(c)) => {
-            let w = number(&format!("{field}.angular_velocity"), w)?;
-            out.push(BodyForce::centrifugal(
-                density,
-                w,
-                point(&format!("{field}.center"), c)?,
-            ));
-        }
+    match (&t.angular_velocity, &t.center) {
+        (Some(w), Some(c)) => out.push(BodyForce::centrifugal(density, w.si(), c.si())),
         (None, None) => {}
         _ => {
             return Err(bad(
                 field,
-                show(&Value::Table(t.clone())),
+                written(t),
                 "a rotation needs both angular_velocity (rad/s) and center [x, y]",
             ))
         }
@@ -354,7 +281,7 @@ pub(super) fn body_forces(field: &str, t: &toml::Table) -> CaseResult<Vec<BodyFo
     if out.is_empty() {
         return Err(bad(
             field,
-            show(&Value::Table(t.clone())),
+            written(t),
             "gives no body force: add gravity = [gx, gy] and/or angular_velocity with center",
         ));
     }

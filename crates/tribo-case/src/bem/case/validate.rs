@@ -5,23 +5,23 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use toml::Value;
 use tribo::kernels::kelvin2d::PlaneCondition;
 use tribo::operators::bem2d::SegmentShape;
 use tribo::solvers::bem2d::contact::{ContactOptions, ContactPair};
 use tribo::ElasticMaterial;
 
 use super::schema::{
-    Plane, RawBemCase, RawCompare, RawDamage, RawField, RawMaterial, RawMesh, RawPair, RawRegion,
-    RawSolver,
+    Limit, Plane, RawBemCase, RawCompare, RawDamage, RawField, RawMaterial, RawMesh, RawPair,
+    RawRegion, RawSolver,
 };
 use super::{
     bad, conditions, join_keys, outline, BemCase, CompareSpec, DamageSpec, FieldSpec, MeshSpec,
     RegionSpec, StepSpec,
 };
+use crate::bem::pipeline::DamageUnit;
 use crate::bem::template;
 use crate::error::{CaseError, CaseResult};
-use crate::units::{number, quantity, show, Dim};
+use crate::units::show;
 
 pub(super) fn validate(
     mut raw: RawBemCase,
@@ -32,7 +32,7 @@ pub(super) fn validate(
     if raw.kind != "bem2d" {
         return Err(bad(
             "kind",
-            show(&Value::String(raw.kind.clone())),
+            show(&toml::Value::String(raw.kind.clone())),
             "must be \"bem2d\" for a boundary element case",
         ));
     }
@@ -114,7 +114,7 @@ fn apply_template(raw: &mut RawBemCase) -> CaseResult<Option<template::ClampKnif
             ));
         }
     }
-    let params = template::ClampKnifeBase::from_table(&t)?;
+    let params = template::ClampKnifeBase::from_raw(&t)?;
     let generated = params.generate();
     raw.regions = Some(generated.regions);
     raw.bc = Some(generated.bcs);
@@ -268,7 +268,7 @@ fn meshes(raw: Vec<RawMesh>, materials: &Materials, base_dir: &Path) -> CaseResu
 fn pairs(raw: &[RawPair]) -> CaseResult<Vec<ContactPair>> {
     let mut pairs = Vec::new();
     for (i, p) in raw.iter().enumerate() {
-        let f = number(&format!("contact[{i}].friction"), &p.friction)?;
+        let f = p.friction.si();
         if !(f.is_finite() && f >= 0.0) {
             return Err(bad(
                 format!("contact[{i}].friction"),
@@ -339,15 +339,20 @@ fn damage(d: RawDamage, steps: &[StepSpec]) -> CaseResult<DamageSpec> {
             format!("must be one of {}", known.join(", ")),
         ));
     };
-    let dim_of = |field: &str, v: &Value| -> CaseResult<f64> {
-        match q.unit() {
-            "Pa" => quantity(field, v, Dim::Pressure),
-            _ => number(field, v),
+    let dim_of = |field: &str, v: &Limit| -> CaseResult<f64> {
+        match (v, DamageUnit::of(&q)) {
+            (Limit::Number(x), _) => Ok(x.si()),
+            (Limit::Pressure(p), DamageUnit::Pascal) => Ok(p.si()),
+            (Limit::Pressure(p), unit) => Err(bad(
+                field,
+                p,
+                format!("must be a number (the unit of {qname} is {unit})"),
+            )),
         }
     };
     let limit = dim_of("damage.limit", &d.limit)?;
     if !(limit.is_finite() && limit > 0.0) {
-        return Err(bad("damage.limit", show(&d.limit), "must be > 0"));
+        return Err(bad("damage.limit", d.limit.written(), "must be > 0"));
     }
     let sweep = match &d.sweep {
         None => None,

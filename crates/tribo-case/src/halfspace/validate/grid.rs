@@ -1,13 +1,11 @@
 //! The rules of `[grid]` (elements and window) and `[solver]`.
 
 use crate::error::{CaseError, CaseResult};
-use crate::halfspace::model::{
-    Method, Shape, Window, DEFAULT_EXTENT, DEFAULT_N, MAX_ACTIVE_SET_ELEMENTS,
-};
+use crate::halfspace::model::{Shape, Window, DEFAULT_EXTENT, DEFAULT_N, MAX_ACTIVE_SET_ELEMENTS};
 use crate::halfspace::schema::{RawGrid, RawSolver};
 use tribo::geometry::SurfaceProfile;
 use tribo::grid::MAX_ELEMENTS_PER_SIDE;
-use tribo::solvers::NormalContactParams;
+use tribo::solvers::{NormalContactParams, NormalMethod};
 
 /// Elements along x and y: 4 ... [`MAX_ELEMENTS_PER_SIDE`] each.
 pub(super) fn elements(grid: &RawGrid) -> CaseResult<[usize; 2]> {
@@ -113,12 +111,15 @@ pub(super) fn window(grid: &RawGrid, hertzian: bool, shapes: [&Shape; 2]) -> Cas
 pub(super) fn solver(
     raw: Option<RawSolver>,
     n: [usize; 2],
-) -> CaseResult<(Method, NormalContactParams)> {
+) -> CaseResult<(NormalMethod, NormalContactParams)> {
     let mut params = NormalContactParams::default();
     let Some(s) = raw else {
-        return Ok((Method::Cg, params));
+        return Ok((NormalMethod::ConjugateGradient, params));
     };
-    let method = s.method.as_ref().map_or(Method::Cg, |m| m.value);
+    let method = s
+        .method
+        .as_ref()
+        .map_or(NormalMethod::ConjugateGradient, |m| m.value);
     if let Some(t) = &s.tolerance {
         let x = t.si();
         if !(x.is_finite() && x > 0.0 && x < 1.0) {
@@ -136,7 +137,7 @@ pub(super) fn solver(
         }
         params.max_iterations = m.n;
     }
-    if method == Method::ActiveSet && n[0] * n[1] > MAX_ACTIVE_SET_ELEMENTS {
+    if method == NormalMethod::ActiveSet && n[0] * n[1] > MAX_ACTIVE_SET_ELEMENTS {
         return Err(CaseError::field(
             "solver.method",
             "\"active_set\"",

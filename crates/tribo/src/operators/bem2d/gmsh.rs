@@ -783,12 +783,38 @@ pub fn import_msh_with(
     build(&mesh, material, a)
 }
 
+/// Builds the regions of a read mesh, one function per phase: the plane check, the physical
+/// surfaces and curves, the connected pieces of each surface and their boundary loops, the
+/// sides of every edge, the runs of the loops between breaks (the segments), their middle
+/// nodes and names, and the regions.
 fn build(
     mesh: &RawMesh,
     material: &dyn Fn(&str) -> Option<ElasticMaterial>,
     corner_angle_deg: f64,
 ) -> Result<GmshImport> {
-    // The plane: every node in z = 0 (relative to the mesh's extent).
+    check_plane(mesh)?;
+    let (surface_elements, order, n2d) = physical_surfaces(mesh)?;
+    let curve_of = physical_curves(mesh)?;
+    let (pieces, surfaces) = pieces(mesh, &surface_elements, material)?;
+    let side = sides(&pieces)?;
+    check_named_edges(&pieces, &curve_of)?;
+    let (mut runs, item_runs) = split_runs(mesh, &pieces, &side, &curve_of, corner_angle_deg)?;
+    smooth_runs(mesh, &mut runs);
+    let (names, curves) = name_runs(&runs)?;
+    let regions = regions(mesh, &pieces, &runs, &item_runs, &names)?;
+    Ok(GmshImport {
+        regions,
+        curves,
+        surfaces,
+        version: mesh.version.clone(),
+        nodes: mesh.nodes.len(),
+        surface_elements: n2d,
+        order,
+    })
+}
+
+/// The plane: every node in z = 0 (relative to the mesh's extent).
+fn check_plane(mesh: &RawMesh) -> Result<()> {
     let extent = mesh
         .nodes
         .values()
@@ -806,16 +832,13 @@ fn build(
             "the mesh is not 2D: every node must lie in the plane z = 0",
         ));
     }
-    let node = |tag: u64, line: usize| -> Result<[f64; 2]> {
-        mesh.nodes.get(&tag).map(|p| xy(*p)).ok_or_else(|| {
-            err(
-                format!("msh line {line}"),
-                format!("node {tag}"),
-                "an element names a node that $Nodes does not hold",
-            )
-        })
-    };
-    // Physical surfaces, in the order of their tags.
+    Ok(())
+}
+
+/// The 2D elements of each physical surface (in the order of their tags), the mesh's order
+/// (2 where any element is quadratic) and the number of 2D elements.
+#[allow(clippy::type_complexity)]
+fn physical_surfaces(mesh: &RawMesh) -> Result<(BTreeMap<i64, Vec<&RawElement>>, usize, usize)> {
     let mut surface_elements: BTreeMap<i64, Vec<&RawElement>> = BTreeMap::new();
     let mut order = 1;
     let mut n2d = 0;
@@ -875,7 +898,12 @@ fn build(
              Physical Surface",
         ));
     }
-    // Physical curve of each undirected corner pair, from the 1D elements.
+    Ok((surface_elements, order, n2d))
+}
+
+/// The physical curve of each undirected corner pair (and the line naming it), from the 1D
+/// elements.
+fn physical_curves(mesh: &RawMesh) -> Result<HashMap<(u64, u64), (String, usize)>> {
     let mut curve_of: HashMap<(u64, u64), (String, usize)> = HashMap::new();
     for e in &mesh.elements {
         if element_type(e.kind).map(|t| t.0) != Some(1) {
@@ -916,17 +944,37 @@ fn build(
             }
         }
     }
+    Ok(curve_of)
+}
 
-    // Boundary edges of every physical surface, and its connected pieces.
-    struct Piece {
-        name: String,
-        surface: String,
-        material: ElasticMaterial,
-        loops: Vec<Vec<Edge>>,
-    }
+/// A connected piece of a physical surface: a region.
+struct Piece {
+    name: String,
+    surface: String,
+    material: ElasticMaterial,
+    loops: Vec<Vec<Edge>>,
+}
+
+/// The connected pieces of every physical surface with their boundary loops, and the
+/// region names of each surface.
+#[allow(clippy::type_complexity)]
+fn pieces(
+    mesh: &RawMesh,
+    surface_elements: &BTreeMap<i64, Vec<&RawElement>>,
+    material: &dyn Fn(&str) -> Option<ElasticMaterial>,
+) -> Result<(Vec<Piece>, BTreeMap<String, Vec<String>>)> {
+    let node = |tag: u64, line: usize| -> Result<[f64; 2]> {
+        mesh.nodes.get(&tag).map(|p| xy(*p)).ok_or_else(|| {
+            err(
+                format!("msh line {line}"),
+                format!("node {tag}"),
+                "an element names a node that $Nodes does not hold",
+            )
+        })
+    };
     let mut pieces: Vec<Piece> = Vec::new();
     let mut surfaces: BTreeMap<String, Vec<String>> = BTreeMap::new();
-    for (&tag, elements) in &surface_elements {
+    for (&tag, elements) in surface_elements {
         let surface = group_name(&mesh.names, 2, tag);
         let mat = material(&surface).ok_or_else(|| {
             err(
@@ -935,57 +983,7 @@ fn build(
                 "every physical surface needs a material: name it in the mesh's materials",
             )
         })?;
-        // Directed edges of the counter-clockwise elements: (a, b) -> (element, middle).
-        let mut directed: HashMap<(u64, u64), (usize, [f64; 2])> = HashMap::new();
-        for (k, e) in elements.iter().enumerate() {
-            let (corners, mids) = element_edges(e.kind);
-            let pts: Vec<[f64; 2]> = corners
-                .iter()
-                .map(|&c| node(e.nodes[c], e.line))
-                .collect::<Result<_>>()?;
-            let mut area = 0.0;
-            for i in 0..pts.len() {
-                let (p, q) = (pts[i], pts[(i + 1) % pts.len()]);
-                area += 0.5 * (p[0] * q[1] - q[0] * p[1]);
-            }
-            let scale = pts.iter().fold(0.0_f64, |m, p| {
-                m.max((p[0] - pts[0][0]).abs())
-                    .max((p[1] - pts[0][1]).abs())
-            });
-            if area.is_nan() || area.abs() <= 1e-12 * scale * scale {
-                return Err(err(
-                    format!("msh line {}", e.line),
-                    format!("area {area:e}"),
-                    format!("an element of physical surface '{surface}' has zero area"),
-                ));
-            }
-            let m = corners.len();
-            for i in 0..m {
-                let (ia, ib) = if area > 0.0 {
-                    (i, (i + 1) % m)
-                } else {
-                    ((i + 1) % m, i)
-                };
-                let (a, b) = (e.nodes[corners[ia]], e.nodes[corners[ib]]);
-                let mid = match mids {
-                    Some(mids) => node(e.nodes[mids[i]], e.line)?,
-                    None => {
-                        let (p, q) = (pts[ia], pts[ib]);
-                        [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])]
-                    }
-                };
-                if directed.insert((a, b), (k, mid)).is_some() {
-                    return Err(err(
-                        format!("msh line {}", e.line),
-                        format!("edge {a}-{b}"),
-                        format!(
-                            "elements of physical surface '{surface}' overlap (two elements \
-                             run along one edge in the same direction)"
-                        ),
-                    ));
-                }
-            }
-        }
+        let directed = directed_edges(&surface, elements, &node)?;
         // Pieces: union-find over elements joined by interior edges.
         let mut parent: Vec<usize> = (0..elements.len()).collect();
         fn root(parent: &mut [usize], mut i: usize) -> usize {
@@ -1047,7 +1045,72 @@ fn build(
         }
     }
 
-    // Which piece lies on the other side of each directed edge.
+    Ok((pieces, surfaces))
+}
+
+/// The directed edges of the elements of physical surface `surface`, each element taken
+/// counter-clockwise: (a, b) -> (element, middle point).
+#[allow(clippy::type_complexity)]
+fn directed_edges(
+    surface: &str,
+    elements: &[&RawElement],
+    node: &dyn Fn(u64, usize) -> Result<[f64; 2]>,
+) -> Result<HashMap<(u64, u64), (usize, [f64; 2])>> {
+    let mut directed: HashMap<(u64, u64), (usize, [f64; 2])> = HashMap::new();
+    for (k, e) in elements.iter().enumerate() {
+        let (corners, mids) = element_edges(e.kind);
+        let pts: Vec<[f64; 2]> = corners
+            .iter()
+            .map(|&c| node(e.nodes[c], e.line))
+            .collect::<Result<_>>()?;
+        let mut area = 0.0;
+        for i in 0..pts.len() {
+            let (p, q) = (pts[i], pts[(i + 1) % pts.len()]);
+            area += 0.5 * (p[0] * q[1] - q[0] * p[1]);
+        }
+        let scale = pts.iter().fold(0.0_f64, |m, p| {
+            m.max((p[0] - pts[0][0]).abs())
+                .max((p[1] - pts[0][1]).abs())
+        });
+        if area.is_nan() || area.abs() <= 1e-12 * scale * scale {
+            return Err(err(
+                format!("msh line {}", e.line),
+                format!("area {area:e}"),
+                format!("an element of physical surface '{surface}' has zero area"),
+            ));
+        }
+        let m = corners.len();
+        for i in 0..m {
+            let (ia, ib) = if area > 0.0 {
+                (i, (i + 1) % m)
+            } else {
+                ((i + 1) % m, i)
+            };
+            let (a, b) = (e.nodes[corners[ia]], e.nodes[corners[ib]]);
+            let mid = match mids {
+                Some(mids) => node(e.nodes[mids[i]], e.line)?,
+                None => {
+                    let (p, q) = (pts[ia], pts[ib]);
+                    [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])]
+                }
+            };
+            if directed.insert((a, b), (k, mid)).is_some() {
+                return Err(err(
+                    format!("msh line {}", e.line),
+                    format!("edge {a}-{b}"),
+                    format!(
+                        "elements of physical surface '{surface}' overlap (two elements \
+                         run along one edge in the same direction)"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(directed)
+}
+
+/// Which piece lies on the other side of each directed edge.
+fn sides(pieces: &[Piece]) -> Result<HashMap<(u64, u64), usize>> {
     let mut side: HashMap<(u64, u64), usize> = HashMap::new();
     for (i, p) in pieces.iter().enumerate() {
         for e in p.loops.iter().flatten() {
@@ -1061,19 +1124,14 @@ fn build(
             }
         }
     }
-    let pos = |t: u64| xy(mesh.nodes[&t]);
-    let label = |i: usize, e: &Edge| -> Label {
-        let other = side.get(&(e.b, e.a)).copied();
-        let name = curve_of
-            .get(&(e.a.min(e.b), e.a.max(e.b)))
-            .map(|c| c.0.clone());
-        let pieces = match other {
-            Some(j) => (i.min(j), Some(i.max(j))),
-            None => (i, None),
-        };
-        Label { name, pieces }
-    };
-    // Every named edge must be on a region boundary.
+    Ok(side)
+}
+
+/// Every named edge must be on a region boundary.
+fn check_named_edges(
+    pieces: &[Piece],
+    curve_of: &HashMap<(u64, u64), (String, usize)>,
+) -> Result<()> {
     let mut on_boundary: HashSet<(u64, u64)> = HashSet::new();
     for e in pieces.iter().flat_map(|p| p.loops.iter().flatten()) {
         on_boundary.insert((e.a.min(e.b), e.a.max(e.b)));
@@ -1090,8 +1148,40 @@ fn build(
              a curve between two regions must share their mesh nodes)",
         ));
     }
+    Ok(())
+}
 
-    // Segments: the runs of each loop between breaks, owned by the first piece.
+/// A run of boundary edges between breaks: one segment.
+struct Run {
+    base: String,
+    edges: Vec<Edge>,
+    /// A whole loop without breaks (its last edge ends where its first begins).
+    closed: bool,
+}
+
+/// Segments: the runs of each loop between breaks (a change of name or of the pieces on its
+/// sides, or a corner sharper than `corner_angle_deg`), owned by the first piece; per piece
+/// and loop, the runs in order (index, whether traversed backwards as another's).
+#[allow(clippy::type_complexity)]
+fn split_runs(
+    mesh: &RawMesh,
+    pieces: &[Piece],
+    side: &HashMap<(u64, u64), usize>,
+    curve_of: &HashMap<(u64, u64), (String, usize)>,
+    corner_angle_deg: f64,
+) -> Result<(Vec<Run>, Vec<Vec<Vec<(usize, bool)>>>)> {
+    let pos = |t: u64| xy(mesh.nodes[&t]);
+    let label = |i: usize, e: &Edge| -> Label {
+        let other = side.get(&(e.b, e.a)).copied();
+        let name = curve_of
+            .get(&(e.a.min(e.b), e.a.max(e.b)))
+            .map(|c| c.0.clone());
+        let pieces = match other {
+            Some(j) => (i.min(j), Some(i.max(j))),
+            None => (i, None),
+        };
+        Label { name, pieces }
+    };
     let cos_corner = corner_angle_deg.to_radians().cos();
     let tangent_end = |e: &Edge| {
         // dx/dxi at xi = 1 of the quadratic through a, mid, b: (a - 4 mid + 3 b) / 2.
@@ -1116,14 +1206,7 @@ fn build(
     };
     // Segment of each directed edge in its owner's direction: (segment index, position).
     let mut segment_of: HashMap<(u64, u64), (usize, usize)> = HashMap::new();
-    struct Run {
-        base: String,
-        edges: Vec<Edge>,
-        /// A whole loop without breaks (its last edge ends where its first begins).
-        closed: bool,
-    }
     let mut runs: Vec<Run> = Vec::new();
-    let mut items: Vec<Vec<Vec<LoopItem>>> = Vec::with_capacity(pieces.len());
     let mut item_runs: Vec<Vec<Vec<(usize, bool)>>> = Vec::with_capacity(pieces.len());
     for (i, p) in pieces.iter().enumerate() {
         let mut piece_runs = Vec::new();
@@ -1223,8 +1306,13 @@ fn build(
         }
         item_runs.push(piece_runs);
     }
-    // First-order edges inside a smooth run: the middle node from the neighbouring nodes.
-    for r in &mut runs {
+    Ok((runs, item_runs))
+}
+
+/// First-order edges inside a smooth run: the middle node from the neighbouring nodes.
+fn smooth_runs(mesh: &RawMesh, runs: &mut [Run]) {
+    let pos = |t: u64| xy(mesh.nodes[&t]);
+    for r in runs {
         if r.edges.iter().any(|e| !e.curved) {
             let vertices: Vec<[f64; 2]> = std::iter::once(pos(r.edges[0].a))
                 .chain(r.edges.iter().map(|e| pos(e.b)))
@@ -1237,15 +1325,20 @@ fn build(
             }
         }
     }
-    // Names: a base used by one run keeps it; several runs get `.1`, `.2`, ...
+}
+
+/// Names: a base used by one run keeps it; several runs get `.1`, `.2`, ...; the segment
+/// names of each run and the segments by boundary name.
+#[allow(clippy::type_complexity)]
+fn name_runs(runs: &[Run]) -> Result<(Vec<String>, BTreeMap<String, Vec<String>>)> {
     let mut uses: BTreeMap<&str, usize> = BTreeMap::new();
-    for r in &runs {
+    for r in runs {
         *uses.entry(r.base.as_str()).or_default() += 1;
     }
     let mut next: BTreeMap<&str, usize> = BTreeMap::new();
     let mut names = Vec::with_capacity(runs.len());
     let mut curves: BTreeMap<String, Vec<String>> = BTreeMap::new();
-    for r in &runs {
+    for r in runs {
         let name = if uses[r.base.as_str()] == 1 {
             r.base.clone()
         } else {
@@ -1267,6 +1360,20 @@ fn build(
             ));
         }
     }
+    Ok((names, curves))
+}
+
+/// The regions: each piece's loops of segments (its own runs as meshed curves, the others'
+/// as shared items).
+fn regions(
+    mesh: &RawMesh,
+    pieces: &[Piece],
+    runs: &[Run],
+    item_runs: &[Vec<Vec<(usize, bool)>>],
+    names: &[String],
+) -> Result<Vec<Region>> {
+    let pos = |t: u64| xy(mesh.nodes[&t]);
+    let mut items: Vec<Vec<Vec<LoopItem>>> = Vec::with_capacity(pieces.len());
     for (i, p) in pieces.iter().enumerate() {
         let mut loops = Vec::with_capacity(p.loops.len());
         for loop_runs in &item_runs[i] {
@@ -1296,7 +1403,7 @@ fn build(
         }
         items.push(loops);
     }
-    let regions = pieces
+    let regions: Vec<Region> = pieces
         .iter()
         .zip(items)
         .map(|(p, loops)| Region {
@@ -1306,15 +1413,7 @@ fn build(
             body_forces: Vec::new(),
         })
         .collect();
-    Ok(GmshImport {
-        regions,
-        curves,
-        surfaces,
-        version: mesh.version.clone(),
-        nodes: mesh.nodes.len(),
-        surface_elements: n2d,
-        order,
-    })
+    Ok(regions)
 }
 
 /// The middle points of the chords of a polyline `v` (m + 1 vertices; `closed`: v[m] = v[0]

@@ -19,7 +19,7 @@
 //! contact solver depends on where the model sits. The free-body integrals (equilibrium
 //! rows, artificial supports, boundary centroid and motion) use model-local coordinates
 //! too (an outline model on the grid translated by (20, -13) m: contact tractions
-//! bit-identical, 3.5e-12 before; tests/bem_rigid_motion.rs of the CLI).
+//! bit-identical, 3.5e-12 before; crates/tribo-case/tests/bem_rigid_motion.rs).
 
 use std::f64::consts::{FRAC_PI_2, PI};
 

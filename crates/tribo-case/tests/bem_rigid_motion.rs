@@ -1,12 +1,15 @@
-//! Rigid-motion invariance of 2D BEM cases through the command line (issue 11 item 2): an
+//! Rigid-motion invariance of 2D BEM cases (issue 11 item 2), on typed results: an
 //! outline model without contact (a graded, holed plate under gravity and a pressure), two
 //! outline contact models (a block pressed on a base by a displacement, and the README's
 //! block held only by contact and friction) and the shipped gmsh Hertz example, each moved
-//! by translations of up to 1e3 times the model size and by rotations, then run through the
-//! binary; summary.json and interfaces.csv of the moved run are compared with the run at
-//! rest: scalars (contact length, maximum pressure and shear, sigma_int and eps_int maxima,
-//! node states) equal, vectors (forces, translations, node positions) rotated, moments about
-//! the origin shifted by s x F.
+//! by translations of up to 1e3 times the model size and by rotations, then run in the
+//! library; the summary ([`BemSummary`], what summary.json holds) and the contact nodes
+//! (what interfaces.csv lists) of the moved run are compared with the run at rest: scalars
+//! (contact length, maximum pressure and shear, sigma_int and eps_int maxima, node states)
+//! equal, vectors (forces, translations, node positions) rotated, moments about the origin
+//! shifted by s x F. (These ran the `tribo` binary and read the files before; the files
+//! print every number in Rust's shortest round-trip form, so the values and tolerances are
+//! the same.)
 //!
 //! *Exact motions*: the models' defining points (outline points, gmsh nodes) are snapped to
 //! the grid of 2^-40 m, so that translations on that grid (|s| < 2^12 m) and quarter turns
@@ -30,12 +33,13 @@
 // Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-use common::tribo;
-use serde_json::Value;
-use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
+use tribo::solvers::bem2d::contact::ContactState;
+use tribo_case::bem::case::parse;
+use tribo_case::bem::pipeline::{solve, BemOutcome};
+use tribo_case::bem::summary::{arc_lengths, BemSummary};
+use tribo_case::Silent;
 
 /// Grid of the exact motions: 2^-40 m (0.9 pm).
 fn snap(x: f64) -> f64 {
@@ -130,52 +134,40 @@ fn exact_motions() -> Vec<Motion> {
     ]
 }
 
-/// Runs `case` (TOML text, written to `dir/case.toml`) and returns summary.json and the
-/// rows of interfaces.csv (none without contact).
-fn run(dir: &Path, case: &str) -> (Value, Vec<HashMap<String, String>>) {
-    std::fs::create_dir_all(dir).unwrap();
-    let path = dir.join("case.toml");
-    std::fs::write(&path, case).unwrap();
-    let out = dir.join("out");
-    let o = tribo(
-        &["run", path.to_str().unwrap(), "-o", out.to_str().unwrap()],
-        None,
-    );
-    assert!(
-        o.status.success(),
-        "{}\n{}",
-        String::from_utf8_lossy(&o.stderr),
-        case
-    );
-    let summary: Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    let mut rows = Vec::new();
-    if let Ok(text) = std::fs::read_to_string(out.join("interfaces.csv")) {
-        let mut lines = text.lines();
-        let head: Vec<String> = lines
-            .next()
-            .unwrap()
-            .split(',')
-            .map(str::to_string)
-            .collect();
-        for l in lines {
-            rows.push(
-                head.iter()
-                    .cloned()
-                    .zip(l.split(',').map(str::to_string))
-                    .collect(),
-            );
+/// One slave node of a contact pair in one step (a row of interfaces.csv).
+struct Node {
+    state: ContactState,
+    position: [f64; 2],
+    s: f64,
+    pressure: f64,
+    shear: f64,
+    gap: f64,
+    slip: f64,
+}
+
+/// Parses `case` (relative paths from `dir`), runs it and returns its summary and every
+/// slave node of every pair in every step (none without contact).
+fn run(dir: &Path, case: &str) -> (BemSummary, Vec<Node>) {
+    let parsed = parse(case, "case.toml", dir).unwrap_or_else(|e| panic!("{e}\n{case}"));
+    let out: BemOutcome = solve(&parsed, &mut Silent).unwrap_or_else(|e| panic!("{e}\n{case}"));
+    let summary = BemSummary::new(&parsed, &out, Vec::new()).unwrap();
+    let mut nodes = Vec::new();
+    for st in &out.main.steps {
+        for p in &st.pairs {
+            for (n, s) in p.nodes.iter().zip(arc_lengths(p)) {
+                nodes.push(Node {
+                    state: n.state,
+                    position: n.position,
+                    s,
+                    pressure: n.pressure,
+                    shear: n.shear,
+                    gap: n.gap.expect("every slave node has a gap"),
+                    slip: n.slip,
+                });
+            }
         }
     }
-    (summary, rows)
-}
-
-fn f(v: &Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
-}
-
-fn vec2(v: &Value) -> [f64; 2] {
-    [f(&v[0]), f(&v[1])]
+    (summary, nodes)
 }
 
 /// Collects the largest relative differences by quantity name.
@@ -209,141 +201,96 @@ impl Errors {
 fn compare(
     m: &Motion,
     size: f64,
-    s0: &Value,
-    r0: &[HashMap<String, String>],
-    s1: &Value,
-    r1: &[HashMap<String, String>],
+    s0: &BemSummary,
+    r0: &[Node],
+    s1: &BemSummary,
+    r1: &[Node],
 ) -> Errors {
     let mut e = Errors::default();
-    let steps0 = s0["steps"].as_array().unwrap();
-    let steps1 = s1["steps"].as_array().unwrap();
-    assert_eq!(steps0.len(), steps1.len());
-    for (a, b) in steps0.iter().zip(steps1) {
-        for (p, q) in a["pairs"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .zip(b["pairs"].as_array().unwrap())
-        {
-            for k in ["nodes_in_contact", "stick_nodes", "slip_nodes"] {
-                assert_eq!(p[k], q[k], "{m:?}: {k}");
-            }
-            let pmax = f(&p["max_pressure"]["value"]);
-            e.add("pressure max", pmax, f(&q["max_pressure"]["value"]), pmax);
+    assert_eq!(s0.steps.len(), s1.steps.len());
+    for (a, b) in s0.steps.iter().zip(&s1.steps) {
+        assert_eq!(a.pairs.len(), b.pairs.len());
+        for (p, q) in a.pairs.iter().zip(&b.pairs) {
+            assert_eq!(
+                p.nodes_in_contact, q.nodes_in_contact,
+                "{m:?}: nodes_in_contact"
+            );
+            assert_eq!(p.stick_nodes, q.stick_nodes, "{m:?}: stick_nodes");
+            assert_eq!(p.slip_nodes, q.slip_nodes, "{m:?}: slip_nodes");
+            let pmax = p.max_pressure.value;
+            e.add("pressure max", pmax, q.max_pressure.value, pmax);
             e.add(
                 "shear max",
-                f(&p["max_abs_shear"]["value"]),
-                f(&q["max_abs_shear"]["value"]),
+                p.max_abs_shear.value,
+                q.max_abs_shear.value,
                 pmax,
             );
-            let len = f(&p["contact_length_m"]);
-            e.add("contact length", len, f(&q["contact_length_m"]), len);
-            let fs = vec2(&p["slave_force_n_per_m"]);
+            let len = p.contact_length_m;
+            e.add("contact length", len, q.contact_length_m, len);
+            let fs = p.slave_force_n_per_m;
             let fmag = fs[0].hypot(fs[1]);
-            e.add_vec(
-                "slave force",
-                m.rot(fs),
-                vec2(&q["slave_force_n_per_m"]),
-                fmag,
-            );
+            e.add_vec("slave force", m.rot(fs), q.slave_force_n_per_m, fmag);
         }
-        for (p, q) in a["rigid"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .zip(b["rigid"].as_array().unwrap())
-        {
-            let t = vec2(&p["translation_m"]);
+        assert_eq!(a.rigid.len(), b.rigid.len());
+        for (p, q) in a.rigid.iter().zip(&b.rigid) {
+            let t = p.translation_m;
             e.add_vec(
                 "rigid translation",
                 m.rot(t),
-                vec2(&q["translation_m"]),
+                q.translation_m,
                 t[0].hypot(t[1]),
             );
         }
-        for (p, q) in a["free_bodies"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .zip(b["free_bodies"].as_array().unwrap())
-        {
-            let t = vec2(&p["translation_m"]);
+        assert_eq!(a.free_bodies.len(), b.free_bodies.len());
+        for (p, q) in a.free_bodies.iter().zip(&b.free_bodies) {
+            let t = p.translation_m;
             e.add_vec(
                 "free-body translation",
                 m.rot(t),
-                vec2(&q["translation_m"]),
+                q.translation_m,
                 t[0].hypot(t[1]),
             );
         }
-        for (p, q) in a["regions"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .zip(b["regions"].as_array().unwrap())
-        {
-            for k in ["sigma_int_max", "eps_int_max"] {
-                let v = f(&p[k]["value"]);
-                e.add(k, v, f(&q[k]["value"]), v);
-            }
+        assert_eq!(a.regions.len(), b.regions.len());
+        for (p, q) in a.regions.iter().zip(&b.regions) {
+            let v = p.sigma_int_max.value;
+            e.add("sigma_int_max", v, q.sigma_int_max.value, v);
+            let v = p.eps_int_max.value;
+            e.add("eps_int_max", v, q.eps_int_max.value, v);
         }
         // Segment resultants rotate; moments about the origin gain s x F.
-        let fscale = a["segment_forces"]
-            .as_array()
-            .unwrap()
+        let fscale = a
+            .segment_forces
             .iter()
-            .map(|p| {
-                let v = vec2(&p["force_n_per_m"]);
-                v[0].hypot(v[1])
-            })
+            .map(|p| p.force_n_per_m[0].hypot(p.force_n_per_m[1]))
             .fold(0.0_f64, f64::max);
-        for (p, q) in a["segment_forces"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .zip(b["segment_forces"].as_array().unwrap())
-        {
-            let f0 = vec2(&p["force_n_per_m"]);
-            let rf = m.rot(f0);
-            e.add_vec("segment force", rf, vec2(&q["force_n_per_m"]), fscale);
+        assert_eq!(a.segment_forces.len(), b.segment_forces.len());
+        for (p, q) in a.segment_forces.iter().zip(&b.segment_forces) {
+            let rf = m.rot(p.force_n_per_m);
+            e.add_vec("segment force", rf, q.force_n_per_m, fscale);
             let s = m.shift;
-            let want = f(&p["moment_about_origin_n"]) + s[0] * rf[1] - s[1] * rf[0];
+            let want = p.moment_about_origin_n + s[0] * rf[1] - s[1] * rf[0];
             let mscale = fscale * (size + s[0].hypot(s[1]));
-            e.add(
-                "segment moment",
-                want,
-                f(&q["moment_about_origin_n"]),
-                mscale,
-            );
+            e.add("segment moment", want, q.moment_about_origin_n, mscale);
         }
     }
-    assert_eq!(r0.len(), r1.len(), "{m:?}: interfaces.csv rows");
+    assert_eq!(r0.len(), r1.len(), "{m:?}: contact nodes");
     if !r0.is_empty() {
-        let num = |r: &HashMap<String, String>, k: &str| -> f64 { r[k].parse().unwrap() };
-        let scale = |k: &str| r0.iter().map(|r| num(r, k).abs()).fold(0.0_f64, f64::max);
-        let pmax = scale("pressure_Pa");
+        let scale = |v: fn(&Node) -> f64| r0.iter().map(|n| v(n).abs()).fold(0.0_f64, f64::max);
+        let pmax = scale(|n| n.pressure);
         // Gaps relative to the model size (as positions): in a conforming contact every
         // node is closed and its gap is round-off.
-        let (gmax, smax) = (scale("gap_m").max(size), scale("slip_m"));
+        let (gmax, smax) = (scale(|n| n.gap).max(size), scale(|n| n.slip));
         for (a, b) in r0.iter().zip(r1) {
-            assert_eq!(a["state"], b["state"], "{m:?}: node state");
-            let want = m.rot([num(a, "x_m"), num(a, "y_m")]);
+            assert_eq!(a.state, b.state, "{m:?}: node state");
+            let want = m.rot(a.position);
             let want = [want[0] + m.shift[0], want[1] + m.shift[1]];
-            e.add_vec("csv position", want, [num(b, "x_m"), num(b, "y_m")], size);
-            e.add("csv s", num(a, "s_m"), num(b, "s_m"), size);
-            e.add(
-                "csv pressure",
-                num(a, "pressure_Pa"),
-                num(b, "pressure_Pa"),
-                pmax,
-            );
-            e.add("csv shear", num(a, "shear_Pa"), num(b, "shear_Pa"), pmax);
-            e.add("csv gap", num(a, "gap_m"), num(b, "gap_m"), gmax);
-            e.add(
-                "csv slip",
-                num(a, "slip_m"),
-                num(b, "slip_m"),
-                smax.max(f64::MIN_POSITIVE),
-            );
+            e.add_vec("node position", want, b.position, size);
+            e.add("node s", a.s, b.s, size);
+            e.add("node pressure", a.pressure, b.pressure, pmax);
+            e.add("node shear", a.shear, b.shear, pmax);
+            e.add("node gap", a.gap, b.gap, gmax);
+            e.add("node slip", a.slip, b.slip, smax.max(f64::MIN_POSITIVE));
         }
     }
     e
@@ -467,8 +414,9 @@ size = 0.5e-3
     )
 }
 
+/// The directory of the gmsh example (`crates/tribo-cli/examples/gmsh`).
 fn gmsh_dir() -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/gmsh")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../tribo-cli/examples/gmsh")
 }
 
 /// The shipped gmsh Hertz example moved by `m`: a copy of hertz-cylinder.msh with every
@@ -580,7 +528,7 @@ fn outline_free_body_contact_is_invariant_under_exact_rigid_motions() {
         &exact_motions(),
         |m, _| block_on_base(m, None),
         |m, q| {
-            let traction = q.starts_with("csv pressure") || q.starts_with("csv shear");
+            let traction = q.starts_with("node pressure") || q.starts_with("node shear");
             if m.quarter == Some(0) && traction {
                 1e-15
             } else {
