@@ -299,12 +299,14 @@ fn cavity_error(method: CqMethod, steps: usize, step_load: bool, params: &CqPara
 }
 
 /// Table C of DYNAMICS.md sec. 1.1 (max error over t = 1, 2, 3, 5, 10; M steps to T = 10):
-/// every entry reproduced within a factor 1.5 (the table was computed with the same
-/// contour, so the same discretisation error is expected; 1.5 leaves room for the
-/// reference values' 10 digits and a different FFT), except the 3-stage Radau IIA entries at
-/// its round-off floor (M >= 200, ~1e-8, set by lambda^L = sqrt(eps)), which are only
-/// bounded by 3e-8. The observed orders follow (1, 2, 3, 5). The table's last row is
-/// where scipy's unscaled ratio gave NaN (pitfall 7); here it is finite.
+/// the table was computed with the same contour, so the same discretisation error is
+/// expected: entries above 1e-7 within 2 % (measured: the first three digits agree
+/// everywhere, e.g. BDF2 ramp M = 50 4.083e-3, Radau IIA 2 M = 800 3.951e-8), entries below
+/// 1e-7 within a factor 1.5 (there round-off at the sqrt(eps) floor, which depends on the FFT,
+/// is a fair part of the error), and the 3-stage Radau IIA entries at its floor (M >= 200,
+/// ~1e-8, set by lambda^L = sqrt(eps)) only bounded by 3e-8. The observed orders follow
+/// (1, 2, 3, 5). The table's last row is where scipy's unscaled ratio gave NaN (pitfall 7);
+/// here it is finite.
 #[test]
 fn cavity_reproduces_table_c() {
     let p = CqParams::default();
@@ -326,8 +328,9 @@ fn cavity_reproduces_table_c() {
         ];
         for col in 0..3 {
             let ratio = e[col] / expected[col];
+            let band = if expected[col] > 1e-7 { 1.02 } else { 1.5 };
             assert!(
-                (1.0 / 1.5..=1.5).contains(&ratio),
+                (1.0 / band..=band).contains(&ratio),
                 "M = {m} column {col}: {:.3e} vs table {:.3e}",
                 e[col],
                 expected[col]
