@@ -1,5 +1,5 @@
 //! All steps at once: `x = R(d/dt) y` for a linear problem whose data are known in advance
-//! (Banjai 2010, sec. 4; the "CQforward" of DYNAMICS.md sec. 2, mhassell/deltaBEM).
+//! (Banjai 2010, sec. 4; the "CQforward" of docs/theory/DYNAMICS.md sec. 2, mhassell/deltaBEM).
 //!
 //! With `zeta_l = lambda exp(-2 pi i l / L)`, the scaled DFT of the data sequence is its
 //! generating function on the contour, `Y_l = sum_n lambda^n y_n exp(-2 pi i l n / L)
@@ -76,7 +76,8 @@ pub fn convolve_memory_estimate(
 /// response at the same samples. Errors: the data's length or a non-finite value
 /// ([`Error::InvalidParameter`]), invalid contour parameters, [`Error::OutOfMemory`] where
 /// the spectra cannot be allocated (checked before any large allocation), and whatever the
-/// response returns ([`Error::Numerical`] where it is not finite, DYNAMICS.md pitfall 7).
+/// response returns ([`Error::Numerical`] where it is not finite,
+/// docs/theory/DYNAMICS.md pitfall 7).
 pub fn convolve(
     response: &dyn LaplaceResponse,
     grid: &CqGrid,

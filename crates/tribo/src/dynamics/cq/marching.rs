@@ -1,10 +1,10 @@
 //! Time marching with CQ weights: the discrete convolution
-//! `x_n = W_0 y_n + h_n`, `h_n = sum_(m=1..n) W_m y_(n-m)` (Lubich 1988; DYNAMICS.md sec. 1.1
-//! and 4), where `y_n` becomes known only at step n (a contact step solves for it with
+//! `x_n = W_0 y_n + h_n`, `h_n = sum_(m=1..n) W_m y_(n-m)` (Lubich 1988; docs/theory/DYNAMICS.md
+//! sec. 1.1 and 4), where `y_n` becomes known only at step n (a contact step solves for it with
 //! `W_0` as the instantaneous compliance and `h_n` as the history right-hand side).
 //!
 //! The history is never truncated: in 2D the kernels have an infinite tail (no Huygens
-//! principle; DYNAMICS.md pitfall 4, Banjai, Lopez-Fernandez & Schaedle). Cost
+//! principle; docs/theory/DYNAMICS.md pitfall 4, Banjai, Lopez-Fernandez & Schaedle). Cost
 //! `O(rows cols n)` per step, `O(rows cols M^2 / 2)` in all (measured in the tests: see
 //! docs/theory/DYNAMICS.md, "Implementation, CQ").
 

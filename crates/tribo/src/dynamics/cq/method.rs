@@ -20,9 +20,9 @@ use serde::{Deserialize, Serialize};
 /// The A-stable time integrator a convolution quadrature is built on.
 ///
 /// Orders are those of the integrator on smooth data vanishing at t = 0 with enough
-/// derivatives; DYNAMICS.md table C measures them on the cavity transfer function: BDF2 2,
-/// Radau IIA 2-stage 3, Radau IIA 3-stage 5 (down to its ~1e-8 floor, the square root of the
-/// machine epsilon of the default contour).
+/// derivatives; docs/theory/DYNAMICS.md table C measures them on the cavity transfer
+/// function: BDF2 2, Radau IIA 2-stage 3, Radau IIA 3-stage 5 (down to its ~1e-8 floor, the
+/// square root of the machine epsilon of the default contour).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
 pub enum CqMethod {
     /// Backward Euler (BDF1), order 1: `gamma(zeta) = 1 - zeta` (for tests and as a robust
@@ -332,7 +332,7 @@ impl CqGrid {
 ///
 /// With L frequencies the aliasing error is of the order of `lambda^L` times the sequence
 /// and the round-off is amplified by up to `lambda^(-L)`: `lambda^L = sqrt(eps)` balances
-/// them (all four codes of DYNAMICS.md sec. 1.1 use it; table L: the error is flat for
+/// them (all four codes of docs/theory/DYNAMICS.md sec. 1.1 use it; table L: the error is flat for
 /// `lambda^L` between 1e-6 and 1e-12 and grows outside). The price is a relative error
 /// floor of about `sqrt(eps) = 1.5e-8`, which only the 3-stage Radau IIA method reaches.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -340,7 +340,7 @@ pub struct CqParams {
     /// `lambda^L` (dimensionless, in (0, 1)); default `sqrt(f64::EPSILON)`.
     pub contour_decay: f64,
     /// The number of contour frequencies L; None: the sequence length (M + 1 for the
-    /// multistep methods, as in all four codes of DYNAMICS.md sec. 1.1). At least the
+    /// multistep methods, as in all four codes of docs/theory/DYNAMICS.md sec. 1.1). At least the
     /// sequence length.
     pub frequencies: Option<usize>,
 }

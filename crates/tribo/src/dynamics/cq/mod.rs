@@ -17,7 +17,8 @@
 //! - [`weights`]: the quadrature weights `W_m` of a matrix-valued transfer function
 //!   ([`cq_weights`]), what time marching (contact) needs;
 //! - [`marching`]: the history term `h_n = sum_{m=1..n} W_m y_(n-m)` step by step
-//!   ([`CqHistory`]), never truncated (2D has no Huygens principle, DYNAMICS.md pitfall 4).
+//!   ([`CqHistory`]), never truncated (2D has no Huygens principle, docs/theory/DYNAMICS.md
+//!   pitfall 4).
 //!
 //! Real problems only: the data are real and the transfer function satisfies
 //! `R(conj s) = conj R(s)` (true of every physical, real-valued time-domain system), so that
@@ -81,7 +82,8 @@ pub trait LaplaceResponse: Sync {
 }
 
 /// Checks a response vector: its length and that every value is finite (a NaN from 0/0 in
-/// an unscaled Bessel ratio at large |s| is DYNAMICS.md pitfall 7; it must not pass silently).
+/// an unscaled Bessel ratio at large |s| is docs/theory/DYNAMICS.md pitfall 7; it must
+/// not pass silently).
 pub(crate) fn check_response(
     context: &'static str,
     s: C64,

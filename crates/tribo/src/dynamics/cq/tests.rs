@@ -1,6 +1,6 @@
 //! Convolution quadrature against closed forms: differentiation and integration of
-//! polynomials, an ODE, the cylindrical cavity of DYNAMICS.md sec. 3.2 (tables C and L),
-//! marching against all-at-once, long-run stability.
+//! polynomials, an ODE, the cylindrical cavity of docs/theory/DYNAMICS.md sec. 3.2 (tables C and
+//! L), marching against all-at-once, long-run stability.
 
 use super::*;
 use complex_bessel::{besselk, besselk_scaled};
@@ -232,11 +232,11 @@ fn observed_orders_are_the_classical_orders() {
 }
 
 // ---------------------------------------------------------------------------------------
-// The cylindrical cavity (DYNAMICS.md sec. 3.2): nu = 0.25, rho = mu = a = p0 = 1
+// The cylindrical cavity (docs/theory/DYNAMICS.md sec. 3.2): nu = 0.25, rho = mu = a = p0 = 1
 
 /// Wall displacement per unit pressure, `u_r(a, s)/p(s) = K1(ka)/(k D)`,
-/// `D = (lam + 2 mu) K0(ka) + 2 mu K1(ka)/(ka)`, `k = s/c1` (DYNAMICS.md sec. 3.2), with the
-/// exponentially scaled K (the factors exp(ka) cancel in the ratio; pitfall 7).
+/// `D = (lam + 2 mu) K0(ka) + 2 mu K1(ka)/(ka)`, `k = s/c1` (docs/theory/DYNAMICS.md sec. 3.2),
+/// with the exponentially scaled K (the factors exp(ka) cancel in the ratio; pitfall 7).
 fn cavity(s: C64) -> C64 {
     let (lam, mu) = (1.0, 1.0);
     let c1 = 3f64.sqrt();
@@ -265,7 +265,8 @@ fn ramp(t: f64) -> f64 {
     }
 }
 
-/// Talbot references (DYNAMICS.md sec. 3.1 table C and table 3.2) at t = 1, 2, 3, 5, 10.
+/// Talbot references (docs/theory/DYNAMICS.md sec. 1.1 table C and sec. 3.2) at
+/// t = 1, 2, 3, 5, 10.
 const TIMES: [f64; 5] = [1.0, 2.0, 3.0, 5.0, 10.0];
 const RAMP_REF: [f64; 5] = [
     0.2510492728,
@@ -298,8 +299,8 @@ fn cavity_error(method: CqMethod, steps: usize, step_load: bool, params: &CqPara
         .fold(0.0, f64::max)
 }
 
-/// Table C of DYNAMICS.md sec. 1.1 (max error over t = 1, 2, 3, 5, 10; M steps to T = 10):
-/// the table was computed with the same contour, so the same discretisation error is
+/// Table C of docs/theory/DYNAMICS.md sec. 1.1 (max error over t = 1, 2, 3, 5, 10; M steps to
+/// T = 10): the table was computed with the same contour, so the same discretisation error is
 /// expected: entries above 1e-7 within 2 % (measured: the first three digits agree
 /// everywhere, e.g. BDF2 ramp M = 50 4.083e-3, Radau IIA 2 M = 800 3.951e-8), entries below
 /// 1e-7 within a factor 1.5 (there round-off at the sqrt(eps) floor, which depends on the FFT,
@@ -412,7 +413,7 @@ fn matrix_data(t: f64) -> [f64; 2] {
 
 /// The zeroth weight is the transfer matrix at the instantaneous frequency: BDF2
 /// `W_0 = R(1.5/dt)` and BDF1 `R(1/dt)` to 1e-12 (the aliasing error lambda^L |W_L| with
-/// decaying weights; DYNAMICS.md measured 3e-13 on a BEM), and Radau IIA
+/// decaying weights; docs/theory/DYNAMICS.md measured 3e-13 on a BEM), and Radau IIA
 /// `W_0 = P diag(R(d_q/dt)) P^(-1)` at zeta = 0 likewise.
 #[test]
 fn zeroth_weight_is_the_instantaneous_transfer_matrix() {
@@ -448,8 +449,8 @@ fn zeroth_weight_is_the_instantaneous_transfer_matrix() {
 }
 
 /// Marching (weights, history) gives the all-at-once result: the two differ only by their
-/// contour errors, both ~sqrt(eps) relative, so 1e-8 relative to max |x| (DYNAMICS.md: 7e-9
-/// on a BEM). BDF2 (what contact uses) and the 2-stage Radau IIA on stage vectors.
+/// contour errors, both ~sqrt(eps) relative, so 1e-8 relative to max |x| (docs/theory/DYNAMICS.md:
+/// 7e-9 on a BEM). BDF2 (what contact uses) and the 2-stage Radau IIA on stage vectors.
 #[test]
 fn marching_equals_all_at_once_on_a_matrix_transfer_function() {
     let r = Matrix2(matrix_transfer);

@@ -1,5 +1,6 @@
 //! The convolution quadrature weights of a matrix-valued transfer function: the
-//! coefficients of `R(delta(zeta)/dt) = sum_m W_m zeta^m` (Lubich 1988; DYNAMICS.md sec. 1.1),
+//! coefficients of `R(delta(zeta)/dt) = sum_m W_m zeta^m` (Lubich 1988;
+//! docs/theory/DYNAMICS.md sec. 1.1),
 //! `W_m = lambda^(-m)/L sum_l R(delta(zeta_l)/dt) exp(2 pi i l m / L)`,
 //! `zeta_l = lambda exp(-2 pi i l / L)`: one FFT per matrix entry after one transfer matrix
 //! per frequency and stage (in parallel).
