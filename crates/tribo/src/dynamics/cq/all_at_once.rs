@@ -122,6 +122,17 @@ pub fn convolve(
     let mut spec_in = try_vec("convolution quadrature data spectrum", nf * s * ni, zero)?;
     let mut values = try_vec("convolution quadrature result", samples * no, 0.0)?;
     let mut buf = try_vec("convolution quadrature FFT buffer", l, zero)?;
+    // The response spectra are allocated per frequency inside the parallel loop: check now
+    // that all of them fit, so that a large problem fails before any evaluation.
+    let out_bytes = nf * s * no * std::mem::size_of::<C64>();
+    let mut probe: Vec<u8> = Vec::new();
+    probe
+        .try_reserve_exact(out_bytes)
+        .map_err(|_| Error::OutOfMemory {
+            what: "convolution quadrature response spectra".into(),
+            bytes: out_bytes,
+        })?;
+    drop(probe);
 
     let mut planner = FftPlanner::<f64>::new();
     let forward = planner.plan_fft_forward(l);
@@ -161,7 +172,7 @@ pub fn convolve(
             let zeta = C64::from_polar(lambda, -2.0 * std::f64::consts::PI * f as f64 / l as f64);
             let sym = method.symbol(zeta)?;
             let y = &spec_in[f * s * ni..(f + 1) * s * ni];
-            let mut out = vec![zero; s * no];
+            let mut out = try_vec("convolution quadrature response spectrum", s * no, zero)?;
             let mut v = vec![zero; ni];
             for q in 0..s {
                 // v = (P^-1 (x) I) y, stage component q.

@@ -620,6 +620,22 @@ fn oversized_problems_are_refused_with_out_of_memory() {
     assert_eq!(bytes, 501 * 10_000 * 16 + 1001 * 10_000 * 8 + 1001 * 32);
     let grid = CqGrid::new(CqMethod::Bdf2, 0.1, 1 << 20).unwrap();
     assert!(convolve_memory_estimate(&grid, 1 << 62, 1, &p).is_none());
+    // All at once: one input, 2^40 outputs (a 100 TB result).
+    struct Wide;
+    impl LaplaceResponse for Wide {
+        fn inputs(&self) -> usize {
+            1
+        }
+        fn outputs(&self) -> usize {
+            1 << 40
+        }
+        fn respond(&self, _: C64, _: &[C64]) -> Result<Vec<C64>> {
+            panic!("must not be evaluated")
+        }
+    }
+    let grid = CqGrid::new(CqMethod::Bdf2, 0.1, 10).unwrap();
+    let err = convolve(&Wide, &grid, &[1.0; 11], &p).unwrap_err();
+    assert!(matches!(err, Error::OutOfMemory { .. }), "{err}");
 }
 
 /// Cost of the marching history for 100 contact unknowns and 1000 steps (the issue's
