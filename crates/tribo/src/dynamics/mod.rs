@@ -6,3 +6,4 @@
 //! Laplace-domain fundamental solution is needed; each time step of the marching scheme is a
 //! static-like BEM problem with the "instantaneous" matrices H(s0), G(s0), so the static
 //! contact machinery applies step by step with a history right-hand side.
+pub mod kernel;
