@@ -1146,6 +1146,37 @@ fn nearest_xi(e: &Element, p: [f64; 2]) -> f64 {
     xi
 }
 
+/// The region whose interior holds `p` and the point at which to evaluate it there (`p`,
+/// or `p` moved [`BOUNDARY_LAYER`] inside the boundary as in [`BemSolution::stress_at`]),
+/// for Somigliana evaluations with other boundary data (the Laplace-domain BEM's probes).
+///
+/// Errors: `p` not finite, outside every region, or at a segment junction of the boundary
+/// ([`Error::InvalidParameter`], field `probe`).
+pub(crate) fn locate_interior(mesh: &BemMesh, p: [f64; 2]) -> Result<(usize, [f64; 2])> {
+    let zero = |r: &crate::operators::bem2d::RegionMesh| vec![[0.0; 2]; r.nodes.len()];
+    let probe = BemSolution {
+        mesh: mesh.clone(),
+        displacement: mesh.regions.iter().map(zero).collect(),
+        traction: mesh.regions.iter().map(zero).collect(),
+        residual: 0.0,
+        body_force_factor: 0.0,
+    };
+    let at = format!("({:.6e}, {:.6e})", p[0], p[1]);
+    match probe.locate(p) {
+        Ok((r, Site::Interior(q))) => Ok((r, q)),
+        Ok((_, Site::Junction(_))) => Err(Error::invalid(
+            "probe",
+            at,
+            "lies at a junction of boundary segments; move it inside the body",
+        )),
+        Err(_) => Err(Error::invalid(
+            "probe",
+            at,
+            "lies outside every region of the model",
+        )),
+    }
+}
+
 /// The body of every region of `mesh` (regions joined by bonded interfaces): the root region
 /// of its tree in a union-find over the interfaces (path halving), the one grouping that
 /// [`BemProblem`]'s restraint check and the contact solver's bodies share.
