@@ -183,3 +183,108 @@ fn bad_inputs_are_errors() {
     assert!(bem.respond(c64::new(1.0, 0.0), &known[1..]).is_err());
     assert!(bem.respond(c64::new(f64::NAN, 0.0), &known).is_err());
 }
+
+/// The cylindrical cavity under internal pressure (DYNAMICS.md 3.2): `u_r(a, s) = P K1(k a)
+/// / (k D)`, `D = (lam + 2 mu) K0(k a) + 2 mu K1(k a)/(k a)`, k = s/c1, for the infinite
+/// plane; here an annulus a = 1, R = 3 (nu = 0.25, mu = rho = 1: c1 = sqrt 3) at Re s >= 10,
+/// where the wave reflected at R returns damped by exp(-2 Re s (R - a)/c1) < 1e-10, so the
+/// outer boundary does not matter. Nodal u_r (and u_t ~ 0) on the cavity wall at 4, 8, 16
+/// elements per half circle. Measured: s = 10: 1.7e-2, 1.7e-3, 1.7e-4; s = 10+10i: 1.9e-2,
+/// 2.0e-3, 1.9e-4; s = 12-25i: 2.2e-2, 2.7e-3, 2.6e-4 (ratios 8-10, about h^3). Asserted:
+/// every halving gains 6x, the finest below 5e-4.
+#[test]
+fn cavity_wall_matches_the_closed_form_at_large_s() {
+    use complex_bessel::besselk;
+    use std::f64::consts::PI;
+    let (mu, nu) = (1.0, 0.25);
+    let m = ElasticMaterial::new(2.0 * mu * (1.0 + nu), nu).unwrap();
+    let (a, big) = (1.0, 3.0);
+    let lam = 2.0 * mu * nu / (1.0 - 2.0 * nu);
+    let c1 = ((lam + 2.0 * mu) / 1.0_f64).sqrt();
+    let bcs = BoundaryConditions::new()
+        .set("hole_a", SegmentBc::Pressure(Profile::Uniform(1.0)))
+        .set("hole_b", SegmentBc::Pressure(Profile::Uniform(1.0)));
+    for s in [
+        c64::new(10.0, 0.0),
+        c64::new(10.0, 10.0),
+        c64::new(12.0, -25.0),
+    ] {
+        let k = s / c1;
+        let ka = k * a;
+        let k0 = besselk(0.0, ka).unwrap();
+        let k1 = besselk(1.0, ka).unwrap();
+        let d = k0 * (lam + 2.0 * mu) + k1 / ka * (2.0 * mu);
+        let exact = k1 / (k * d);
+        let mut errors = vec![];
+        for n in [4, 8, 16] {
+            let model = BemModel::new(
+                PlaneCondition::Strain,
+                vec![Region::new(
+                    "ring",
+                    m,
+                    vec![
+                        Segment::arc("outer_a", [0.0, 0.0], big, 0.0, PI, 8),
+                        Segment::arc("outer_b", [0.0, 0.0], big, PI, 2.0 * PI, 8),
+                    ],
+                )
+                .with_hole(vec![
+                    Segment::arc("hole_a", [0.0, 0.0], a, PI, 0.0, n),
+                    Segment::arc("hole_b", [0.0, 0.0], a, 2.0 * PI, PI, n),
+                ])],
+            );
+            let bem = LaplaceBem::new(&model, &[1.0], &bcs, &[]).unwrap();
+            let known = complex(bem.static_known_values(), c64::ONE);
+            let state = bem.respond_state(s, &known).unwrap();
+            let region = &bem.static_problem().mesh.regions[0];
+            let mut err = 0.0_f64;
+            for (node, u) in region.nodes.iter().zip(&state.displacement[0]) {
+                let x = node.position;
+                let r = x[0].hypot(x[1]);
+                if (r - a).abs() > 1e-9 {
+                    continue;
+                }
+                let (er, et) = ([x[0] / r, x[1] / r], [-x[1] / r, x[0] / r]);
+                let ur = u[0] * er[0] + u[1] * er[1];
+                let ut = u[0] * et[0] + u[1] * et[1];
+                err = err.max((ur - exact).norm()).max(ut.norm());
+            }
+            errors.push(err / exact.norm());
+        }
+        let errors = Errors(errors);
+        eprintln!("cavity s = {s}: u_r(a) = {exact:.6e}, errors {errors}");
+        for pair in errors.0.windows(2) {
+            assert!(pair[1] < pair[0] / 6.0, "s = {s}: {errors}");
+        }
+        assert!(errors.0[2] < 5e-4, "s = {s}: {errors}");
+    }
+}
+
+/// Timing (run with `--ignored --nocapture`): one complex assembly + solve at N = 1000
+/// boundary unknowns against the static assembly of the same model.
+#[test]
+#[ignore]
+fn timing_of_one_complex_solve_at_n_1000() {
+    let m = ElasticMaterial::new(2.6, 0.3).unwrap();
+    // 4 segments of 62 elements: 4 x 125 nodes, 1000 DOFs.
+    let model = rectangle(m, 1.0, 1.0, 62, 62);
+    let bcs = BoundaryConditions::new()
+        .set("left", SegmentBc::fixed())
+        .set(
+            "right",
+            SegmentBc::traction(Profile::Uniform(1.0), Profile::Uniform(0.0)),
+        );
+    let t0 = std::time::Instant::now();
+    let bem = LaplaceBem::new(&model, &[1.0], &bcs, &[]).unwrap();
+    let t_static = t0.elapsed().as_secs_f64();
+    let known = complex(bem.static_known_values(), c64::ONE);
+    for s in [c64::new(1.5, 0.0), c64::new(20.0, 30.0)] {
+        let t1 = std::time::Instant::now();
+        let state = bem.respond_state(s, &known).unwrap();
+        eprintln!(
+            "N = {}: static mesh + assembly {t_static:.2} s; complex assembly + solve at s = {s}: {:.2} s (residual {:.1e})",
+            bem.static_problem().dof(),
+            t1.elapsed().as_secs_f64(),
+            state.residual
+        );
+    }
+}
