@@ -31,7 +31,7 @@
 //! lam*), which is Kelvin's effective Poisson ratio `nu' = nu / (1 + nu)` of
 //! [`Kelvin2d`]: `beta^2 = (1 - 2 nu') / (2 (1 - nu'))` in both conditions.
 //!
-//! **Evaluation without cancellation** (DYNAMICS.md sec. 0 and pitfall 1: chi loses accuracy
+//! **Evaluation without cancellation** (docs/theory/DYNAMICS.md sec. 0 and pitfall 1: chi loses accuracy
 //! like eps/|z|^2 in the Bessel form). The differences `dpsi = psi - psi_Kelvin`, `dchi`,
 //! `dpsi'`, `dchi'` are what the assembly needs; for `|z2| < SERIES_SWITCH` they are summed
 //! from the ascending series of K0 and K1 (Abramowitz & Stegun 1964, 9.6.11 and 9.6.13):

@@ -194,7 +194,7 @@ fn static_limit_is_kelvin_plus_a_constant() {
     assert!(cmax(&dt) < 1e-10, "{:.2e}", cmax(&dt));
 }
 
-/// The closed-form time-domain U_ij(r, t) of DYNAMICS.md 1.1 at t > r/c2 (both waves
+/// The closed-form time-domain U_ij(r, t) of docs/theory/DYNAMICS.md 1.1 at t > r/c2 (both waves
 /// arrived), against the fixed-Talbot inversion (Abate & Valko 2004) of U(r, s) with M = 24
 /// nodes. Talbot's truncation error ~10^(-0.6 M) = 4e-15; its round-off grows like
 /// eps e^(0.4 M) ~ 1e-12 relative: tolerance 1e-9 (a wrong coefficient in psi or chi, or a

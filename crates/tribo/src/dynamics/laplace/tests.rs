@@ -53,7 +53,7 @@ fn column_error(bem: &LaplaceBem, state: &LaplaceState, exact: &dyn Fn(f64) -> c
     err / scale
 }
 
-/// The 1D column with nu = 0 (exact in plane strain, DYNAMICS.md 3.1): end x = 0 loaded by
+/// The 1D column with nu = 0 (exact in plane strain, docs/theory/DYNAMICS.md 3.1): end x = 0 loaded by
 /// the traction t_x = P(s) = 1, end x = L on rollers (u_x = 0, t_y = 0), lateral faces free.
 /// Then E u'' = rho s^2 u, u(L) = 0, E u'(0) = -t_x give
 /// `u_x(x, s) = P sinh(k (L - x)) / (E k cosh(k L))`, k = s/c1, u_y = 0. Errors over all
@@ -184,7 +184,7 @@ fn bad_inputs_are_errors() {
     assert!(bem.respond(c64::new(f64::NAN, 0.0), &known).is_err());
 }
 
-/// The cylindrical cavity under internal pressure (DYNAMICS.md 3.2): `u_r(a, s) = P K1(k a)
+/// The cylindrical cavity under internal pressure (docs/theory/DYNAMICS.md 3.2): `u_r(a, s) = P K1(k a)
 /// / (k D)`, `D = (lam + 2 mu) K0(k a) + 2 mu K1(k a)/(k a)`, k = s/c1, for the infinite
 /// plane; here an annulus a = 1, R = 3 (nu = 0.25, mu = rho = 1: c1 = sqrt 3) at Re s >= 10,
 /// where the wave reflected at R returns damped by exp(-2 Re s (R - a)/c1) < 1e-10, so the
