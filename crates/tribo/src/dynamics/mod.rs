@@ -9,4 +9,6 @@
 
 pub mod cq;
 pub mod history;
+pub mod kernel;
+pub mod laplace;
 pub mod time_function;

@@ -76,7 +76,7 @@ use faer::Mat;
 
 use crate::error::{Error, Result};
 use crate::kernels::kelvin2d::Kelvin2d;
-use crate::operators::bem2d::assemble::{matrix_bytes, probe_memory, try_zeros};
+use crate::operators::bem2d::assemble::{matrix_bytes_of, probe_memory, try_zeros_of, BemScalar};
 use crate::operators::bem2d::integrate::{element_interior, piece_distance};
 use crate::operators::bem2d::mesh::{dist, Element};
 use crate::operators::bem2d::{assemble, BemMesh, BemModel, RegionOperators};
@@ -289,7 +289,7 @@ pub struct BemProblem {
 
 /// How one nodal DOF enters the system.
 #[derive(Debug, Clone, Copy)]
-enum Dof {
+pub(crate) enum Dof {
     /// u unknown (column), t known.
     U { col: usize, t: f64 },
     /// t unknown (column, scaled), u known.
@@ -353,7 +353,10 @@ impl BemProblem {
         Some(out)
     }
 
-    fn dofs(&self, bcs: &BoundaryConditions) -> Result<(Vec<Vec<[Dof; 2]>>, usize)> {
+    /// The DOF layout of `bcs`: per region, node and direction how the DOF enters the
+    /// system (columns numbered by segment, owner node and direction), and the number of
+    /// unknowns.
+    pub(crate) fn dofs(&self, bcs: &BoundaryConditions) -> Result<(Vec<Vec<[Dof; 2]>>, usize)> {
         let mesh = &self.mesh;
         let mut given: Vec<Option<&SegmentBc>> = vec![None; mesh.segments.len()];
         for (name, bc, _) in &bcs.entries {
@@ -545,49 +548,88 @@ impl BemProblem {
     pub fn solve(&self, bcs: &BoundaryConditions) -> Result<BemSolution> {
         let (dofs, ncol) = self.dofs(bcs)?;
         self.check_restraint(&dofs)?;
-        let nrow = self.dof();
-        debug_assert_eq!(nrow, ncol);
-        let scale = self
-            .mesh
+        let known = known_values(&dofs);
+        let ops: Vec<(&Mat<f64>, &Mat<f64>)> =
+            self.operators.iter().map(|o| (&o.h, &o.g)).collect();
+        let extra: Vec<Option<Vec<f64>>> = (0..self.operators.len())
+            .map(|r| self.body_force_rhs(r))
+            .collect();
+        let (x, residual) = self.solve_system(&dofs, ncol, &ops, &known, &extra)?;
+        let (displacement, traction) = self.unpack(&dofs, &x, &known);
+        Ok(BemSolution {
+            mesh: self.mesh.clone(),
+            displacement,
+            traction,
+            residual,
+            body_force_factor: 1.0,
+        })
+    }
+
+    /// The scale of the traction unknowns: the largest shear modulus (Pa).
+    pub(crate) fn traction_scale(&self) -> f64 {
+        self.mesh
             .regions
             .iter()
             .map(|r| r.kernels.shear_modulus())
-            .fold(0.0_f64, f64::max);
+            .fold(0.0_f64, f64::max)
+    }
+
+    /// Builds and solves the square system `A x = b` of the DOF layout `dofs` (`ncol`
+    /// unknowns) with the region matrices `ops` = (H_r, G_r), the known values `known`
+    /// (per region, node and direction: the traction of a [`Dof::U`], the displacement of a
+    /// [`Dof::T`]; ignored on interfaces) and optional extra right-hand sides per region
+    /// (the body-force terms). Real (elastostatics) or complex (the Laplace-domain BEM).
+    /// Returns the solution (traction unknowns scaled by [`BemProblem::traction_scale`])
+    /// and the relative residual.
+    ///
+    /// Errors: [`Error::OutOfMemory`]; a singular or inaccurate solve ([`Error::Numerical`]).
+    pub(crate) fn solve_system<T: BemScalar>(
+        &self,
+        dofs: &[Vec<[Dof; 2]>],
+        ncol: usize,
+        ops: &[(&Mat<T>, &Mat<T>)],
+        known: &[Vec<[T; 2]>],
+        extra: &[Option<Vec<f64>>],
+    ) -> Result<(Mat<T>, f64)> {
+        let nrow = self.dof();
+        debug_assert_eq!(nrow, ncol);
+        let scale = self.traction_scale();
         let what = format!("the 2D BEM system matrix ({nrow} x {ncol})");
-        let mut a = try_zeros(&what, nrow, ncol)?;
-        let mut b = try_zeros(&what, nrow, 1)?;
+        let mut a = try_zeros_of::<T>(&what, nrow, ncol)?;
+        let mut b = try_zeros_of::<T>(&what, nrow, 1)?;
         let mut offset = 0;
-        for (r, ops) in self.operators.iter().enumerate() {
-            let n2 = ops.h.nrows();
+        for (r, (h, g)) in ops.iter().enumerate() {
+            let n2 = h.nrows();
             for (node, d) in dofs[r].iter().enumerate() {
                 for (dir, dof) in d.iter().enumerate() {
                     let c = 2 * node + dir;
-                    let (hc, gc) = (ops.h.col(c), ops.g.col(c));
+                    let (hc, gc) = (h.col(c), g.col(c));
+                    let value = known[r][node][dir];
                     match *dof {
-                        Dof::U { col, t } => {
+                        Dof::U { col, .. } => {
                             for row in 0..n2 {
                                 a[(offset + row, col)] += hc[row];
-                                b[(offset + row, 0)] += gc[row] * t;
+                                b[(offset + row, 0)] += gc[row] * value;
                             }
                         }
-                        Dof::T { col, u } => {
+                        Dof::T { col, .. } => {
                             for row in 0..n2 {
                                 a[(offset + row, col)] -= gc[row] * scale;
-                                b[(offset + row, 0)] -= hc[row] * u;
+                                b[(offset + row, 0)] -= hc[row] * value;
                             }
                         }
                         Dof::Interface { u_col, t_col, sign } => {
                             for row in 0..n2 {
                                 a[(offset + row, u_col)] += hc[row];
-                                a[(offset + row, t_col)] -= sign * gc[row] * scale;
+                                a[(offset + row, t_col)] -= gc[row] * sign * scale;
                             }
                         }
                     }
                 }
             }
-            if let Some(bf) = self.body_force_rhs(r) {
+            if let Some(Some(bf)) = extra.get(r) {
                 for (row, v) in bf.iter().enumerate() {
-                    b[(offset + row, 0)] += v;
+                    b[(offset + row, 0)] += T::from_f64(*v);
                 }
             }
             offset += n2;
@@ -595,22 +637,22 @@ impl BemProblem {
         // The LU's copy of A and the residual check's product: allocated inside faer.
         probe_memory(
             &format!("the LU factorization of the 2D BEM system ({nrow} x {ncol})"),
-            matrix_bytes(nrow, ncol),
+            matrix_bytes_of::<T>(nrow, ncol),
         )?;
         let lu = a.partial_piv_lu();
         let x = lu.solve(&b);
         let res = &a * &x - &b;
-        let inf = |m: &Mat<f64>| {
+        let inf = |m: &Mat<T>| {
             let mut v = 0.0_f64;
             for i in 0..m.nrows() {
-                let row: f64 = (0..m.ncols()).map(|j| m[(i, j)].abs()).sum();
+                let row: f64 = (0..m.ncols()).map(|j| m[(i, j)].modulus()).sum();
                 v = nan_max(v, row);
             }
             v
         };
         let (na, nx, nb, nr) = (inf(&a), inf(&x), inf(&b), inf(&res));
         let residual = nr / (na * nx + nb).max(f64::MIN_POSITIVE);
-        if !(residual.is_finite() && residual < 1e-8) || (0..ncol).any(|i| !x[(i, 0)].is_finite()) {
+        if !(residual.is_finite() && residual < 1e-8) || (0..ncol).any(|i| !x[(i, 0)].finite()) {
             return Err(Error::Numerical {
                 context: "2D BEM solve",
                 detail: format!(
@@ -619,27 +661,40 @@ impl BemProblem {
                 ),
             });
         }
+        Ok((x, residual))
+    }
+
+    /// Nodal displacements and tractions per region from the solution `x` of
+    /// [`BemProblem::solve_system`] and the known values.
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn unpack<T: BemScalar>(
+        &self,
+        dofs: &[Vec<[Dof; 2]>],
+        x: &Mat<T>,
+        known: &[Vec<[T; 2]>],
+    ) -> (Vec<Vec<[T; 2]>>, Vec<Vec<[T; 2]>>) {
+        let scale = self.traction_scale();
         let mut displacement = Vec::new();
         let mut traction = Vec::new();
-        for d in &dofs {
+        for (d, kn) in dofs.iter().zip(known) {
             let mut u = Vec::with_capacity(d.len());
             let mut t = Vec::with_capacity(d.len());
-            for node in d {
-                let mut un = [0.0; 2];
-                let mut tn = [0.0; 2];
+            for (node, k) in d.iter().zip(kn) {
+                let mut un = [T::default(); 2];
+                let mut tn = [T::default(); 2];
                 for dir in 0..2 {
                     match node[dir] {
-                        Dof::U { col, t } => {
+                        Dof::U { col, .. } => {
                             un[dir] = x[(col, 0)];
-                            tn[dir] = t;
+                            tn[dir] = k[dir];
                         }
-                        Dof::T { col, u } => {
-                            un[dir] = u;
+                        Dof::T { col, .. } => {
+                            un[dir] = k[dir];
                             tn[dir] = x[(col, 0)] * scale;
                         }
                         Dof::Interface { u_col, t_col, sign } => {
                             un[dir] = x[(u_col, 0)];
-                            tn[dir] = sign * x[(t_col, 0)] * scale;
+                            tn[dir] = x[(t_col, 0)] * sign * scale;
                         }
                     }
                 }
@@ -649,14 +704,26 @@ impl BemProblem {
             displacement.push(u);
             traction.push(t);
         }
-        Ok(BemSolution {
-            mesh: self.mesh.clone(),
-            displacement,
-            traction,
-            residual,
-            body_force_factor: 1.0,
-        })
+        (displacement, traction)
     }
+}
+
+/// The known values of a DOF layout (per region, node and direction: the prescribed
+/// traction of a [`Dof::U`], displacement of a [`Dof::T`], 0 on interfaces).
+pub(crate) fn known_values(dofs: &[Vec<[Dof; 2]>]) -> Vec<Vec<[f64; 2]>> {
+    dofs.iter()
+        .map(|d| {
+            d.iter()
+                .map(|node| {
+                    node.map(|dof| match dof {
+                        Dof::U { t, .. } => t,
+                        Dof::T { u, .. } => u,
+                        Dof::Interface { .. } => 0.0,
+                    })
+                })
+                .collect()
+        })
+        .collect()
 }
 
 /// Where a point is evaluated (see [`BemSolution::locate_in`]).
@@ -1077,6 +1144,37 @@ fn nearest_xi(e: &Element, p: [f64; 2]) -> f64 {
         }
     }
     xi
+}
+
+/// The region whose interior holds `p` and the point at which to evaluate it there (`p`,
+/// or `p` moved [`BOUNDARY_LAYER`] inside the boundary as in [`BemSolution::stress_at`]),
+/// for Somigliana evaluations with other boundary data (the Laplace-domain BEM's probes).
+///
+/// Errors: `p` not finite, outside every region, or at a segment junction of the boundary
+/// ([`Error::InvalidParameter`], field `probe`).
+pub(crate) fn locate_interior(mesh: &BemMesh, p: [f64; 2]) -> Result<(usize, [f64; 2])> {
+    let zero = |r: &crate::operators::bem2d::RegionMesh| vec![[0.0; 2]; r.nodes.len()];
+    let probe = BemSolution {
+        mesh: mesh.clone(),
+        displacement: mesh.regions.iter().map(zero).collect(),
+        traction: mesh.regions.iter().map(zero).collect(),
+        residual: 0.0,
+        body_force_factor: 0.0,
+    };
+    let at = format!("({:.6e}, {:.6e})", p[0], p[1]);
+    match probe.locate(p) {
+        Ok((r, Site::Interior(q))) => Ok((r, q)),
+        Ok((_, Site::Junction(_))) => Err(Error::invalid(
+            "probe",
+            at,
+            "lies at a junction of boundary segments; move it inside the body",
+        )),
+        Err(_) => Err(Error::invalid(
+            "probe",
+            at,
+            "lies outside every region of the model",
+        )),
+    }
 }
 
 /// The body of every region of `mesh` (regions joined by bonded interfaces): the root region

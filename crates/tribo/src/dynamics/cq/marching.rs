@@ -6,7 +6,7 @@
 //! The history is never truncated: in 2D the kernels have an infinite tail (no Huygens
 //! principle; docs/theory/DYNAMICS.md pitfall 4, Banjai, Lopez-Fernandez & Schaedle). Cost
 //! `O(rows cols n)` per step, `O(rows cols M^2 / 2)` in all (measured in the tests: see
-//! docs/theory/DYNAMICS.md, "Implementation, CQ").
+//! docs/theory/DYNAMICS.md, sec. 5.3).
 
 use super::weights::CqWeights;
 use crate::error::{Error, Result};

@@ -1,6 +1,6 @@
 //! Convolution quadrature (CQ): time-domain convolutions `x = R(d/dt) y` with a causal
 //! linear map known only through its Laplace transform R(s) (Lubich 1988; Lubich &
-//! Ostermann 1993; Banjai 2010; docs/theory/DYNAMICS.md sec. 1.1 and "Implementation, CQ").
+//! Ostermann 1993; Banjai 2010; docs/theory/DYNAMICS.md sec. 1.1 and sec. 5.3).
 //!
 //! The continuous convolution `x(t) = (r * y)(t)`, `X(s) = R(s) Y(s)`, is replaced by the
 //! discrete one whose generating function is `R` evaluated at the symbol of an A-stable time

@@ -16,30 +16,92 @@
 // Index loops read like the tensor formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
-use faer::Mat;
+use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+
+use faer::{c64, Mat};
 use rayon::prelude::*;
 
 use super::integrate::element_hg;
-use super::mesh::{BemMesh, RegionMesh};
+use super::mesh::{BemMesh, Element, RegionMesh};
 use crate::error::{Error, Result};
+
+/// The scalar of the dense BEM matrices and systems: f64 (elastostatics) or
+/// [`faer::c64`] (the Laplace-domain elastodynamic BEM, [`crate::dynamics::laplace`]). The
+/// assembly and the system build are written once over it.
+pub trait BemScalar:
+    faer::traits::ComplexField
+    + Copy
+    + Default
+    + Send
+    + Sync
+    + AddAssign
+    + SubAssign
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Neg<Output = Self>
+    + Mul<Output = Self>
+    + Mul<f64, Output = Self>
+    + 'static
+{
+    /// The value of a real number.
+    fn from_f64(x: f64) -> Self;
+    /// |x| (the modulus of a complex number).
+    fn modulus(self) -> f64;
+    /// Whether every part is finite.
+    fn finite(self) -> bool;
+}
+
+impl BemScalar for f64 {
+    fn from_f64(x: f64) -> Self {
+        x
+    }
+    fn modulus(self) -> f64 {
+        self.abs()
+    }
+    fn finite(self) -> bool {
+        self.is_finite()
+    }
+}
+
+impl BemScalar for c64 {
+    fn from_f64(x: f64) -> Self {
+        c64::new(x, 0.0)
+    }
+    fn modulus(self) -> f64 {
+        self.norm()
+    }
+    fn finite(self) -> bool {
+        self.re.is_finite() && self.im.is_finite()
+    }
+}
 
 /// Bytes of an `rows x cols` f64 matrix; None where the size overflows usize.
 pub(crate) fn matrix_bytes(rows: usize, cols: usize) -> Option<usize> {
+    matrix_bytes_of::<f64>(rows, cols)
+}
+
+/// Bytes of an `rows x cols` matrix of T; None where the size overflows usize.
+pub(crate) fn matrix_bytes_of<T>(rows: usize, cols: usize) -> Option<usize> {
     rows.checked_mul(cols)?
-        .checked_mul(std::mem::size_of::<f64>())
+        .checked_mul(std::mem::size_of::<T>())
 }
 
 /// An `rows x cols` zero matrix, or [`Error::OutOfMemory`] naming `what` where the
 /// allocation fails (faer's own constructors abort on failure).
 pub(crate) fn try_zeros(what: &str, rows: usize, cols: usize) -> Result<Mat<f64>> {
+    try_zeros_of::<f64>(what, rows, cols)
+}
+
+/// [`try_zeros`] for any [`BemScalar`].
+pub(crate) fn try_zeros_of<T: BemScalar>(what: &str, rows: usize, cols: usize) -> Result<Mat<T>> {
     let oom = |bytes| Error::OutOfMemory {
         what: what.to_string(),
         bytes,
     };
-    let bytes = matrix_bytes(rows, cols).ok_or_else(|| oom(usize::MAX))?;
-    let mut m = Mat::<f64>::new();
+    let bytes = matrix_bytes_of::<T>(rows, cols).ok_or_else(|| oom(usize::MAX))?;
+    let mut m = Mat::<T>::new();
     m.try_reserve(rows, cols).map_err(|_| oom(bytes))?;
-    m.resize_with(rows, cols, |_, _| 0.0);
+    m.resize_with(rows, cols, |_, _| T::default());
     Ok(m)
 }
 
@@ -85,19 +147,44 @@ pub fn assemble_region(region: &RegionMesh) -> Result<RegionOperators> {
         "the H and G matrices of region '{}' ({dof} x {dof})",
         region.name
     );
-    let mut h = try_zeros(&what, dof, dof)?;
-    let mut g = try_zeros(&what, dof, dof)?;
+    let (h, g) = assemble_rows(region, &what, true, &|e, p, singular| {
+        Ok(element_hg(&region.kernels, e, p, singular))
+    })?;
+    Ok(RegionOperators { h, g })
+}
+
+/// The element integrals of one source node: `(h, g)` as in
+/// [`crate::operators::bem2d::integrate`]'s `element_hg`, for element `e`, source point `p`
+/// (model-local) and the element's node at the source (`Some(k)`) or none.
+pub(crate) type ElementIntegrals<'a, T> =
+    dyn Fn(&Element, [f64; 2], Option<usize>) -> Result<([[T; 6]; 2], [[T; 6]; 2])> + Sync + 'a;
+
+/// The dense 2n x 2n matrices `(H, G)` of one region from the element integrals `element`
+/// of every (source node, element) pair, rows in parallel (rayon). Where
+/// `rigid_body_diagonal`, the diagonal 2x2 blocks of H are set by rigid-body translation,
+/// `H_ii = -sum_{j != i} H_ij` (Brebbia & Dominguez sec. 5.7; the static kernels), otherwise
+/// they are the integrals as given (the bounded Laplace-domain differences).
+pub(crate) fn assemble_rows<T: BemScalar>(
+    region: &RegionMesh,
+    what: &str,
+    rigid_body_diagonal: bool,
+    element: &ElementIntegrals<'_, T>,
+) -> Result<(Mat<T>, Mat<T>)> {
+    let n = region.nodes.len();
+    let dof = 2 * n;
+    let mut h = try_zeros_of::<T>(what, dof, dof)?;
+    let mut g = try_zeros_of::<T>(what, dof, dof)?;
     // The rows are computed in parallel blocks of nodes (each node: its two H rows then its
     // two G rows, row-major), each block copied into H and G before the next: the buffer
     // stays a small fraction of the matrices.
     let block = 256.max(rayon::current_num_threads() * 16);
     let oom = |bytes| Error::OutOfMemory {
-        what: what.clone(),
+        what: what.to_string(),
         bytes,
     };
     for start in (0..n).step_by(block) {
         let end = (start + block).min(n);
-        let rows: Vec<Vec<f64>> = (start..end)
+        let rows: Vec<Vec<T>> = (start..end)
             .into_par_iter()
             .map(|i| {
                 // Model-local coordinates (see `RegionMesh::local_elements`).
@@ -105,11 +192,11 @@ pub fn assemble_region(region: &RegionMesh) -> Result<RegionOperators> {
                 let len = 4 * dof;
                 let mut buf = Vec::new();
                 buf.try_reserve_exact(len)
-                    .map_err(|_| oom(len.saturating_mul(8)))?;
-                buf.resize(len, 0.0);
+                    .map_err(|_| oom(len.saturating_mul(std::mem::size_of::<T>())))?;
+                buf.resize(len, T::default());
                 for e in &region.local_elements {
                     let singular = e.nodes.iter().position(|&m| m == i);
-                    let (h, g) = element_hg(&region.kernels, e, p, singular);
+                    let (h, g) = element(e, p, singular)?;
                     for (k, &m) in e.nodes.iter().enumerate() {
                         for a in 0..2 {
                             for b in 0..2 {
@@ -119,14 +206,16 @@ pub fn assemble_region(region: &RegionMesh) -> Result<RegionOperators> {
                         }
                     }
                 }
-                // Rigid-body translation: the diagonal block closes the row sums of H.
-                for a in 0..2 {
-                    for b in 0..2 {
-                        let mut sum = 0.0;
-                        for m in (0..n).filter(|&m| m != i) {
-                            sum += buf[a * dof + 2 * m + b];
+                if rigid_body_diagonal {
+                    // Rigid-body translation: the diagonal block closes the row sums of H.
+                    for a in 0..2 {
+                        for b in 0..2 {
+                            let mut sum = T::default();
+                            for m in (0..n).filter(|&m| m != i) {
+                                sum += buf[a * dof + 2 * m + b];
+                            }
+                            buf[a * dof + 2 * i + b] = -sum;
                         }
-                        buf[a * dof + 2 * i + b] = -sum;
                     }
                 }
                 Ok(buf)
@@ -142,7 +231,7 @@ pub fn assemble_region(region: &RegionMesh) -> Result<RegionOperators> {
             }
         }
     }
-    Ok(RegionOperators { h, g })
+    Ok((h, g))
 }
 
 #[cfg(test)]

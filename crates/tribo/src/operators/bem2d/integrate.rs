@@ -22,6 +22,7 @@
 // Index loops read like the tensor formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+use std::ops::{AddAssign, Mul};
 use std::sync::OnceLock;
 
 use super::mesh::{dist, Element};
@@ -128,8 +129,14 @@ pub(crate) fn adaptive<F: FnMut(f64, f64)>(
 /// `dxi = xi - xi_s` formed directly (not as a difference of two nearby numbers), so that
 /// the kernel's r can be formed from it in element-local terms ([`Element::chord`]).
 pub(crate) fn singular<F: FnMut(f64, f64, f64)>(xi_s: f64, f: &mut F) {
+    singular_in(xi_s, -1.0, 1.0, f);
+}
+
+/// [`singular`] on the piece [a, b] of the parameter interval (a <= xi_s <= b): the rule on
+/// [a, xi_s] and [xi_s, b] (a side of zero length is skipped).
+pub(crate) fn singular_in<F: FnMut(f64, f64, f64)>(xi_s: f64, a: f64, b: f64, f: &mut F) {
     let (eta, w) = singular_rule();
-    for end in [-1.0, 1.0] {
+    for end in [a, b] {
         let span = end - xi_s;
         if span.abs() < 1e-14 {
             continue;
@@ -151,40 +158,83 @@ pub(crate) fn element_hg(
     p: [f64; 2],
     singular_node: Option<usize>,
 ) -> ([[f64; 6]; 2], [[f64; 6]; 2]) {
-    let mut h = [[0.0; 6]; 2];
-    let mut g = [[0.0; 6]; 2];
+    let (mut h, g) = element_integrals(e, p, singular_node, 1, &mut |r, n| {
+        (kernels.traction(r, n), kernels.displacement(r))
+    });
+    if let Some(ks) = singular_node {
+        for row in h.iter_mut() {
+            row[2 * ks] = 0.0;
+            row[2 * ks + 1] = 0.0;
+        }
+    }
+    (h, g)
+}
+
+/// The element integrals `h[i][2k + j]` = int T_ij N_k dG and `g[i][2k + j]` = int U_ij N_k
+/// dG of any kernel pair `kernel(r, n) = (T_ij, U_ij)` (real or complex), with the rules of
+/// the module docs: where `singular_node` is `Some(k_s)` the singular rule about node k_s,
+/// otherwise the adaptive rule. The parameter interval is first cut into `pieces` equal
+/// pieces (1 for the static kernels; more where the kernel varies on a length scale of its
+/// own, as the Laplace-domain kernels on |s|/c), each integrated by the same rules (the
+/// singular rule on the pieces that hold the source node). Nothing is left out: the caller
+/// zeroes any block it replaces.
+pub(crate) fn element_integrals<T, K>(
+    e: &Element,
+    p: [f64; 2],
+    singular_node: Option<usize>,
+    pieces: usize,
+    kernel: &mut K,
+) -> ([[T; 6]; 2], [[T; 6]; 2])
+where
+    T: Copy + Default + AddAssign + Mul<f64, Output = T>,
+    K: FnMut([f64; 2], [f64; 2]) -> ([[T; 2]; 2], [[T; 2]; 2]),
+{
+    let mut h = [[T::default(); 6]; 2];
+    let mut g = [[T::default(); 6]; 2];
     // r = x(xi) - p is formed in element-local terms (never as a difference of absolute
     // coordinates): from the parameter offset on the singular rule, from the element's
     // node differences otherwise.
     let mut add = |xi: f64, r: [f64; 2], w: f64| {
         let (n, jac) = e.normal_jacobian(xi);
         let nk = e.field_shape(xi);
-        let t = kernels.traction(r, n);
-        let u = kernels.displacement(r);
+        let (t, u) = kernel(r, n);
         let wj = w * jac;
         for k in 0..3 {
             let a = wj * nk[k];
             for i in 0..2 {
                 for j in 0..2 {
-                    h[i][2 * k + j] += a * t[i][j];
-                    g[i][2 * k + j] += a * u[i][j];
+                    h[i][2 * k + j] += t[i][j] * a;
+                    g[i][2 * k + j] += u[i][j] * a;
                 }
             }
         }
     };
-    match singular_node {
-        Some(ks) => {
-            let xs = e.local[ks];
-            singular(xs, &mut |xi, dxi, w| add(xi, e.chord(xs, dxi), w));
+    let pieces = pieces.max(1);
+    if pieces == 1 {
+        match singular_node {
+            Some(ks) => {
+                let xs = e.local[ks];
+                singular(xs, &mut |xi, dxi, w| add(xi, e.chord(xs, dxi), w));
+            }
+            None => adaptive(e, p, -1.0, 1.0, 0, &mut |xi, w| {
+                add(xi, e.offset_from(xi, p), w)
+            }),
         }
-        None => adaptive(e, p, -1.0, 1.0, 0, &mut |xi, w| {
-            add(xi, e.offset_from(xi, p), w)
-        }),
+        return (h, g);
     }
-    if let Some(ks) = singular_node {
-        for row in h.iter_mut() {
-            row[2 * ks] = 0.0;
-            row[2 * ks + 1] = 0.0;
+    for m in 0..pieces {
+        let a = -1.0 + 2.0 * m as f64 / pieces as f64;
+        let b = -1.0 + 2.0 * (m + 1) as f64 / pieces as f64;
+        match singular_node {
+            Some(ks) => {
+                let xs = e.local[ks];
+                if a <= xs && xs <= b {
+                    singular_in(xs, a, b, &mut |xi, dxi, w| add(xi, e.chord(xs, dxi), w));
+                } else {
+                    adaptive(e, p, a, b, 0, &mut |xi, w| add(xi, e.chord(xs, xi - xs), w));
+                }
+            }
+            None => adaptive(e, p, a, b, 0, &mut |xi, w| add(xi, e.offset_from(xi, p), w)),
         }
     }
     (h, g)

@@ -1,0 +1,404 @@
+//! The 2D boundary element method at a complex frequency s (the Laplace domain): the
+//! operators H(s), G(s) of each region and the solve of the static BEM's boundary-value
+//! problem (same boundary conditions, bonded interfaces and DOF layout) for complex data.
+//! This is what convolution quadrature evaluates at its frequencies (docs/theory/DYNAMICS.md
+//! sec. 1.1; Schanz & Antes 1997; Schanz 2001).
+//!
+//! **Difference form.** The transformed boundary integral equation of a region reads
+//! `H(s) u(s) = G(s) t(s)` with the kernels of [`LaplaceKelvin2d`] (zero initial conditions,
+//! no body forces). The strongly singular part of T(s) and the free term are those of the
+//! static kernel (T(s) - T_Kelvin is bounded, ~ r ln r at r -> 0), so
+//!
+//! ```text
+//! H(s) = H_static + dH(s),   dH_ij = sum_e int_e [T(s) - T_Kelvin]_ij N_k dG
+//! G(s) = G_static + dG(s),   dG_ij = sum_e int_e [U(s) - U_Kelvin]_ij N_k dG
+//! ```
+//!
+//! where H_static keeps its rigid-body diagonal blocks (Brebbia & Dominguez sec. 5.7: the
+//! free term plus the singular integral, which the dynamic kernel shares) and dH, dG
+//! integrate the bounded differences over every element, the collocation node's own
+//! elements included (there with the power-substitution singular rule: dU ~ const + r^2 ln
+//! r, dT ~ r ln r). The rigid-body rule cannot be applied to H(s) itself: a rigid
+//! translation is not a solution of the dynamic equations (H(s) 1 != 0). The kernels vary
+//! on the length |c2/s|, so every element is first cut into `ceil(|s| l / c2)` equal pieces
+//! (l its chord), at most [`MAX_PIECES`], each integrated with the static rules.
+//!
+//! **Solve.** The static system build ([`BemProblem`]'s, generic over the scalar) with
+//! complex H(s), G(s): known values are the transformed prescribed displacements (m s) and
+//! tractions (Pa s) per known DOF. Bodies need no restraint (inertia holds them for
+//! Re s > 0). Interior displacements at probe points by the transformed Somigliana identity
+//! `u(x, s) = sum_e int U(s) t(s) - int T(s) u(s)`.
+
+// Index loops read like the tensor formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+use faer::{c64, Mat};
+
+use crate::dynamics::kernel::{LaplaceKelvin2d, Tensor2};
+use crate::error::{Error, Result};
+use crate::operators::bem2d::assemble::assemble_rows;
+use crate::operators::bem2d::integrate::element_integrals;
+use crate::operators::bem2d::mesh::{Element, RegionMesh};
+use crate::operators::bem2d::{BemModel, RegionOperators};
+use crate::solvers::bem2d::{known_values, locate_interior, BemProblem, BoundaryConditions, Dof};
+
+/// The largest number of pieces an element is cut into for the Laplace-domain integrals
+/// (|s| l / c2 up to 256: far beyond the resolution of the elements' quadratic fields).
+pub const MAX_PIECES: usize = 256;
+
+/// The integrals of one element for one source point: `[i][2k + j]` (source direction i,
+/// element node k, direction j).
+type ElementBlock = [[c64; 6]; 2];
+
+/// Number of pieces of element `e` for the kernel's length scale c2/|s| (module docs).
+fn pieces(e: &Element, kernel: &LaplaceKelvin2d, s: c64) -> usize {
+    let n = (s.norm() * e.chord_length() / kernel.s_wave_speed()).ceil();
+    if n.is_finite() && n >= 1.0 {
+        (n as usize).min(MAX_PIECES)
+    } else {
+        1
+    }
+}
+
+/// The element integrals of the kernel differences dT, dU (or of the full kernels where
+/// `full`) for source point `p` (model-local) and the element's node at the source.
+fn element_differences(
+    kernel: &LaplaceKelvin2d,
+    s: c64,
+    e: &Element,
+    p: [f64; 2],
+    singular: Option<usize>,
+    full: bool,
+) -> Result<(ElementBlock, ElementBlock)> {
+    let mut err: Option<Error> = None;
+    let zero: Tensor2 = [[c64::ZERO; 2]; 2];
+    let out = element_integrals(e, p, singular, pieces(e, kernel, s), &mut |r, n| {
+        let v = if full {
+            kernel
+                .traction(r, n, s)
+                .and_then(|t| Ok((t, kernel.displacement(r, s)?)))
+        } else {
+            kernel.differences(r, n, s)
+        };
+        v.unwrap_or_else(|x| {
+            err.get_or_insert(x);
+            (zero, zero)
+        })
+    });
+    match err {
+        Some(x) => Err(x),
+        None => Ok(out),
+    }
+}
+
+/// The Laplace-domain operators `(H(s), G(s))` of one region (2n x 2n, the DOF and row
+/// layout of [`RegionOperators`]) from its static operators `statics` and its dynamic
+/// kernel (module docs).
+///
+/// Errors: [`Error::OutOfMemory`]; a kernel evaluation failure (s off the principal branch,
+/// a Bessel failure).
+pub fn region_operators(
+    region: &RegionMesh,
+    statics: &RegionOperators,
+    kernel: &LaplaceKelvin2d,
+    s: c64,
+) -> Result<(Mat<c64>, Mat<c64>)> {
+    let dof = 2 * region.nodes.len();
+    let what = format!(
+        "the Laplace-domain H and G matrices of region '{}' ({dof} x {dof}, complex)",
+        region.name
+    );
+    let (mut h, mut g) = assemble_rows(region, &what, false, &|e, p, singular| {
+        element_differences(kernel, s, e, p, singular, false)
+    })?;
+    for j in 0..dof {
+        for i in 0..dof {
+            h[(i, j)] += c64::new(statics.h[(i, j)], 0.0);
+            g[(i, j)] += c64::new(statics.g[(i, j)], 0.0);
+        }
+    }
+    Ok((h, g))
+}
+
+/// One known DOF (an input of [`LaplaceBem::respond`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct KnownDof {
+    /// Region index.
+    pub region: usize,
+    /// Node index in the region.
+    pub node: usize,
+    /// Direction (0 = x, 1 = y).
+    pub direction: usize,
+    /// Whether the known value is a displacement (else a traction).
+    pub displacement: bool,
+}
+
+/// The boundary state and probe displacements at one s (transformed: m s and Pa s for
+/// data in m and Pa).
+#[derive(Debug, Clone)]
+pub struct LaplaceState {
+    /// Nodal displacements per region and node.
+    pub displacement: Vec<Vec<[c64; 2]>>,
+    /// Nodal tractions per region and node (on that region).
+    pub traction: Vec<Vec<[c64; 2]>>,
+    /// Displacement at each probe point.
+    pub probes: Vec<[c64; 2]>,
+    /// Relative residual of the complex solve.
+    pub residual: f64,
+}
+
+/// The Laplace-domain BEM of a model with densities per region and a fixed layout of
+/// boundary conditions (which DOFs are known), built once: [`LaplaceBem::respond`] maps
+/// the transformed known values at s to the transformed unknowns (module docs).
+#[derive(Debug, Clone)]
+pub struct LaplaceBem {
+    problem: BemProblem,
+    kernels: Vec<LaplaceKelvin2d>,
+    dofs: Vec<Vec<[Dof; 2]>>,
+    ncol: usize,
+    known: Vec<KnownDof>,
+    /// Static values of the known DOFs (input order).
+    known_static: Vec<f64>,
+    /// Whether system column c is a traction unknown.
+    traction_col: Vec<bool>,
+    /// (region, model-local evaluation point) per probe.
+    probes: Vec<(usize, [f64; 2])>,
+}
+
+impl LaplaceBem {
+    /// Meshes and assembles `model` (static operators), with mass density `densities[r]`
+    /// (kg/m^3) for region r, the DOF layout of `bcs` (which DOFs are prescribed; their
+    /// values are the static data, [`LaplaceBem::static_known_values`]) and interior
+    /// `probes` (m) whose displacements follow the boundary unknowns in the outputs.
+    ///
+    /// Errors: as [`BemProblem::new`]; a density count that is not the region count or a
+    /// density that is not positive; a region with body forces (not supported in the
+    /// Laplace domain); the condition errors of [`BemProblem::solve`]; a probe outside every
+    /// region or at a segment junction ([`Error::InvalidParameter`]).
+    pub fn new(
+        model: &BemModel,
+        densities: &[f64],
+        bcs: &BoundaryConditions,
+        probes: &[[f64; 2]],
+    ) -> Result<Self> {
+        let problem = BemProblem::new(model)?;
+        let regions = &problem.mesh.regions;
+        if densities.len() != regions.len() {
+            return Err(Error::invalid(
+                "densities",
+                densities.len(),
+                format!("must give one density per region ({})", regions.len()),
+            ));
+        }
+        let mut kernels = Vec::with_capacity(regions.len());
+        for (region, &rho) in regions.iter().zip(densities) {
+            if region.body_force.is_some() {
+                return Err(Error::invalid(
+                    format!("region '{}'", region.name),
+                    "body force",
+                    "body forces are not supported by the Laplace-domain BEM",
+                ));
+            }
+            kernels.push(
+                LaplaceKelvin2d::from_static(&region.kernels, rho).map_err(|_| {
+                    Error::invalid(
+                        format!("density of region '{}'", region.name),
+                        rho,
+                        "the mass density must be positive and finite (kg/m^3)",
+                    )
+                })?,
+            );
+        }
+        let (dofs, ncol) = problem.dofs(bcs)?;
+        let statics = known_values(&dofs);
+        let mut known: Vec<(usize, KnownDof, f64)> = Vec::new();
+        let mut traction_col = vec![false; ncol];
+        for (r, nodes) in dofs.iter().enumerate() {
+            for (node, d) in nodes.iter().enumerate() {
+                for (direction, dof) in d.iter().enumerate() {
+                    let value = statics[r][node][direction];
+                    let mut push = |col, displacement| {
+                        known.push((
+                            col,
+                            KnownDof {
+                                region: r,
+                                node,
+                                direction,
+                                displacement,
+                            },
+                            value,
+                        ))
+                    };
+                    match *dof {
+                        Dof::U { col, .. } => push(col, false),
+                        Dof::T { col, .. } => {
+                            push(col, true);
+                            traction_col[col] = true;
+                        }
+                        Dof::Interface { t_col, .. } => traction_col[t_col] = true,
+                    }
+                }
+            }
+        }
+        known.sort_by_key(|k| k.0);
+        let o = problem.mesh.origin;
+        let probes = probes
+            .iter()
+            .map(|&p| {
+                let (r, q) = locate_interior(&problem.mesh, p)?;
+                Ok((r, [q[0] - o[0], q[1] - o[1]]))
+            })
+            .collect::<Result<_>>()?;
+        Ok(Self {
+            kernels,
+            dofs,
+            ncol,
+            known_static: known.iter().map(|k| k.2).collect(),
+            known: known.into_iter().map(|k| k.1).collect(),
+            traction_col,
+            probes,
+            problem,
+        })
+    }
+
+    /// The static problem (mesh and static operators).
+    pub fn static_problem(&self) -> &BemProblem {
+        &self.problem
+    }
+
+    /// The dynamic kernels per region.
+    pub fn kernels(&self) -> &[LaplaceKelvin2d] {
+        &self.kernels
+    }
+
+    /// Number of inputs: the known DOFs, in the static column order (by segment, owner
+    /// node and direction; interfaces have none).
+    pub fn inputs(&self) -> usize {
+        self.known.len()
+    }
+
+    /// Number of outputs: the system unknowns (in column order: the unknown of each
+    /// non-interface DOF, the displacement then the traction of each interface DOF) then
+    /// two displacement components per probe.
+    pub fn outputs(&self) -> usize {
+        self.ncol + 2 * self.probes.len()
+    }
+
+    /// What each input is.
+    pub fn known_dofs(&self) -> &[KnownDof] {
+        &self.known
+    }
+
+    /// Whether output `k` (< [`LaplaceBem::outputs`]) is a traction (Pa s) rather than a
+    /// displacement (m s).
+    pub fn output_is_traction(&self, k: usize) -> bool {
+        self.traction_col.get(k).copied().unwrap_or(false)
+    }
+
+    /// The static values of the known DOFs (m or Pa, input order): the data of the
+    /// boundary conditions the model was built with. A load `f(t)` times this pattern has
+    /// the inputs `f(s) * static_known_values()`.
+    pub fn static_known_values(&self) -> &[f64] {
+        &self.known_static
+    }
+
+    /// The transformed unknowns at `s` for the transformed known values `known` (length
+    /// [`LaplaceBem::inputs`]): the outputs described at [`LaplaceBem::outputs`].
+    ///
+    /// Errors: as [`LaplaceBem::respond_state`].
+    pub fn respond(&self, s: c64, known: &[c64]) -> Result<Vec<c64>> {
+        let (x, state) = self.solve(s, known)?;
+        let mut out = Vec::with_capacity(self.outputs());
+        let scale = self.problem.traction_scale();
+        for c in 0..self.ncol {
+            let v = x[(c, 0)];
+            out.push(if self.traction_col[c] { v * scale } else { v });
+        }
+        for p in &state.probes {
+            out.extend_from_slice(p);
+        }
+        Ok(out)
+    }
+
+    /// The boundary state and probe displacements at `s` for the known values `known`.
+    ///
+    /// Errors: `known` of the wrong length or not finite, s not finite or Re s <= 0
+    /// ([`Error::InvalidParameter`]); [`Error::OutOfMemory`]; a singular solve
+    /// ([`Error::Numerical`]).
+    pub fn respond_state(&self, s: c64, known: &[c64]) -> Result<LaplaceState> {
+        Ok(self.solve(s, known)?.1)
+    }
+
+    fn solve(&self, s: c64, known: &[c64]) -> Result<(Mat<c64>, LaplaceState)> {
+        if !(s.re.is_finite() && s.im.is_finite() && s.re > 0.0) {
+            return Err(Error::invalid(
+                "s",
+                format!("{s}"),
+                "the Laplace parameter must be finite with Re s > 0",
+            ));
+        }
+        if known.len() != self.known.len() {
+            return Err(Error::invalid(
+                "known",
+                known.len(),
+                format!("must give one value per known DOF ({})", self.known.len()),
+            ));
+        }
+        if known
+            .iter()
+            .any(|v| !(v.re.is_finite() && v.im.is_finite()))
+        {
+            return Err(Error::invalid("known", "a value", "must be finite"));
+        }
+        let mesh = &self.problem.mesh;
+        let mut values: Vec<Vec<[c64; 2]>> = mesh
+            .regions
+            .iter()
+            .map(|r| vec![[c64::ZERO; 2]; r.nodes.len()])
+            .collect();
+        for (k, v) in self.known.iter().zip(known) {
+            values[k.region][k.node][k.direction] = *v;
+        }
+        let ops = mesh
+            .regions
+            .iter()
+            .zip(&self.problem.operators)
+            .zip(&self.kernels)
+            .map(|((region, statics), kernel)| region_operators(region, statics, kernel, s))
+            .collect::<Result<Vec<_>>>()?;
+        let refs: Vec<(&Mat<c64>, &Mat<c64>)> = ops.iter().map(|(h, g)| (h, g)).collect();
+        let (x, residual) =
+            self.problem
+                .solve_system(&self.dofs, self.ncol, &refs, &values, &[])?;
+        let (displacement, traction) = self.problem.unpack(&self.dofs, &x, &values);
+        let mut probes = Vec::with_capacity(self.probes.len());
+        for &(r, p) in &self.probes {
+            let region = &mesh.regions[r];
+            let mut u = [c64::ZERO; 2];
+            for e in &region.local_elements {
+                let (h, g) = element_differences(&self.kernels[r], s, e, p, None, true)?;
+                for (k, &m) in e.nodes.iter().enumerate() {
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            u[i] += g[i][2 * k + j] * traction[r][m][j]
+                                - h[i][2 * k + j] * displacement[r][m][j];
+                        }
+                    }
+                }
+            }
+            probes.push(u);
+        }
+        Ok((
+            x,
+            LaplaceState {
+                displacement,
+                traction,
+                probes,
+                residual,
+            },
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests;
