@@ -34,6 +34,7 @@
 
 use faer::{c64, Mat};
 
+use crate::dynamics::cq::LaplaceResponse;
 use crate::dynamics::kernel::{LaplaceKelvin2d, Tensor2};
 use crate::error::{Error, Result};
 use crate::operators::bem2d::assemble::assemble_rows;
@@ -400,5 +401,26 @@ impl LaplaceBem {
     }
 }
 
+/// The Laplace-domain BEM as the response that convolution quadrature convolves
+/// ([`crate::dynamics::cq::convolve`], docs/theory/DYNAMICS.md sec. 1.1 and 5): inputs the
+/// known DOF values, outputs the unknowns then the probe displacements, exactly as
+/// [`LaplaceBem::respond`].
+impl LaplaceResponse for LaplaceBem {
+    fn inputs(&self) -> usize {
+        LaplaceBem::inputs(self)
+    }
+
+    fn outputs(&self) -> usize {
+        LaplaceBem::outputs(self)
+    }
+
+    fn respond(&self, s: c64, inputs: &[c64]) -> Result<Vec<c64>> {
+        LaplaceBem::respond(self, s, inputs)
+    }
+}
+
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod time_tests;
