@@ -47,9 +47,10 @@
 //!                                  #   or "direct" (the exact direct sum, slow)
 //! # points = "centres"             # instead of n and extent: x, y at the contact grid's
 //! # layers = 20                    # element centres (FFT, for large grids), `layers` depths
-//! # edge_refinement = 8            # 1 ... 16 (default 1, off): the field from the edge-aware
-//!                                  #   tractions on a grid this many times finer (surface
-//!                                  #   stresses near the contact edge)
+//! # edge_refinement = "auto"       # "auto" (default): the edge-aware tractions near the
+//!                                  #   contact edges at shallow depths; 1: off (bilinear);
+//!                                  #   2 ... 16: the edge-aware tractions everywhere, on a
+//!                                  #   grid this many times finer (slow)
 //! ```
 
 use crate::error::{CaseError, CaseResult};
@@ -386,6 +387,10 @@ pub const DEFAULT_FIELD_EXTENT: f64 = 1.5;
 /// `tribo::analysis::edge_refinement::refine_tractions` (the refined grid has factor^2 times
 /// the elements).
 pub const MAX_EDGE_REFINEMENT: usize = 16;
+/// `[field] edge_refinement = "auto"` (the default), stored as 0: the element tractions
+/// with the edge band (`tribo::analysis::edge_refinement::EdgeBand`, docs/theory/HALFSPACE.md
+/// 2.5), the edge-aware tractions near the contact edges at the surface and shallow depths.
+pub const EDGE_REFINEMENT_AUTO: usize = 0;
 
 /// A length given in units of the Hertz long semi-axis a, or in m.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -434,7 +439,9 @@ pub struct FieldSpec {
     pub depth: Length,
     /// The body the field is computed in ("body1" or "body2").
     pub body: &'static str,
-    /// `edge_refinement`: 1 (the default) evaluates the field of the element tractions
+    /// `edge_refinement`: [`EDGE_REFINEMENT_AUTO`] ("auto", the default) the element
+    /// tractions interpolated bilinearly with the edge band (the edge-aware tractions near
+    /// the contact edges, at the surface and shallow depths); 1 the element tractions
     /// interpolated bilinearly; N > 1 of the edge-aware reconstruction of the tractions (a
     /// square-root contact edge at a sub-element position) sampled on a grid N times finer per
     /// side, [`tribo::analysis::edge_refinement::refine_tractions`] (docs/theory/HALFSPACE.md
@@ -1735,7 +1742,8 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CaseResult<
         }
     };
     let edge_refinement = match &f.edge_refinement {
-        None => 1,
+        None => EDGE_REFINEMENT_AUTO,
+        Some(Value::String(s)) if s == "auto" => EDGE_REFINEMENT_AUTO,
         Some(v) => {
             let factor = count("field.edge_refinement", v)?;
             let finest = contact_n[0].max(contact_n[1]);
@@ -1744,7 +1752,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CaseResult<
                     "field.edge_refinement",
                     factor,
                     format!(
-                        "must be an integer in 1 ... {MAX_EDGE_REFINEMENT} (1: the bilinear \
+                        "must be \"auto\" or an integer in 1 ... {MAX_EDGE_REFINEMENT} (1: the bilinear \
                          element tractions; N: the edge-aware tractions on a grid N times finer)"
                     ),
                 ));
