@@ -47,8 +47,8 @@
 //!                                  #   or "direct" (the exact direct sum, slow)
 //! # points = "centres"             # instead of n and extent: x, y at the contact grid's
 //! # layers = 20                    # element centres (FFT, for large grids), `layers` depths
-//! # edge_refinement = "auto"       # "auto" (default): the edge-aware tractions near the
-//!                                  #   contact edges at shallow depths; 1: off (bilinear);
+//! # edge_refinement = "band"       # 1 (default, off: bilinear); "band": the edge-aware
+//!                                  #   tractions near the contact edges at shallow depths;
 //!                                  #   2 ... 16: the edge-aware tractions everywhere, on a
 //!                                  #   grid this many times finer (slow)
 //! ```
@@ -387,10 +387,9 @@ pub const DEFAULT_FIELD_EXTENT: f64 = 1.5;
 /// `tribo::analysis::edge_refinement::refine_tractions` (the refined grid has factor^2 times
 /// the elements).
 pub const MAX_EDGE_REFINEMENT: usize = 16;
-/// `[field] edge_refinement = "auto"` (the default), stored as 0: the element tractions
-/// with the edge band (`tribo::analysis::edge_refinement::EdgeBand`, docs/theory/HALFSPACE.md
+/// `[field] edge_refinement = "band"`, stored as 0: the element tractions with the edge band (`tribo::analysis::edge_refinement::EdgeBand`, docs/theory/HALFSPACE.md
 /// 2.5), the edge-aware tractions near the contact edges at the surface and shallow depths.
-pub const EDGE_REFINEMENT_AUTO: usize = 0;
+pub const EDGE_REFINEMENT_BAND: usize = 0;
 
 /// A length given in units of the Hertz long semi-axis a, or in m.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -439,10 +438,9 @@ pub struct FieldSpec {
     pub depth: Length,
     /// The body the field is computed in ("body1" or "body2").
     pub body: &'static str,
-    /// `edge_refinement`: [`EDGE_REFINEMENT_AUTO`] ("auto", the default) the element
-    /// tractions interpolated bilinearly with the edge band (the edge-aware tractions near
-    /// the contact edges, at the surface and shallow depths); 1 the element tractions
-    /// interpolated bilinearly; N > 1 of the edge-aware reconstruction of the tractions (a
+    /// `edge_refinement`: 1 (the default) the element tractions interpolated bilinearly;
+    /// [`EDGE_REFINEMENT_BAND`] ("band") with the edge band (the edge-aware tractions near
+    /// the contact edges, at the surface and shallow depths); N > 1 of the edge-aware reconstruction of the tractions (a
     /// square-root contact edge at a sub-element position) sampled on a grid N times finer per
     /// side, [`tribo::analysis::edge_refinement::refine_tractions`] (docs/theory/HALFSPACE.md
     /// 2.5). In 1 ..= [`MAX_EDGE_REFINEMENT`], with N times the contact grid's elements per
@@ -1742,8 +1740,8 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CaseResult<
         }
     };
     let edge_refinement = match &f.edge_refinement {
-        None => EDGE_REFINEMENT_AUTO,
-        Some(Value::String(s)) if s == "auto" => EDGE_REFINEMENT_AUTO,
+        None => 1,
+        Some(Value::String(s)) if s == "band" => EDGE_REFINEMENT_BAND,
         Some(v) => {
             let factor = count("field.edge_refinement", v)?;
             let finest = contact_n[0].max(contact_n[1]);
@@ -1752,7 +1750,7 @@ fn field_spec(f: RawField, hertzian: bool, contact_n: [usize; 2]) -> CaseResult<
                     "field.edge_refinement",
                     factor,
                     format!(
-                        "must be \"auto\" or an integer in 1 ... {MAX_EDGE_REFINEMENT} (1: the bilinear \
+                        "must be \"band\" or an integer in 1 ... {MAX_EDGE_REFINEMENT} (1: the bilinear \
                          element tractions; N: the edge-aware tractions on a grid N times finer)"
                     ),
                 ));

@@ -1,6 +1,7 @@
-//! The DEFAULT stress field at the contact edge (issue 11 item 1): a sliding sphere case with
-//! a `[field]` box that includes the surface and no option (`edge_refinement` "auto", the
-//! element tractions with the edge band, `tribo::analysis::edge_refinement::EdgeBand`), run
+//! The edge band at the contact edge (issue 11 item 1): a sliding sphere case with a
+//! `[field]` box that includes the surface and `edge_refinement = "band"` (the element
+//! tractions with the edge band, `tribo::analysis::edge_refinement::EdgeBand`; opt-in: it is
+//! far too slow to be the default, see docs/theory/HALFSPACE.md 2.5), run
 //! through `pipeline::run` and checked against Hamilton's (1983) closed-form stresses at
 //! every point of the surface layer and at every depth, for f = 0 ... 0.5 and four
 //! alignments of the points with the elements; and the same by the direct path
@@ -127,7 +128,8 @@ const ALIGNMENTS: [(&str, f64, usize); 4] = [
 
 fn run(f: f64, extent: f64, n: usize, nz: usize, depth: f64, method: &str) -> Outcome {
     let field = format!(
-        "n = [{n}, {n}, {nz}]\nextent = {extent:.17}\ndepth = {depth}\nmethod = \"{method}\"\n"
+        "n = [{n}, {n}, {nz}]\nextent = {extent:.17}\ndepth = {depth}\nmethod = \"{method}\"\n\
+         edge_refinement = \"band\"\n"
     );
     let case = parse_case(
         &sliding_sphere(f, &field),
@@ -137,7 +139,7 @@ fn run(f: f64, extent: f64, n: usize, nz: usize, depth: f64, method: &str) -> Ou
     .expect("a valid case");
     assert_eq!(
         case.field.as_ref().unwrap().edge_refinement,
-        tribo_case::case::EDGE_REFINEMENT_AUTO
+        tribo_case::case::EDGE_REFINEMENT_BAND
     );
     pipeline::run(&case, &mut Silent).expect("the case runs")
 }
@@ -148,7 +150,8 @@ fn run(f: f64, extent: f64, n: usize, nz: usize, depth: f64, method: &str) -> Ou
 /// surface and z = a). On main (bilinear tractions) the surface error was 0.11-0.13 p0 (the
 /// square-root edge rounded over one element).
 #[test]
-fn default_fft_path_meets_hamilton_at_every_surface_point() {
+#[ignore = "slow: 24 runs of the band, about 30 min on 2 cores"]
+fn band_fft_path_meets_hamilton_at_every_surface_point() {
     let mut worst = [0.0f64; 2];
     for f in [0.0, 0.1, 0.2, 0.3, 0.4, 0.5] {
         for (name, extent, n) in ALIGNMENTS {
@@ -171,7 +174,8 @@ fn default_fft_path_meets_hamilton_at_every_surface_point() {
 /// the surface and below (13 depths over [0, 0.72a], the subsurface maximum of f = 0 at
 /// 0.48a among them), f = 0 ... 0.5, points anywhere (41 x 41 over 1.5a).
 #[test]
-fn default_fft_path_max_von_mises_meets_hamilton() {
+#[ignore = "slow: 6 runs of the band"]
+fn band_fft_path_max_von_mises_meets_hamilton() {
     let mut worst = [0.0f64; 2];
     for f in [0.0, 0.1, 0.2, 0.3, 0.4, 0.5] {
         let (_, extent, n) = ALIGNMENTS[3];
@@ -193,7 +197,8 @@ fn default_fft_path_max_von_mises_meets_hamilton() {
 /// meets the same surface bound; f = 0.2 and 0.5, points 1e-12 m beside the element edges
 /// (it is slow: points x loaded elements). Measured 0.0198 p0 at f = 0.2.
 #[test]
-fn default_direct_path_meets_hamilton_at_every_surface_point() {
+#[ignore = "slow: the direct sum and the band"]
+fn band_direct_path_meets_hamilton_at_every_surface_point() {
     let mut worst = [0.0f64; 2];
     for f in [0.2, 0.5] {
         let (name, extent, n) = ALIGNMENTS[1];
@@ -209,4 +214,22 @@ fn default_direct_path_meets_hamilton_at_every_surface_point() {
     for w in worst {
         assert!(w < 0.02, "{worst:?}");
     }
+}
+
+/// The quick check (not ignored): f = 0.4, points 1e-12 m beside the element edges, the FFT
+/// path: every surface point within 0.02 p0 of Hamilton.
+#[test]
+fn band_fft_path_meets_hamilton_on_the_surface_at_f_0_4() {
+    let (name, extent, n) = ALIGNMENTS[1];
+    let e = errors(&run(0.4, extent, n, 2, 1.0, "fft"), 0.4);
+    eprintln!(
+        "f 0.4, {name}: surface {:.4} (y = 0: {:.4}), max vM surface {:?}",
+        e.surface, e.surface_line_y0, e.max_surface
+    );
+    assert!(e.surface < 0.02, "{}", e.surface);
+    assert!(
+        e.max_surface.0 < 0.02 && e.max_surface.1 < 0.02,
+        "{:?}",
+        e.max_surface
+    );
 }

@@ -9,11 +9,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::analysis::edge_refinement::{refine_tractions, EdgeBand};
+use crate::analysis::edge_refinement::refine_tractions;
 use crate::analysis::hertz_error::pressure_errors;
 use crate::analysis::stress_field::{
-    stress_field_direct, stress_field_direct_banded, stress_field_interpolated,
-    stress_field_interpolated_banded, FieldGrid, StressField, SurfaceTractions,
+    stress_field_direct, stress_field_interpolated, FieldGrid, StressField, SurfaceTractions,
 };
 use crate::error::Result;
 use crate::grid::SurfaceGrid;
@@ -1267,23 +1266,6 @@ fn refined_surface_errors(
         )
     };
     let evaluate = |shear: &[f64]| -> Result<StressField> {
-        if factor == 0 {
-            // The default: the element tractions with the edge band (8 x 8 sub-cells).
-            let band = EdgeBand::new(
-                &SurfaceTractions {
-                    grid,
-                    pressure,
-                    shear_x: Some(shear),
-                    shear_y: None,
-                },
-                8,
-            )?;
-            return if fft {
-                stress_field_interpolated_banded(&band, nu, field, |_| {})
-            } else {
-                stress_field_direct_banded(&band, nu, field)
-            };
-        }
         let refined = refine(shear)?;
         if fft {
             stress_field_interpolated(&refined.tractions(), nu, field, |_| {})
@@ -1452,48 +1434,6 @@ pub fn sliding_sphere_edge_rows() -> Result<Vec<ValidationRow>> {
     )?;
     rows.push(ValidationRow::new(
         "sliding sphere contact edges (direct sum), f = 0 ... 0.5, edge-aware x8, 64x64",
-        "max |sigma_ij - Hamilton| / p0, z = 0, y = 0, ||x| - a| < 2 elements",
-        0.0,
-        largest(direct[0]),
-        ErrorMeasure::Bound,
-        2e-2,
-        source,
-    ));
-    // The default field (the element tractions with the edge band, `EdgeBand`), solved
-    // contact: the surface lines y = 0 and x = 0 by the FFT path (the case default), points
-    // on element edges and 0.3 element off; and the points near the edges by the direct sum.
-    // Bilinear: 0.11-0.12 p0; measured with the band in the module tests of
-    // `edge_refinement` (below 0.02 p0, the bound).
-    let mut band_lines = 0.0f64;
-    for shift in [0.0, 0.3 * dx] {
-        let field = FieldGrid {
-            x: line(shift),
-            y: vec![0.0],
-            z: vec![0.0],
-        };
-        let e = refined_surface_errors(&grid, &solved, 0, &field, true, a, p0, nu, &[&everywhere])?;
-        band_lines = band_lines.max(largest(e[0]));
-        let field = FieldGrid {
-            x: vec![0.0],
-            y: line(shift),
-            z: vec![0.0],
-        };
-        let e = refined_surface_errors(&grid, &solved, 0, &field, true, a, p0, nu, &[&everywhere])?;
-        band_lines = band_lines.max(largest(e[0]));
-    }
-    rows.push(ValidationRow::new(
-        "sliding sphere surface lines, solved contact, f = 0 ... 0.5, default (edge band), 64x64",
-        "max |sigma_ij - Hamilton| / p0, z = 0, y = 0 and x = 0, all points",
-        0.0,
-        band_lines,
-        ErrorMeasure::Bound,
-        2e-2,
-        source,
-    ));
-    let direct =
-        refined_surface_errors(&grid, &solved, 0, &near, false, a, p0, nu, &[&everywhere])?;
-    rows.push(ValidationRow::new(
-        "sliding sphere contact edges (direct sum), solved contact, f = 0 ... 0.5, default (edge band), 64x64",
         "max |sigma_ij - Hamilton| / p0, z = 0, y = 0, ||x| - a| < 2 elements",
         0.0,
         largest(direct[0]),

@@ -46,7 +46,7 @@
 //! on the sliding sphere at 64 x 64). Cost: factor^2 times the elements of the field's
 //! traction grid, so this is an option (`[field] edge_refinement = N`), not the default.
 //!
-//! # The default: the band
+//! # The band (opt-in)
 //!
 //! The reconstruction E and the bilinear interpolant B of the same element values agree at
 //! every element centre (E = p there), so D = E - B is zero on the nodes and matters only in
@@ -66,7 +66,7 @@
 //! - near: at a point within [`BAND_DEPTH_ELEMENTS`] elements of the surface and
 //!   [`BAND_REACH_CELLS`] cells of band cells, [`EdgeBand::correction`] adds those cells'
 //!   fine field minus that of their projection (beyond, the difference has no force and no
-//!   first moment: a field falling like r^-4, measured below 1e-3 p0).
+//!   first moment: a field falling like r^-4).
 //!
 //! The stick/slip boundary of partial slip is inside the loaded region (w = 0 there unless a
 //! contact edge is near), multiple contact patches and any shape are handled alike (the band
@@ -335,7 +335,7 @@ struct BandCell {
     increments: [[f64; 3]; 4],
 }
 
-/// The edge band correction of element tractions (module docs, "The default: the band"):
+/// The edge band correction of element tractions (module docs, "The band"):
 /// the element tractions with the band's projection added, for the far field (either path),
 /// and the fine band's correction near the contact edges.
 #[derive(Debug, Clone)]
@@ -1035,17 +1035,22 @@ mod tests {
         }
     }
 
+    /// The band's surface-line errors against Hamilton (measurement, printed; slow): solved
+    /// contact, f = 0 ... 0.5, lines y = 0, x = 0 and 30 deg (direct path), on element edges,
+    /// 1e-12 m and 0.3 element off. Measured: direct 0.0187 / 0.0141 / 0.0184 p0 (bilinear
+    /// 0.1245 / 0.0719 / 0.0850).
     #[test]
-    #[ignore]
+    #[ignore = "measurement, minutes"]
     fn band_measure() {
         let (hertz, grid, _averaged, solved) = sphere_pressures();
         let (a, p0) = (hertz.semi_major, hertz.max_pressure);
         let dx = grid.dx();
         let zero = vec![0.0; grid.len()];
-        let factor: usize = std::env::var("BAND_N").map_or(8, |v| v.parse().unwrap());
+        let factor = 8;
         for fft in [false, true] {
             for angle in [0.0, 90.0, 30.0] {
-                if fft && angle == 30.0 && std::env::var("OBLIQUE").is_err() {
+                // The oblique line by FFT needs the whole square of points (slow): skipped.
+                if fft && angle == 30.0 {
                     continue;
                 }
                 let mut worst = [0.0f64; 2];

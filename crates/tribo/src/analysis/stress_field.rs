@@ -22,7 +22,7 @@
 //! one element, so within an element of the edge the surface stresses are off by
 //! O(sqrt(h / a)) p0 (0.12 p0 for a sliding sphere on 64 x 64 elements). The `_banded`
 //! functions ([`stress_field_interpolated_banded`], [`stress_field_direct_banded`],
-//! [`stress_field_on_centres_banded`]; the case pipeline's default) evaluate instead the
+//! [`stress_field_on_centres_banded`]; the case option `edge_refinement = "band"`) evaluate instead the
 //! field of the element tractions with the edge band
 //! ([`crate::analysis::edge_refinement::EdgeBand`]): the edge-aware reconstruction in the
 //! cells along the contact edges, its far field by projection onto the element tents, its
