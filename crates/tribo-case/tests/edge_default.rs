@@ -8,6 +8,8 @@
 //! (`method = "direct"`). With the bilinear tractions (`edge_refinement = 1`, the default)
 //! the surface lines are off by 0.11-0.13 p0 within two elements of the contact edge.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
 use tribo::kernels::hamilton::sliding_sphere_stress;
 use tribo::kernels::subsurface::StressTensor;
 use tribo_case::case::parse_case;
