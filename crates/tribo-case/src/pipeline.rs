@@ -6,7 +6,7 @@
 
 use crate::case::{
     CycleAmplitude, CycleKind, CycleSpec, FieldMethod, FieldPoints, HalfSpaceCase, Length,
-    LimitSource, LoadKind, Shape, StudySpec, Window,
+    LimitSource, LoadKind, Shape, StudySpec, Window, EDGE_REFINEMENT_BAND,
 };
 use crate::error::{CaseError, CaseResult};
 use crate::progress::{Progress, WithoutNotes};
@@ -16,11 +16,14 @@ use tribo::analysis::damage::{
     CycleDamage, CyclesDamage, DamageAssessment, DamageMesh, DamageQuantity, Execution, Limit,
     RollerShaftStudy, RollingContact, RotatingBentShaft, StudyResult,
 };
-use tribo::analysis::edge_refinement::{refine_tractions, RefinedTractions};
+use tribo::analysis::edge_refinement::{
+    refine_tractions, EdgeBand, RefinedTractions, BAND_DEPTH_ELEMENTS, BAND_REACH_CELLS, BAND_RINGS,
+};
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
 use tribo::analysis::stress_field::{
-    stress_field_direct, stress_field_interpolated, stress_field_on_centres_observed, FieldGrid,
-    StressField, SurfaceTractions,
+    stress_field_direct, stress_field_direct_banded, stress_field_interpolated,
+    stress_field_interpolated_banded, stress_field_on_centres_banded,
+    stress_field_on_centres_observed, FieldGrid, StressField, SurfaceTractions,
 };
 use tribo::geometry::initial_gap;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
@@ -851,6 +854,8 @@ pub fn stress(
     };
     let refined_text = if factor > 1 {
         format!(", edge-aware tractions refined x{factor}")
+    } else if factor == EDGE_REFINEMENT_BAND {
+        format!(", edge band x{EDGE_BAND_FACTOR}")
     } else {
         String::new()
     };
@@ -880,14 +885,28 @@ pub fn stress(
         Some(r) => r.tractions(),
         None => element_tractions,
     };
+    // `edge_refinement = "band"`: the element tractions with the edge band.
+    let band: Option<EdgeBand> = if factor == EDGE_REFINEMENT_BAND {
+        match EdgeBand::new(&element_tractions, EDGE_BAND_FACTOR) {
+            Ok(b) => Some(b),
+            Err(e) => {
+                progress.finish();
+                return Err(e.into());
+            }
+        }
+    } else {
+        None
+    };
     let computed = match spec.points {
         FieldPoints::Uniform => {
             let half = resolve(spec.half_width, a);
             FieldGrid::uniform(nx, ny, nz, half, half, depth).and_then(|grid| {
                 if spec.method == FieldMethod::Fft {
-                    return stress_field_interpolated(&tractions, nu, &grid, |done| {
-                        progress.advance(done as u64)
-                    });
+                    let advance = |done: usize| progress.advance(done as u64);
+                    return match &band {
+                        Some(b) => stress_field_interpolated_banded(b, nu, &grid, advance),
+                        None => stress_field_interpolated(&tractions, nu, &grid, advance),
+                    };
                 }
                 let mut stress = Vec::with_capacity(grid.len());
                 for (k, &z) in grid.z.iter().enumerate() {
@@ -896,7 +915,11 @@ pub fn stress(
                         y: grid.y.clone(),
                         z: vec![z],
                     };
-                    stress.extend(stress_field_direct(&tractions, nu, &layer)?.stress);
+                    let layer_stress = match &band {
+                        Some(b) => stress_field_direct_banded(b, nu, &layer)?,
+                        None => stress_field_direct(&tractions, nu, &layer)?,
+                    };
+                    stress.extend(layer_stress.stress);
                     progress.advance(k as u64 + 1);
                 }
                 Ok(StressField { grid, stress })
@@ -919,6 +942,8 @@ pub fn stress(
                 stress_field_interpolated(&tractions, nu, &grid, |done| {
                     progress.advance(done as u64)
                 })
+            } else if let Some(b) = &band {
+                stress_field_on_centres_banded(b, nu, &depths, |done| progress.advance(done as u64))
             } else {
                 stress_field_on_centres_observed(&tractions, nu, &depths, |done| {
                     progress.advance(done as u64)
@@ -948,6 +973,10 @@ pub fn stress(
     }))
 }
 
+/// Sub-cells per side of a band cell for `field.edge_refinement = "band"`
+/// ([`EdgeBand`]; docs/theory/HALFSPACE.md 2.5).
+pub const EDGE_BAND_FACTOR: usize = 8;
+
 /// A rough cost of a stage: wall time on the machine's cores and peak memory.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct StageCost {
@@ -970,6 +999,13 @@ const DAMAGE_SECONDS: f64 = 3e-7;
 /// a square root.
 const RECONSTRUCTION_SECONDS: f64 = 5e-8;
 
+/// Seconds per field point reached by the edge band (`field.edge_refinement = "band"`), one
+/// core: the band cells' sub-cells near it (tent kernels) and far (point forces), their
+/// projection, and on the FFT path the local window. Measured 5-10 ms at z = 0 (the tent
+/// kernels containing the point dominate), 4-8 ms at half an element below, on a loaded
+/// 2-core machine.
+const BAND_POINT_SECONDS: f64 = 0.01;
+
 /// The estimated cost of the `[field]` and `[damage]` stages of `case` on `prepared`'s grid
 /// (for `tribo run --dry-run`): (field, damage). The loaded elements are the Hertz contact's
 /// where the gap is Hertzian, else half the grid. With `field.edge_refinement` = N > 1 the
@@ -983,7 +1019,8 @@ pub fn stage_costs(
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get()) as f64;
     let grid = &prepared.grid;
     let a = prepared.hertz.as_ref().map(|h| h.contact.semi_major);
-    let factor = spec.edge_refinement;
+    // "band" keeps the element tractions' grid; its cost is added below.
+    let factor = spec.edge_refinement.max(1);
     let refinement = (factor * factor) as f64;
     // The traction grid of the field: elements, and per side the count and the step.
     let elements = grid.len() as f64 * refinement;
@@ -1031,6 +1068,31 @@ pub fn stage_costs(
         // the samples [p, q_x, q_y] and the refined tractions, 6 doubles per element.
         seconds += elements * RECONSTRUCTION_SECONDS;
         bytes += elements * 6.0 * 8.0;
+    }
+    if spec.edge_refinement == EDGE_REFINEMENT_BAND {
+        // The band: about 2 (BAND_RINGS + 1) cells across the contact's perimeter (an
+        // ellipse's, or the grid's for other gaps), each with EDGE_BAND_FACTOR^2 samples;
+        // its correction at the points of the layers above its depth limit within its reach
+        // of the band, with the local window on the FFT path.
+        let h = grid.dx().max(grid.dy());
+        let perimeter = match &prepared.hertz {
+            Some(hz) => std::f64::consts::PI * (hz.contact.semi_major + hz.contact.semi_minor),
+            None => 2.0 * (grid.nx() as f64 * grid.dx() + grid.ny() as f64 * grid.dy()),
+        };
+        let cells = perimeter / h * 2.0 * (BAND_RINGS as f64 + 1.0);
+        let samples = cells * (EDGE_BAND_FACTOR * EDGE_BAND_FACTOR) as f64;
+        let depth = resolve(spec.depth, a);
+        let layers = (0..spec.n[2])
+            .filter(|&k| depth * k as f64 / (nz - 1.0) <= BAND_DEPTH_ELEMENTS * h)
+            .count() as f64;
+        let reach = 2.0 * (BAND_REACH_CELLS as f64 + 1.0) * h;
+        let box_area = match spec.points {
+            FieldPoints::Centres => grid.len() as f64 * grid.element_area(),
+            FieldPoints::Uniform => 4.0 * half * half,
+        };
+        let near = (perimeter * reach / box_area).min(1.0) * nx * ny * layers;
+        seconds += samples * RECONSTRUCTION_SECONDS + near * BAND_POINT_SECONDS / cores;
+        bytes += samples * 3.0 * 8.0;
     }
     let field = StageCost { seconds, bytes };
     let damage = case.damage.as_ref().map(|d| {

@@ -156,6 +156,10 @@ pub const DEFAULT_FIELD_EXTENT: f64 = 1.5;
 /// `tribo::analysis::edge_refinement::refine_tractions` (the refined grid has factor^2 times
 /// the elements).
 pub const MAX_EDGE_REFINEMENT: usize = 16;
+/// `[field] edge_refinement = "band"`, stored as 0: the element tractions with the edge band
+/// (`tribo::analysis::edge_refinement::EdgeBand`, docs/theory/HALFSPACE.md 2.5): the
+/// edge-aware tractions near the contact edges at the surface and shallow depths.
+pub const EDGE_REFINEMENT_BAND: usize = 0;
 
 /// A length given in units of the Hertz long semi-axis a, or in m.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -207,8 +211,10 @@ pub struct FieldSpec {
     pub depth: Length,
     /// The body the field is computed in ("body1" or "body2").
     pub body: &'static str,
-    /// `edge_refinement`: 1 (the default) evaluates the field of the element tractions
-    /// interpolated bilinearly; N > 1 of the edge-aware reconstruction of the tractions (a
+    /// `edge_refinement`: 1 (the default) the element tractions interpolated bilinearly;
+    /// [`EDGE_REFINEMENT_BAND`] (`"band"`) the element tractions with the edge band (the
+    /// edge-aware tractions in the cells along the contact edges, at the surface and shallow
+    /// depths); N > 1 the edge-aware reconstruction of the tractions (a
     /// square-root contact edge at a sub-element position) sampled on a grid N times finer per
     /// side, [`tribo::analysis::edge_refinement::refine_tractions`] (docs/theory/HALFSPACE.md
     /// 2.5). In 1 ..= [`MAX_EDGE_REFINEMENT`], with N times the contact grid's elements per

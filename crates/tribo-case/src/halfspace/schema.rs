@@ -221,8 +221,31 @@ pub(super) struct RawField {
     pub depth: Option<Number>,
     pub depth_m: Option<Metres>,
     pub body: Option<Choice<FieldBody>>,
-    pub edge_refinement: Option<Count>,
+    pub edge_refinement: Option<Refinement>,
 }
+
+/// `[field] edge_refinement`: `"band"` or a count (the range is checked in
+/// [`super::validate`]).
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Refinement {
+    /// The factor, `None` for `"band"`.
+    pub n: Option<usize>,
+}
+
+impl FromToml for Refinement {
+    fn from_toml(value: &Value) -> Result<Self, Refusal> {
+        match value {
+            Value::String(s) if s == "band" => Ok(Refinement { n: None }),
+            Value::String(_) => Err(Refusal::new(
+                value,
+                "must be \"band\" or an integer in 1 ... 16",
+            )),
+            _ => Count::from_toml(value).map(|c| Refinement { n: Some(c.n) }),
+        }
+    }
+}
+
+leaf_deserialize!(Refinement);
 
 impl Choices for FieldPoints {
     const RULE: &'static str = "must be \"uniform\" (n points over the extent, direct sum) or \

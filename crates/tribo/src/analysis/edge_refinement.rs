@@ -44,11 +44,43 @@
 //! between the fine centres) resolves the square-root edge to h / factor. The total force
 //! differs from the element sum by the O(h^2) of the reconstruction (measured 3e-4 relative
 //! on the sliding sphere at 64 x 64). Cost: factor^2 times the elements of the field's
-//! traction grid, so this is an option for surface stresses near the edge, not the default.
+//! traction grid, so this is an option (`[field] edge_refinement = N`), not the default.
+//!
+//! # The band (opt-in)
+//!
+//! The reconstruction E and the bilinear interpolant B of the same element values agree at
+//! every element centre (E = p there), so D = E - B is zero on the nodes and matters only in
+//! the cells along the contact edges. [`EdgeBand`] takes the tractions
+//!
+//!   T = B + w D,
+//!
+//! w the bilinear interpolant of nodal weights 1 within [`BAND_RINGS`] nodes of a
+//! loaded/unloaded boundary (8-neighbourhood) and 0 elsewhere: T is continuous (no jump, so
+//! no logarithmic surface stress), E in the cells an edge crosses, B away from the edges. Only
+//! the band cells (a corner with w > 0) carry w D; it is sampled at the centres of
+//! `factor` x `factor` sub-cells of each (fine tents). Its stress field is split:
+//! - far: the projection of each band cell's w D onto the element tents of its four corners
+//!   (nodal increments with the same force and first moments, the tents reproducing linear
+//!   functions) is added to the element tractions ([`EdgeBand::projected`]), whose field
+//!   either path of [`crate::analysis::stress_field`] computes;
+//! - near: at a point within [`BAND_DEPTH_ELEMENTS`] elements of the surface and
+//!   [`BAND_REACH_CELLS`] cells of band cells, [`EdgeBand::correction`] adds those cells'
+//!   fine field minus that of their projection (beyond, the difference has no force and no
+//!   first moment: a field falling like r^-4).
+//!
+//! The stick/slip boundary of partial slip is inside the loaded region (w = 0 there unless a
+//! contact edge is near), multiple contact patches and any shape are handled alike (the band
+//! follows the loaded/unloaded boundary of the element values). Band cells touching the
+//! grid's outermost centres are included; the ring of nodes beyond the grid is not (a contact
+//! truncated by the grid keeps the bilinear fall-off there).
 
 use crate::analysis::stress_field::SurfaceTractions;
 use crate::error::{Error, Result};
 use crate::grid::{SurfaceGrid, MAX_ELEMENTS_PER_SIDE};
+use crate::kernels::subsurface::{
+    boussinesq_stress, cerruti_stress, cerruti_y_stress, StressTensor, TractionDirection,
+};
+use crate::kernels::tent::tent_stress_outside;
 
 /// The edge-aware reconstruction of element tractions (module docs): continuous tractions
 /// (Pa) at any surface point, with a square-root edge at a sub-element position.
@@ -264,6 +296,335 @@ pub fn refine_tractions(
         shear_x: tractions.shear_x.map(|_| component(1)),
         shear_y: tractions.shear_y.map(|_| component(2)),
     })
+}
+
+/// Band cells within this many cells (Chebyshev, in-plane) of a field point's cell
+/// contribute their fine correction to it ([`EdgeBand::correction`]); farther ones are
+/// represented by their projection onto the element tents (same force and first moments).
+pub const BAND_REACH_CELLS: isize = 3;
+
+/// Rings of nodes with band weight 1 on either side of a loaded/unloaded boundary.
+pub const BAND_RINGS: usize = 2;
+
+/// Depth, in element sizes (the larger of dx, dy), down to which [`EdgeBand::correction`]
+/// adds the fine band; below it the projection alone (module docs, measured).
+pub const BAND_DEPTH_ELEMENTS: f64 = 4.0;
+
+/// Fine sub-cells within this many sub-cells (Chebyshev) of the point take the fine tent
+/// kernel ([`tent_stress_outside`]: exact within 1.5 sub-cells, an 8 x 8 or 4 x 4 Gauss
+/// rule per quadrant of the tent beyond); farther ones four point forces at (+-s, +-s) /
+/// sqrt(6) from the sub-cell centre (s the sub-cell size), each a quarter of the tent's
+/// force: the tent's moments up to the third order, so the error falls like (s / r)^4
+/// (below 3e-4 of the sub-cell's contribution beyond 4 sub-cells).
+const NEAR_SUBCELLS: f64 = 4.0;
+
+/// Beyond this many sub-cells a single point force at the sub-cell centre (error (s / r)^2 /
+/// 6 of the contribution, below 1e-3 beyond 12 sub-cells).
+const FAR_SUBCELLS: f64 = 12.0;
+
+/// One cell of the edge band: the square between the element centres (i, j) and
+/// (i + 1, j + 1).
+#[derive(Debug, Clone)]
+struct BandCell {
+    i: usize,
+    j: usize,
+    /// w (E - B) [p, q_x, q_y] (Pa) at the factor x factor sub-cell centres, row-major
+    /// (x fastest).
+    samples: Vec<[f64; 3]>,
+    /// The projection of the samples onto the element tents of the four corners
+    /// (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1): nodal increments [p, q_x, q_y], Pa.
+    increments: [[f64; 3]; 4],
+}
+
+/// The edge band correction of element tractions (module docs, "The band"):
+/// the element tractions with the band's projection added, for the far field (either path),
+/// and the fine band's correction near the contact edges.
+#[derive(Debug, Clone)]
+pub struct EdgeBand {
+    grid: SurfaceGrid,
+    factor: usize,
+    cells: Vec<BandCell>,
+    /// Band cell index per cell ((nx - 1) x (ny - 1)), `u32::MAX` for none.
+    lookup: Vec<u32>,
+    pressure: Vec<f64>,
+    shear_x: Option<Vec<f64>>,
+    shear_y: Option<Vec<f64>>,
+    depth_limit: f64,
+}
+
+impl EdgeBand {
+    /// The band of `tractions` with `factor` x `factor` sub-cells per band cell (module docs).
+    /// Errors: those of [`EdgeReconstruction::new`]; `factor` in [1, 16] (invalid parameter
+    /// `factor`).
+    pub fn new(tractions: &SurfaceTractions<'_>, factor: usize) -> Result<Self> {
+        if !(1..=16).contains(&factor) {
+            return Err(Error::invalid("factor", factor, "must be in [1, 16]"));
+        }
+        let reconstruction = EdgeReconstruction::new(tractions)?;
+        let grid = *tractions.grid;
+        let (nx, ny) = (grid.nx(), grid.ny());
+        let p = tractions.pressure;
+        let loaded = |i: isize, j: isize| {
+            i >= 0
+                && j >= 0
+                && (i as usize) < nx
+                && (j as usize) < ny
+                && p[grid.index(i as usize, j as usize)] > 0.0
+        };
+        // w = 1 at the nodes on either side of a loaded/unloaded boundary (8-neighbourhood).
+        let mut w = vec![0.0; nx * ny];
+        for j in 0..ny as isize {
+            for i in 0..nx as isize {
+                let here = loaded(i, j);
+                let mut edge = false;
+                for dj in -1..=1 {
+                    for di in -1..=1 {
+                        if (di, dj) != (0, 0) && loaded(i + di, j + dj) != here {
+                            edge = true;
+                        }
+                    }
+                }
+                if edge {
+                    w[grid.index(i as usize, j as usize)] = 1.0;
+                }
+            }
+        }
+        // Widened by BAND_RINGS - 1 rings of nodes (8-neighbourhood).
+        for _ in 1..BAND_RINGS {
+            let before = w.clone();
+            for j in 0..ny {
+                for i in 0..nx {
+                    let hit = (j.saturating_sub(1)..(j + 2).min(ny)).any(|b| {
+                        (i.saturating_sub(1)..(i + 2).min(nx))
+                            .any(|a| before[grid.index(a, b)] > 0.0)
+                    });
+                    if hit {
+                        w[grid.index(i, j)] = 1.0;
+                    }
+                }
+            }
+        }
+        let node = |values: Option<&[f64]>, i: usize, j: usize| {
+            values.map_or(0.0, |v| v[grid.index(i, j)])
+        };
+        let components = [Some(p), tractions.shear_x, tractions.shear_y];
+        let mut projected: Vec<Option<Vec<f64>>> =
+            components.iter().map(|c| c.map(<[f64]>::to_vec)).collect();
+        let mut cells = Vec::new();
+        let mut lookup = vec![u32::MAX; (nx - 1) * (ny - 1)];
+        let n = factor;
+        for j in 0..ny - 1 {
+            for i in 0..nx - 1 {
+                let corners = [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)];
+                let wc = corners.map(|(a, b)| w[grid.index(a, b)]);
+                if wc.iter().all(|&v| v == 0.0) {
+                    continue;
+                }
+                let values: Vec<[f64; 4]> = components
+                    .iter()
+                    .map(|c| corners.map(|(a, b)| node(*c, a, b)))
+                    .collect();
+                let mut samples = Vec::with_capacity(n * n);
+                let mut increments = [[0.0; 3]; 4];
+                let mut any = false;
+                for sj in 0..n {
+                    for si in 0..n {
+                        let (t, s) = ((si as f64 + 0.5) / n as f64, (sj as f64 + 0.5) / n as f64);
+                        let weights = [(1.0 - t) * (1.0 - s), t * (1.0 - s), (1.0 - t) * s, t * s];
+                        let bilinear = |v: &[f64; 4]| -> f64 {
+                            v.iter().zip(&weights).map(|(a, b)| a * b).sum()
+                        };
+                        let blend = bilinear(&wc);
+                        let (x, y) = (grid.x(i) + t * grid.dx(), grid.y(j) + s * grid.dy());
+                        let exact = reconstruction.at(x, y);
+                        let mut sample = [0.0; 3];
+                        for c in 0..3 {
+                            sample[c] = blend * (exact[c] - bilinear(&values[c]));
+                        }
+                        any |= sample.iter().any(|&v| v != 0.0);
+                        for (k, inc) in increments.iter_mut().enumerate() {
+                            for c in 0..3 {
+                                inc[c] += sample[c] * weights[k] / (n * n) as f64;
+                            }
+                        }
+                        samples.push(sample);
+                    }
+                }
+                if !any {
+                    continue;
+                }
+                for (k, &(a, b)) in corners.iter().enumerate() {
+                    for (c, values) in projected.iter_mut().enumerate() {
+                        if let Some(v) = values {
+                            v[grid.index(a, b)] += increments[k][c];
+                        }
+                    }
+                }
+                lookup[j * (nx - 1) + i] = cells.len() as u32;
+                cells.push(BandCell {
+                    i,
+                    j,
+                    samples,
+                    increments,
+                });
+            }
+        }
+        let mut projected = projected.into_iter();
+        let pressure = projected.next().flatten().unwrap_or_default();
+        let shear_x = projected.next().flatten();
+        let shear_y = projected.next().flatten();
+        Ok(Self {
+            grid,
+            factor,
+            cells,
+            lookup,
+            pressure,
+            shear_x,
+            shear_y,
+            depth_limit: BAND_DEPTH_ELEMENTS * grid.dx().max(grid.dy()),
+        })
+    }
+
+    /// The element tractions with the band's projection added (module docs): the tractions
+    /// whose bilinear field the correction is added to.
+    pub fn projected(&self) -> SurfaceTractions<'_> {
+        SurfaceTractions {
+            grid: &self.grid,
+            pressure: &self.pressure,
+            shear_x: self.shear_x.as_deref(),
+            shear_y: self.shear_y.as_deref(),
+        }
+    }
+
+    /// Number of band cells.
+    pub fn cells(&self) -> usize {
+        self.cells.len()
+    }
+
+    /// Depth (m) below which [`EdgeBand::correction`] is zero.
+    pub fn depth_limit(&self) -> f64 {
+        self.depth_limit
+    }
+
+    /// Whether [`EdgeBand::correction`] may be nonzero at (x, y, z).
+    pub fn reaches(&self, x: f64, y: f64, z: f64) -> bool {
+        z <= self.depth_limit && !self.cells_near(x, y).is_empty()
+    }
+
+    fn cells_near(&self, x: f64, y: f64) -> Vec<(usize, bool)> {
+        let g = &self.grid;
+        let (nx, ny) = (g.nx() as isize, g.ny() as isize);
+        let u = ((x - g.x(0)) / g.dx()).floor();
+        let v = ((y - g.y(0)) / g.dy()).floor();
+        let reach = BAND_REACH_CELLS as f64;
+        if !(u >= -reach - 1.0
+            && v >= -reach - 1.0
+            && u <= (nx + BAND_REACH_CELLS) as f64
+            && v <= (ny + BAND_REACH_CELLS) as f64)
+        {
+            return Vec::new();
+        }
+        let (ci, cj) = (u as isize, v as isize);
+        let mut out = Vec::new();
+        for j in cj - BAND_REACH_CELLS..=cj + BAND_REACH_CELLS {
+            for i in ci - BAND_REACH_CELLS..=ci + BAND_REACH_CELLS {
+                if i < 0 || j < 0 || i >= nx - 1 || j >= ny - 1 {
+                    continue;
+                }
+                let k = self.lookup[j as usize * (nx - 1) as usize + i as usize];
+                if k != u32::MAX {
+                    let adjacent = (i - ci).abs() <= 1 && (j - cj).abs() <= 1;
+                    out.push((k as usize, adjacent));
+                }
+            }
+        }
+        out
+    }
+
+    /// The band's correction (Pa) at (x, y, z), for a body of Poisson's ratio `nu`: the
+    /// field of the fine band cells within [`BAND_REACH_CELLS`] of the point minus that of
+    /// their projection (module docs); zero below [`EdgeBand::depth_limit`].
+    pub fn correction(&self, x: f64, y: f64, z: f64, nu: f64) -> StressTensor {
+        if z > self.depth_limit {
+            return StressTensor::ZERO;
+        }
+        let near = self.cells_near(x, y);
+        if near.is_empty() {
+            return StressTensor::ZERO;
+        }
+        let g = &self.grid;
+        let n = self.factor;
+        let (dx, dy) = (g.dx(), g.dy());
+        let (fx, fy) = (dx / n as f64, dy / n as f64);
+        let area = fx * fy;
+        let directions = [
+            TractionDirection::Pressure,
+            TractionDirection::ShearX,
+            TractionDirection::ShearY,
+        ];
+        let mut total = StressTensor::ZERO;
+        let mut nodes: Vec<((usize, usize), [f64; 3])> = Vec::new();
+        for (k, adjacent) in near {
+            let cell = &self.cells[k];
+            let (x0, y0) = (g.x(cell.i), g.y(cell.j));
+            for (idx, sample) in cell.samples.iter().enumerate() {
+                if sample.iter().all(|&v| v == 0.0) {
+                    continue;
+                }
+                let (si, sj) = (idx % n, idx / n);
+                let ox = x - (x0 + (si as f64 + 0.5) * fx);
+                let oy = y - (y0 + (sj as f64 + 0.5) * fy);
+                let distance = (ox / fx).abs().max((oy / fy).abs());
+                let point = |c: usize, px: f64, py: f64| match c {
+                    0 => boussinesq_stress(px, py, z, nu),
+                    1 => cerruti_stress(px, py, z, nu),
+                    _ => cerruti_y_stress(px, py, z, nu),
+                };
+                for (c, &value) in sample.iter().enumerate() {
+                    if value == 0.0 {
+                        continue;
+                    }
+                    let s = if adjacent && distance <= NEAR_SUBCELLS {
+                        tent_stress_outside(directions[c], ox, oy, z, 0.5 * fx, 0.5 * fy, nu)
+                            .scale(value)
+                    } else if distance <= FAR_SUBCELLS {
+                        let (ex, ey) = (fx / 6f64.sqrt(), fy / 6f64.sqrt());
+                        let sum = point(c, ox - ex, oy - ey)
+                            + point(c, ox + ex, oy - ey)
+                            + point(c, ox - ex, oy + ey)
+                            + point(c, ox + ex, oy + ey);
+                        sum.scale(0.25 * value * area)
+                    } else {
+                        point(c, ox, oy).scale(value * area)
+                    };
+                    total = total + s;
+                }
+            }
+            let corners = [
+                (cell.i, cell.j),
+                (cell.i + 1, cell.j),
+                (cell.i, cell.j + 1),
+                (cell.i + 1, cell.j + 1),
+            ];
+            for (corner, inc) in corners.iter().zip(&cell.increments) {
+                match nodes.iter_mut().find(|(c, _)| c == corner) {
+                    Some((_, v)) => (0..3).for_each(|c| v[c] += inc[c]),
+                    None => nodes.push((*corner, *inc)),
+                }
+            }
+        }
+        for ((i, j), inc) in nodes {
+            let (ox, oy) = (x - g.x(i), y - g.y(j));
+            for (c, &value) in inc.iter().enumerate() {
+                if value != 0.0 {
+                    total = total
+                        - tent_stress_outside(directions[c], ox, oy, z, 0.5 * dx, 0.5 * dy, nu)
+                            .scale(value);
+                }
+            }
+        }
+        total
+    }
 }
 
 #[cfg(test)]
@@ -588,6 +949,214 @@ mod tests {
         }
         for row in &table[1..] {
             assert!(row[1] < 0.6 * row[0] && row[2] < 0.45 * row[0], "{table:?}");
+        }
+    }
+
+    /// Surface points of a line through the contact: along x (`angle` 0), y (90 deg) or
+    /// oblique, element edges shifted by `shift` (m) for the axis lines, `count` points over
+    /// [-1.3a, 1.3a] for the oblique one.
+    fn surface_line(grid: &SurfaceGrid, a: f64, angle_deg: f64, shift: f64) -> Vec<(f64, f64)> {
+        let dx = grid.dx();
+        let radii: Vec<f64> = (-3..=67)
+            .map(|k| -1.2 * a + k as f64 * dx + shift)
+            .collect();
+        let (c, s) = (angle_deg.to_radians().cos(), angle_deg.to_radians().sin());
+        radii
+            .iter()
+            .map(|&r| {
+                if angle_deg == 0.0 {
+                    (r, 0.0)
+                } else if angle_deg == 90.0 {
+                    (0.0, r)
+                } else {
+                    (r * c, r * s)
+                }
+            })
+            .collect()
+    }
+
+    /// Stresses at `points` (z = 0) by the band (factor `factor`, 0: plain tent) on the FFT or
+    /// direct path.
+    fn band_stresses(
+        t: &SurfaceTractions<'_>,
+        factor: usize,
+        points: &[(f64, f64)],
+        fft: bool,
+        z: f64,
+    ) -> Vec<StressTensor> {
+        use crate::analysis::stress_field::{
+            stress_field_direct_banded, stress_field_interpolated_banded,
+        };
+        let band = (factor > 0).then(|| EdgeBand::new(t, factor).unwrap());
+        if fft {
+            let field = FieldGrid {
+                x: points.iter().map(|p| p.0).collect(),
+                y: points.iter().map(|p| p.1).collect(),
+                z: vec![z],
+            };
+            let s = match &band {
+                Some(b) => stress_field_interpolated_banded(b, 0.3, &field, |_| {}).unwrap(),
+                None => stress_field_interpolated(t, 0.3, &field, |_| {}).unwrap(),
+            };
+            (0..points.len())
+                .map(|k| s.stress[field.index(k, k, 0)])
+                .collect()
+        } else {
+            points
+                .iter()
+                .map(|&(x, y)| {
+                    let field = FieldGrid {
+                        x: vec![x],
+                        y: vec![y],
+                        z: vec![z],
+                    };
+                    match &band {
+                        Some(b) => stress_field_direct_banded(b, 0.3, &field).unwrap().stress[0],
+                        None => stress_field_direct(t, 0.3, &field).unwrap().stress[0],
+                    }
+                })
+                .collect()
+        }
+    }
+
+    /// The band's surface-line errors against Hamilton (measurement, printed; slow): solved
+    /// contact, f = 0 ... 0.5, lines y = 0, x = 0 and 30 deg (direct path), on element edges,
+    /// 1e-12 m and 0.3 element off. Measured: direct 0.0187 / 0.0141 / 0.0184 p0 (bilinear
+    /// 0.1245 / 0.0719 / 0.0850).
+    #[test]
+    #[ignore = "measurement, minutes"]
+    fn band_measure() {
+        let (hertz, grid, _averaged, solved) = sphere_pressures();
+        let (a, p0) = (hertz.semi_major, hertz.max_pressure);
+        let dx = grid.dx();
+        let zero = vec![0.0; grid.len()];
+        let factor = 8;
+        for fft in [false, true] {
+            for angle in [0.0, 90.0, 30.0] {
+                // The oblique line by FFT needs the whole square of points (slow): skipped.
+                if fft && angle == 30.0 {
+                    continue;
+                }
+                let mut worst = [0.0f64; 2];
+                let mut profile = vec![0.0f64; 71];
+                for shift in [0.0, 1e-12, 0.3 * dx] {
+                    let pts = surface_line(&grid, a, angle, shift);
+                    for (slot, f_) in [(0usize, 0usize), (1, factor)] {
+                        let normal = band_stresses(
+                            &SurfaceTractions {
+                                grid: &grid,
+                                pressure: &solved,
+                                shear_x: Some(&zero),
+                                shear_y: None,
+                            },
+                            f_,
+                            &pts,
+                            fft,
+                            0.0,
+                        );
+                        let both = band_stresses(
+                            &SurfaceTractions {
+                                grid: &grid,
+                                pressure: &solved,
+                                shear_x: Some(&solved),
+                                shear_y: None,
+                            },
+                            f_,
+                            &pts,
+                            fft,
+                            0.0,
+                        );
+                        for f in [0.0, 0.1, 0.2, 0.3, 0.4, 0.5] {
+                            for (k, &(x, y)) in pts.iter().enumerate() {
+                                let s = normal[k] + (both[k] - normal[k]).scale(f);
+                                let r = sliding_sphere_stress(x, y, 0.0, a, p0, f, 0.3);
+                                let mut e = (s.von_mises() - r.von_mises()).abs() / p0;
+                                for d in (s - r).to_array() {
+                                    e = e.max(d.abs() / p0);
+                                }
+                                worst[slot] = worst[slot].max(e);
+                                if slot == 1 {
+                                    profile[k] = profile[k].max(e);
+                                }
+                            }
+                        }
+                    }
+                }
+                eprintln!(
+                    "fft {fft} angle {angle}: tent {:.4}, band x{factor} {:.4}",
+                    worst[0], worst[1]
+                );
+                let pts = surface_line(&grid, a, angle, 0.0);
+                let line: Vec<String> = profile
+                    .iter()
+                    .zip(&pts)
+                    .filter(|(e, _)| **e > 0.008)
+                    .map(|(e, p)| {
+                        format!(
+                            "r={:.3}a:{:.4}",
+                            (p.0 * p.0 + p.1 * p.1).sqrt() * p.0.signum().max(p.1.signum()) / a,
+                            e
+                        )
+                    })
+                    .collect();
+                eprintln!("   {}", line.join(" "));
+            }
+        }
+    }
+
+    /// The default band at the trailing-edge point itself, sigma_xx(-a, 0, 0) (Hamilton 1983;
+    /// docs/theory/HALFSPACE.md 3.3), f = 0.4, exact Hertz pressure at the centres of n = 24,
+    /// 48, 96 elements over 2.4a (-a on an element edge), by the direct sum (exact for the
+    /// representation). The point sits on the square-root cusp: the band rounds it over
+    /// h / 8, so the error falls like sqrt(h) with a constant below the bilinear one.
+    /// Measured (band / bilinear): 0.120 / 0.242, 0.062 / 0.171, 0.043 / 0.121 p0 at n = 24,
+    /// 48, 96, i.e. order 0.96 then 0.51 (the cusp rounded over h / 8: order 1/2 in the limit,
+    /// at about a third of the bilinear constant). Asserted: each halving of h multiplies the
+    /// error by at most 0.8 and the band's error is below 0.6 of the bilinear one.
+    #[test]
+    fn band_trailing_edge_converges() {
+        use crate::analysis::stress_field::stress_field_direct_banded;
+        let nu = 0.3;
+        let hertz = HertzContact::circle(0.01, 1.1e11, 1000.0).unwrap();
+        let (a, p0) = (hertz.semi_major, hertz.max_pressure);
+        let f = 0.4;
+        let exact = (1.0 - 2.0 * nu) / 3.0 + std::f64::consts::PI * (4.0 + nu) * f / 8.0;
+        let point = FieldGrid {
+            x: vec![-a],
+            y: vec![0.0],
+            z: vec![0.0],
+        };
+        let mut table = Vec::new();
+        for n in [24, 48, 96] {
+            let grid = SurfaceGrid::centred(n, n, 1.2 * a, 1.2 * a).unwrap();
+            let p = grid.sample(|x, y| hertz.pressure(x, y));
+            let q: Vec<f64> = p.iter().map(|v| f * v).collect();
+            let tractions = SurfaceTractions {
+                grid: &grid,
+                pressure: &p,
+                shear_x: Some(&q),
+                shear_y: None,
+            };
+            let bilinear = stress_field_direct(&tractions, nu, &point).unwrap().stress[0].xx;
+            let band = EdgeBand::new(&tractions, 8).unwrap();
+            let banded = stress_field_direct_banded(&band, nu, &point)
+                .unwrap()
+                .stress[0]
+                .xx;
+            table.push([(bilinear / p0 - exact).abs(), (banded / p0 - exact).abs()]);
+        }
+        let order = |k: usize| (table[k][1] / table[k + 1][1]).log2();
+        eprintln!(
+            "trailing edge |sigma_xx error| / p0, n = 24, 48, 96, [bilinear, band]: {table:?}; \
+             band order {:.2}, {:.2}",
+            order(0),
+            order(1)
+        );
+        for k in 0..2 {
+            assert!(table[k + 1][1] < 0.8 * table[k][1], "{table:?}");
+        }
+        for row in &table {
+            assert!(row[1] < 0.6 * row[0], "{table:?}");
         }
     }
 }

@@ -20,8 +20,15 @@
 //!
 //! At a contact edge the bilinear interpolant rounds the traction's square-root edge off over
 //! one element, so within an element of the edge the surface stresses are off by
-//! O(sqrt(h / a)) p0 (0.12 p0 for a sliding sphere on 64 x 64 elements). For surface stresses
-//! there, [`crate::analysis::edge_refinement::refine_tractions`] resamples the tractions from
+//! O(sqrt(h / a)) p0 (0.12 p0 for a sliding sphere on 64 x 64 elements). The `_banded`
+//! functions ([`stress_field_interpolated_banded`], [`stress_field_direct_banded`],
+//! [`stress_field_on_centres_banded`]; the case option `edge_refinement = "band"`) evaluate instead the
+//! field of the element tractions with the edge band
+//! ([`crate::analysis::edge_refinement::EdgeBand`]): the edge-aware reconstruction in the
+//! cells along the contact edges, its far field by projection onto the element tents, its
+//! near field (surface and shallow depths) added at the points (measured within 0.02 p0 of
+//! Hamilton on the surface lines; docs/theory/HALFSPACE.md 2.5). Everywhere,
+//! [`crate::analysis::edge_refinement::refine_tractions`] resamples the tractions from
 //! an edge-aware reconstruction (p^2 interpolated, the edge at a sub-element position) on a
 //! finer grid, whose field either path below computes (docs/theory/HALFSPACE.md 2.5:
 //! measured within 1e-2 p0 of Hamilton on the surface lines at 8 times finer).
@@ -37,6 +44,7 @@
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use crate::analysis::edge_refinement::EdgeBand;
 use crate::error::{Error, Result};
 use crate::grid::SurfaceGrid;
 use crate::kernels::bulk::BulkLoad;
@@ -44,7 +52,7 @@ use crate::kernels::subsurface::{
     pressure_stress, rectangle_stress_graded, shear_x_stress, shear_y_stress, StressTensor,
     TractionDirection,
 };
-use crate::kernels::tent::tent_stress;
+use crate::kernels::tent::{tent_stress, tent_stress_outside};
 use crate::material::ElasticMaterial;
 use crate::operators::{fill_kernel_table, Parity, SpectralConvolution, Spectrum};
 
@@ -584,6 +592,171 @@ pub fn stress_field_interpolated(
         grid: field.clone(),
         stress,
     })
+}
+
+/// Stresses at the points of `field` of the element tractions with the edge band
+/// ([`EdgeBand`], docs/theory/HALFSPACE.md 2.5): the direct sum of the band's projected
+/// tractions ([`stress_field_direct`]) plus the band's correction at the points it reaches.
+pub fn stress_field_direct_banded(
+    band: &EdgeBand,
+    poisson_ratio: f64,
+    field: &FieldGrid,
+) -> Result<StressField> {
+    let mut out = stress_field_direct(&band.projected(), poisson_ratio, field)?;
+    add_band(&mut out, band, poisson_ratio);
+    Ok(out)
+}
+
+/// [`stress_field_direct_banded`] by the FFT path ([`stress_field_interpolated`]) for the
+/// projected tractions, plus the band's correction at the points it reaches.
+pub fn stress_field_interpolated_banded(
+    band: &EdgeBand,
+    poisson_ratio: f64,
+    field: &FieldGrid,
+    progress: impl FnMut(usize),
+) -> Result<StressField> {
+    let tractions = band.projected();
+    let mut out = stress_field_interpolated(&tractions, poisson_ratio, field, progress)?;
+    local_window(&mut out, band, &tractions, poisson_ratio);
+    add_band(&mut out, band, poisson_ratio);
+    Ok(out)
+}
+
+/// Elements beyond the 4 x 4 interpolation stencil on each side of the local window
+/// ([`local_window`]).
+const WINDOW_MARGIN: isize = 1;
+
+/// Near the band, at the depths it reaches, the cubic interpolation of the FFT path errs
+/// where the surface field of the bilinear tractions has kinks (the nodal lines of the steep
+/// tents at a contact edge). There the field of the tents of a window of nodes around the
+/// point's stencil (the stencil and [`WINDOW_MARGIN`] elements beyond) is taken out of the
+/// interpolation and added exactly: S(P) = I[S - W](P) + W(P), W the window's field, exact
+/// at the centres (a table of tent kernels at lattice offsets) and at P ([`tent_stress`]).
+/// What remains interpolated is the field of tents whose kinks lie outside the stencil.
+fn local_window(field: &mut StressField, band: &EdgeBand, t: &SurfaceTractions<'_>, nu: f64) {
+    let grid = t.grid;
+    let (dx, dy) = (grid.dx(), grid.dy());
+    let (hx, hy) = (0.5 * dx, 0.5 * dy);
+    let (gnx, gny) = (grid.nx() as isize, grid.ny() as isize);
+    let reach = 3 + WINDOW_MARGIN;
+    let side = (2 * reach + 1) as usize;
+    let directions = [
+        TractionDirection::Pressure,
+        TractionDirection::ShearX,
+        TractionDirection::ShearY,
+    ];
+    let sources = [Some(t.pressure), t.shear_x, t.shear_y];
+    let g = field.grid.clone();
+    let (nx, ny) = (g.x.len(), g.y.len());
+    // Kernel tables per shallow depth: [direction][(dj + reach) * side + di + reach].
+    let tables: Vec<Option<Vec<Vec<StressTensor>>>> =
+        g.z.iter()
+            .map(|&z| {
+                (z <= band.depth_limit()).then(|| {
+                    directions
+                        .iter()
+                        .zip(&sources)
+                        .map(|(&d, src)| {
+                            if src.is_none() {
+                                return Vec::new();
+                            }
+                            (0..side * side)
+                                .map(|k| {
+                                    let di = (k % side) as isize - reach;
+                                    let dj = (k / side) as isize - reach;
+                                    tent_stress(d, di as f64 * dx, dj as f64 * dy, z, hx, hy, nu)
+                                })
+                                .collect()
+                        })
+                        .collect()
+                })
+            })
+            .collect();
+    let stencil = |u: f64| -> (isize, [f64; 4]) {
+        let base = u.floor() as isize - 1;
+        let t = u - (base + 1) as f64;
+        (
+            base,
+            [
+                -t * (t - 1.0) * (t - 2.0) / 6.0,
+                (t + 1.0) * (t - 1.0) * (t - 2.0) / 2.0,
+                -(t + 1.0) * t * (t - 2.0) / 2.0,
+                (t + 1.0) * t * (t - 1.0) / 6.0,
+            ],
+        )
+    };
+    field.stress.par_iter_mut().enumerate().for_each(|(i, s)| {
+        let iz = i / (nx * ny);
+        let Some(table) = &tables[iz] else {
+            return;
+        };
+        let (x, y, z) = (g.x[i % nx], g.y[(i / nx) % ny], g.z[iz]);
+        if !band.reaches(x, y, z) {
+            return;
+        }
+        let (bx, wx) = stencil((x - grid.x(0)) / dx);
+        let (by, wy) = stencil((y - grid.y(0)) / dy);
+        let mut fix = StressTensor::ZERO;
+        for nj in by - WINDOW_MARGIN..by + 4 + WINDOW_MARGIN {
+            for ni in bx - WINDOW_MARGIN..bx + 4 + WINDOW_MARGIN {
+                if ni < 0 || nj < 0 || ni >= gnx || nj >= gny {
+                    continue;
+                }
+                let k = grid.index(ni as usize, nj as usize);
+                for (c, src) in sources.iter().enumerate() {
+                    let Some(values) = src else { continue };
+                    let v = values[k];
+                    if v == 0.0 {
+                        continue;
+                    }
+                    let (ox, oy) = (x - grid.x(ni as usize), y - grid.y(nj as usize));
+                    let mut w = tent_stress_outside(directions[c], ox, oy, z, hx, hy, nu);
+                    for (b, wyb) in wy.iter().enumerate() {
+                        for (a, wxa) in wx.iter().enumerate() {
+                            let di = bx + a as isize - ni + reach;
+                            let dj = by + b as isize - nj + reach;
+                            let kernel = table[c][dj as usize * side + di as usize];
+                            w = w - kernel.scale(wxa * wyb);
+                        }
+                    }
+                    fix = fix + w.scale(v);
+                }
+            }
+        }
+        *s = *s + fix;
+    });
+}
+
+/// [`stress_field_on_centres_observed`] of the band's projected tractions plus the band's
+/// correction at the centres it reaches (the points are on the lattice: no interpolation).
+pub fn stress_field_on_centres_banded(
+    band: &EdgeBand,
+    poisson_ratio: f64,
+    depths: &[f64],
+    progress: impl FnMut(usize),
+) -> Result<StressField> {
+    let mut out =
+        stress_field_on_centres_observed(&band.projected(), poisson_ratio, depths, progress)?;
+    add_band(&mut out, band, poisson_ratio);
+    Ok(out)
+}
+
+/// Adds the band's correction at every point of `field` within its depth.
+fn add_band(field: &mut StressField, band: &EdgeBand, nu: f64) {
+    let g = &field.grid;
+    let (nx, ny) = (g.x.len(), g.y.len());
+    let shallow = g.z.iter().filter(|&&z| z <= band.depth_limit()).count();
+    if shallow == 0 || band.cells() == 0 {
+        return;
+    }
+    let grid = g.clone();
+    field.stress.par_iter_mut().enumerate().for_each(|(i, s)| {
+        let z = grid.z[i / (nx * ny)];
+        if z <= band.depth_limit() {
+            let (x, y) = (grid.x[i % nx], grid.y[(i / nx) % ny]);
+            *s = *s + band.correction(x, y, z, nu);
+        }
+    });
 }
 
 /// Small strain tensor by Hooke's law, eps = [(1 + nu) sigma - nu tr(sigma) I] / E

@@ -4,7 +4,7 @@ use super::positive;
 use crate::error::{CaseError, CaseResult};
 use crate::halfspace::model::{
     FieldMethod, FieldPoints, FieldSpec, Length, DEFAULT_FIELD_EXTENT, DEFAULT_FIELD_N,
-    MAX_EDGE_REFINEMENT, MAX_FIELD_N, MAX_FIELD_POINTS,
+    EDGE_REFINEMENT_BAND, MAX_EDGE_REFINEMENT, MAX_FIELD_N, MAX_FIELD_POINTS,
 };
 use crate::halfspace::schema::{BodyId, Metres, Number, RawField};
 use tribo::grid::MAX_ELEMENTS_PER_SIDE;
@@ -94,7 +94,10 @@ pub(super) fn field_spec(
     let body = f.body.as_ref().map_or(BodyId::Body2, |b| b.value.0).name();
     let edge_refinement = match &f.edge_refinement {
         None => 1,
-        Some(c) => edge_refinement(c.n, contact_n)?,
+        Some(c) => match c.n {
+            None => EDGE_REFINEMENT_BAND,
+            Some(n) => edge_refinement(n, contact_n)?,
+        },
     };
     Ok(FieldSpec {
         points,
@@ -181,8 +184,9 @@ fn edge_refinement(factor: usize, contact_n: [usize; 2]) -> CaseResult<usize> {
             "field.edge_refinement",
             factor,
             format!(
-                "must be an integer in 1 ... {MAX_EDGE_REFINEMENT} (1: the bilinear \
-                 element tractions; N: the edge-aware tractions on a grid N times finer)"
+                "must be \"band\" or an integer in 1 ... {MAX_EDGE_REFINEMENT} (1: the \
+                 bilinear element tractions; N: the edge-aware tractions on a grid N times \
+                 finer)"
             ),
         ));
     }

@@ -1,0 +1,271 @@
+//! The edge band at the contact edge (issue 11 item 1): a sliding sphere case with a
+//! `[field]` box that includes the surface and `edge_refinement = "band"` (the element
+//! tractions with the edge band, `tribo::analysis::edge_refinement::EdgeBand`; opt-in: about
+//! 2x the default's cost on bench/field_default.sh, see docs/theory/HALFSPACE.md 2.5), run
+//! through `pipeline::run` and checked against Hamilton's (1983) closed-form stresses at
+//! every point of the surface lines and at every depth, for f = 0 ... 0.5 and four
+//! alignments of the points with the elements; and the same by the direct path
+//! (`method = "direct"`). With the bilinear tractions (`edge_refinement = 1`, the default)
+//! the surface lines are off by 0.11-0.13 p0 within two elements of the contact edge.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use tribo::kernels::hamilton::sliding_sphere_stress;
+use tribo::kernels::subsurface::StressTensor;
+use tribo_case::case::parse_case;
+use tribo_case::pipeline::{self, Outcome};
+use tribo_case::Silent;
+
+/// Poisson's ratio of both bodies.
+const NU: f64 = 0.3;
+
+/// The sliding sphere: R = 10 mm on a flat, both steel (E = 201 GPa, nu = 0.3: no coupling),
+/// 2000 N, friction `f` in full sliding along x (f = 0: frictionless), 64 x 64 elements over
+/// |x|, |y| <= 1.2a, and the `[field]` lines `field`.
+fn sliding_sphere(f: f64, field: &str) -> String {
+    let friction = if f > 0.0 {
+        format!("friction = {f}\nsliding = true\n")
+    } else {
+        String::new()
+    };
+    format!(
+        r#"
+[body1]
+E = 2.01e11
+nu = 0.3
+radii = [0.01, 0.01]
+[body2]
+E = 2.01e11
+nu = 0.3
+radii = ["inf", "inf"]
+[contact]
+load = 2000.0
+{friction}
+[grid]
+n = 64
+extent = 1.2
+[field]
+{field}
+"#
+    )
+}
+
+/// Hamilton's stress in body 2 at (x, y, z): body 2 carries -q (the sphere slides along +x,
+/// q = f p on body 1); reflected x -> -x it is Hamilton's problem, the reflection flipping
+/// sigma_xy and sigma_xz.
+fn hamilton_body2(x: f64, y: f64, z: f64, a: f64, p0: f64, f: f64) -> StressTensor {
+    let mut r = sliding_sphere_stress(-x, y, z, a, p0, f, NU);
+    r.xy = -r.xy;
+    r.xz = -r.xz;
+    r
+}
+
+/// Errors of a run against Hamilton (p0): the largest |sigma_ij - Hamilton_ij| and
+/// |von Mises - Hamilton's| over the surface layer (every point: the lines y = 0, x = 0 and
+/// every oblique line through the box), and the max von Mises of the field against
+/// Hamilton's over the same points, on the surface and below: (value error, Hamilton's von
+/// Mises at the field's maximum minus Hamilton's maximum, i.e. the location's error).
+struct Errors {
+    surface: f64,
+    surface_line_y0: f64,
+    /// The lines y = 0 and x = 0 and the box's diagonal (45 deg).
+    surface_lines: f64,
+    max_surface: (f64, f64),
+    max_below: (f64, f64),
+}
+
+fn errors(out: &Outcome, f: f64) -> Errors {
+    let hertz = out.prepared.hertz.expect("a Hertzian gap").contact;
+    let (a, p0) = (hertz.semi_major, hertz.max_pressure);
+    let st = out.stress.as_ref().expect("a stress field");
+    let g = &st.field.grid;
+    assert_eq!(g.z[0], 0.0);
+    let mut surface = 0.0f64;
+    let mut line = 0.0f64;
+    let mut lines = 0.0f64;
+    // (field max vM, its Hamilton vM, Hamilton's max vM) per region.
+    let mut maxima = [[f64::NEG_INFINITY; 3]; 2];
+    for iz in 0..g.z.len() {
+        for iy in 0..g.y.len() {
+            for ix in 0..g.x.len() {
+                let (x, y, z) = (g.x[ix], g.y[iy], g.z[iz]);
+                let s = st.field.stress[g.index(ix, iy, iz)];
+                let r = hamilton_body2(x, y, z, a, p0, f);
+                let region = usize::from(iz > 0);
+                let m = &mut maxima[region];
+                if s.von_mises() > m[0] {
+                    m[0] = s.von_mises();
+                    m[1] = r.von_mises();
+                }
+                m[2] = m[2].max(r.von_mises());
+                if iz == 0 {
+                    let mut e = (s.von_mises() - r.von_mises()).abs();
+                    for d in (s - r).to_array() {
+                        e = e.max(d.abs());
+                    }
+                    surface = surface.max(e / p0);
+                    if y.abs() < 1e-9 * a {
+                        line = line.max(e / p0);
+                    }
+                    if y.abs() < 1e-9 * a || x.abs() < 1e-9 * a || ix == iy {
+                        lines = lines.max(e / p0);
+                    }
+                }
+            }
+        }
+    }
+    let pair = |m: [f64; 3]| ((m[0] - m[2]).abs() / p0, (m[2] - m[1]) / p0);
+    Errors {
+        surface,
+        surface_line_y0: line,
+        surface_lines: lines,
+        max_surface: pair(maxima[0]),
+        max_below: pair(maxima[1]),
+    }
+}
+
+/// The four alignments of the field points: `extent` (units of a) and points per side.
+/// 33 points over 1.2a put the points on the element edges (two elements apart, x = 0 and
+/// y = 0 among them); 1.2 (1 + 1e-11) moves them by up to 1e-11 relative (about 4e-15 m to
+/// 2.5e-12 m beside the edges); 1.2 + 0.36 / 26.7 by up to 0.36 element (0.3 element at the
+/// contact edges); 41 points over 1.5a fall anywhere (1.875 elements apart).
+const ALIGNMENTS: [(&str, f64, usize); 4] = [
+    ("on element edges", 1.2, 33),
+    ("1e-12 m beside them", 1.2 * (1.0 + 1e-11), 33),
+    ("0.3 element off", 1.2 + 0.36 * 2.4 / 64.0, 33),
+    ("anywhere", 1.5, 41),
+];
+
+fn run(f: f64, extent: f64, n: usize, nz: usize, depth: f64, method: &str) -> Outcome {
+    let field = format!(
+        "n = [{n}, {n}, {nz}]\nextent = {extent:.17}\ndepth = {depth}\nmethod = \"{method}\"\n\
+         edge_refinement = \"band\"\n"
+    );
+    let case = parse_case(
+        &sliding_sphere(f, &field),
+        "<test>",
+        std::path::Path::new("."),
+    )
+    .expect("a valid case");
+    assert_eq!(
+        case.field.as_ref().unwrap().edge_refinement,
+        tribo_case::case::EDGE_REFINEMENT_BAND
+    );
+    pipeline::run(&case, &mut Silent).expect("the case runs")
+}
+
+/// The FFT path: every point of the surface lines y = 0, x = 0 and the box's diagonal
+/// (45 deg) within 0.02 p0 of Hamilton (all six components and von Mises), and the surface's
+/// max von Mises, for f = 0 ... 0.5 and the four alignments (a box of the surface and z = a);
+/// the error over the whole surface layer is printed (0.033 p0 at f = 0.4: not met off the
+/// lines). On main (bilinear tractions) the surface error was 0.11-0.13 p0 (the
+/// square-root edge rounded over one element).
+#[test]
+#[ignore = "the full sweep: 24 runs, about 2 min in release on 2 cores"]
+fn band_fft_path_meets_hamilton_at_every_surface_point() {
+    let mut worst = [0.0f64; 2];
+    for f in [0.0, 0.1, 0.2, 0.3, 0.4, 0.5] {
+        for (name, extent, n) in ALIGNMENTS {
+            let e = errors(&run(f, extent, n, 2, 1.0, "fft"), f);
+            eprintln!(
+                "f {f}, {name}: surface {:.4} (y = 0: {:.4}), max vM surface {:.4}/{:.4} p0",
+                e.surface, e.surface_line_y0, e.max_surface.0, e.max_surface.1,
+            );
+            worst[0] = worst[0].max(e.surface_lines);
+            worst[1] = worst[1].max(e.max_surface.0.max(e.max_surface.1));
+        }
+    }
+    eprintln!("worst: {worst:?}");
+    for w in worst {
+        assert!(w < 0.02, "{worst:?}");
+    }
+}
+
+/// The default (FFT) path's max von Mises and its location within 0.02 p0 of Hamilton's on
+/// the surface and below (13 depths over [0, 0.72a], the subsurface maximum of f = 0 at
+/// 0.48a among them), f = 0 ... 0.5, points anywhere (41 x 41 over 1.5a).
+#[test]
+#[ignore = "the full sweep: 6 runs of 13 depths"]
+fn band_fft_path_max_von_mises_meets_hamilton() {
+    let mut worst = [0.0f64; 2];
+    for f in [0.0, 0.1, 0.2, 0.3, 0.4, 0.5] {
+        let (_, extent, n) = ALIGNMENTS[3];
+        let e = errors(&run(f, extent, n, 13, 0.72, "fft"), f);
+        eprintln!(
+            "f {f}: max vM surface {:.4}/{:.4}, below {:.4}/{:.4} p0",
+            e.max_surface.0, e.max_surface.1, e.max_below.0, e.max_below.1
+        );
+        worst[0] = worst[0].max(e.max_surface.0.max(e.max_surface.1));
+        worst[1] = worst[1].max(e.max_below.0.max(e.max_below.1));
+    }
+    eprintln!("worst: {worst:?}");
+    for w in worst {
+        assert!(w < 0.02, "{worst:?}");
+    }
+}
+
+/// The direct path (`method = "direct"`, the exact direct sum of the same representation)
+/// meets the same bound on the surface lines; f = 0.2 and 0.5, points 1e-12 m beside the
+/// element edges (it is slow: points x loaded elements). Measured over the whole surface
+/// layer 0.0198 p0 at f = 0.2 (lines: y = 0 0.0059).
+#[test]
+#[ignore = "slow: the direct sum (points x loaded elements)"]
+fn band_direct_path_meets_hamilton_at_every_surface_point() {
+    let mut worst = [0.0f64; 2];
+    for f in [0.2, 0.5] {
+        let (name, extent, n) = ALIGNMENTS[1];
+        let e = errors(&run(f, extent, n, 2, 1.0, "direct"), f);
+        eprintln!(
+            "direct f {f}, {name}: surface {:.4} (y = 0: {:.4}), max vM {:?}",
+            e.surface, e.surface_line_y0, e.max_surface
+        );
+        worst[0] = worst[0].max(e.surface_lines);
+        worst[1] = worst[1].max(e.max_surface.0.max(e.max_surface.1));
+    }
+    eprintln!("worst: {worst:?}");
+    for w in worst {
+        assert!(w < 0.02, "{worst:?}");
+    }
+}
+
+/// The quick check (not ignored): f = 0.4, points 1e-12 m beside the element edges, the FFT
+/// path: every point of the surface lines y = 0, x = 0 and the diagonal (45 deg) within
+/// 0.02 p0 of Hamilton, and the surface's max von Mises. Measured: lines 0.0088 p0 along
+/// y = 0 (bilinear: 0.11); off the lines (every surface point) 0.033 p0, not asserted (the
+/// FFT path's known gap: the edge crosses the cells obliquely).
+#[test]
+fn band_fft_path_meets_hamilton_on_the_surface_lines_at_f_0_4() {
+    let (name, extent, n) = ALIGNMENTS[1];
+    let e = errors(&run(0.4, extent, n, 2, 1.0, "fft"), 0.4);
+    eprintln!(
+        "f 0.4, {name}: surface {:.4} (lines {:.4}, y = 0: {:.4}), max vM surface {:?}",
+        e.surface, e.surface_lines, e.surface_line_y0, e.max_surface
+    );
+    assert!(e.surface_lines < 0.02, "{}", e.surface_lines);
+    assert!(
+        e.max_surface.0 < 0.02 && e.max_surface.1 < 0.02,
+        "{:?}",
+        e.max_surface
+    );
+}
+
+/// A fast subset of the full sweep (not ignored): f = 0, 0.2 and 0.5 with the points on the
+/// element edges, 0.3 element off and anywhere: the surface lines within 0.02 p0 of
+/// Hamilton, and the surface's max von Mises and its location.
+#[test]
+fn band_fft_path_meets_hamilton_on_the_surface_lines_subset() {
+    for (f, k) in [(0.0, 0), (0.2, 2), (0.5, 3)] {
+        let (name, extent, n) = ALIGNMENTS[k];
+        let e = errors(&run(f, extent, n, 2, 1.0, "fft"), f);
+        eprintln!(
+            "f {f}, {name}: surface {:.4} (lines {:.4}), max vM surface {:?}",
+            e.surface, e.surface_lines, e.max_surface
+        );
+        assert!(e.surface_lines < 0.02, "f {f}, {name}: {}", e.surface_lines);
+        assert!(
+            e.max_surface.0 < 0.02 && e.max_surface.1 < 0.02,
+            "f {f}, {name}: {:?}",
+            e.max_surface
+        );
+    }
+}
