@@ -14,7 +14,9 @@
 
 use std::collections::HashMap;
 
-use super::geometry::{mesh_segment, BemModel, BodyForce, LoopItem, Segment, SegmentShape};
+use super::geometry::{
+    mesh_segment, BemModel, BodyForce, LoopItem, Region, Segment, SegmentElement, SegmentShape,
+};
 use crate::error::{Error, Result};
 use crate::kernels::body_force2d::AffineBodyForce;
 use crate::kernels::kelvin2d::{Kelvin2d, PlaneCondition};
@@ -285,237 +287,17 @@ impl BemMesh {
                 "at least one region is needed",
             ));
         }
-        // The model-local origin: the centre of the bounding box of the segments' defining
-        // points. The elements are generated from the segments shifted to it, so that the
-        // mesh's own differences (element lengths, node spacings, kernel distances) carry no
-        // rounding of large absolute coordinates (issue 11 item 2).
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for item in model.regions.iter().flat_map(|r| r.loops.iter().flatten()) {
-            if let LoopItem::Segment(s) = item {
-                for p in s.shape.extent_points() {
-                    if p[0].is_finite() && p[1].is_finite() {
-                        for d in 0..2 {
-                            lo[d] = lo[d].min(p[d]);
-                            hi[d] = hi[d].max(p[d]);
-                        }
-                    }
-                }
-            }
-        }
-        let origin = if lo[0] <= hi[0] && lo[1] <= hi[1] {
-            [0.5 * lo[0] + 0.5 * hi[0], 0.5 * lo[1] + 0.5 * hi[1]]
-        } else {
-            [0.0, 0.0]
-        };
-        let mut segments: Vec<SegmentInfo> = Vec::new();
-        let mut seg_mesh = Vec::new();
-        let mut by_name: HashMap<String, usize> = HashMap::new();
-        let mut region_names: HashMap<&str, usize> = HashMap::new();
-        // First pass: own segments.
-        for (r, region) in model.regions.iter().enumerate() {
-            if region_names.insert(region.name.as_str(), r).is_some() {
-                return Err(Error::invalid(
-                    "region.name",
-                    &region.name,
-                    "a region name must be unique",
-                ));
-            }
-            if region.loops.is_empty() || region.loops.iter().any(|l| l.is_empty()) {
-                return Err(Error::invalid(
-                    format!("region '{}'.loops", region.name),
-                    region.loops.len(),
-                    "a region needs an outer loop and every loop at least one segment",
-                ));
-            }
-            for item in region.loops.iter().flatten() {
-                if let LoopItem::Segment(s) = item {
-                    s.validate()?;
-                    if by_name.contains_key(&s.name) {
-                        return Err(Error::invalid(
-                            "segment.name",
-                            &s.name,
-                            "a segment is named twice (names must be unique in the model)",
-                        ));
-                    }
-                    by_name.insert(s.name.clone(), segments.len());
-                    let local = Segment {
-                        shape: s.shape.shifted(origin)?,
-                        ..s.clone()
-                    };
-                    let (elements, n_nodes) = mesh_segment(&local);
-                    seg_mesh.push((elements, n_nodes));
-                    segments.push(SegmentInfo {
-                        name: s.name.clone(),
-                        shape: s.shape.clone(),
-                        owner: r,
-                        owner_nodes: Vec::new(),
-                        partner: None,
-                    });
-                }
-            }
-        }
+        let origin = model_origin(model);
+        let mut table = segment_table(model, origin)?;
         let mut regions = Vec::with_capacity(model.regions.len());
         for (r, region) in model.regions.iter().enumerate() {
-            let mut elements = Vec::new();
-            let mut nodes: Vec<Node> = Vec::new();
-            let mut loop_ranges = Vec::new();
-            for (l, lp) in region.loops.iter().enumerate() {
-                let loop_start = elements.len();
-                for item in lp {
-                    let (s, reversed) = match item {
-                        LoopItem::Segment(s) => (by_name[&s.name], false),
-                        LoopItem::Shared(name) => {
-                            let field = format!("region '{}'.shared", region.name);
-                            let &s = by_name.get(name).ok_or_else(|| {
-                                Error::invalid(&field, name, "names no segment of the model")
-                            })?;
-                            if segments[s].owner == r {
-                                return Err(Error::invalid(
-                                    &field,
-                                    name,
-                                    "a region cannot share its own segment",
-                                ));
-                            }
-                            if segments[s].partner.is_some() {
-                                return Err(Error::invalid(
-                                    &field,
-                                    name,
-                                    "the segment is already shared by another region",
-                                ));
-                            }
-                            (s, true)
-                        }
-                    };
-                    let (els, n_nodes) = &seg_mesh[s];
-                    let base = nodes.len();
-                    // Region-local index of segment-local node q.
-                    let local_of = |q: usize| base + if reversed { n_nodes - 1 - q } else { q };
-                    let mut new_elements: Vec<Element> = els
-                        .iter()
-                        .map(|e| {
-                            if reversed {
-                                Element {
-                                    geometry: [e.geometry[2], e.geometry[1], e.geometry[0]],
-                                    local: [-e.local[2], -e.local[1], -e.local[0]],
-                                    nodes: [
-                                        local_of(e.nodes[2]),
-                                        local_of(e.nodes[1]),
-                                        local_of(e.nodes[0]),
-                                    ],
-                                    segment: s,
-                                }
-                            } else {
-                                Element {
-                                    geometry: e.geometry,
-                                    local: e.local,
-                                    nodes: e.nodes.map(local_of),
-                                    segment: s,
-                                }
-                            }
-                        })
-                        .collect();
-                    if reversed {
-                        new_elements.reverse();
-                    }
-                    // Nodes: position, normal and parameter from the element that holds them.
-                    let mut fresh = vec![None; *n_nodes];
-                    for (e, se) in new_elements.iter().zip(if reversed {
-                        els.iter().rev().collect::<Vec<_>>()
-                    } else {
-                        els.iter().collect()
-                    }) {
-                        for k in 0..3 {
-                            let idx = e.nodes[k] - base;
-                            if fresh[idx].is_none() {
-                                let xi = e.local[k];
-                                let (normal, _) = e.normal_jacobian(xi);
-                                // Parameter in the owner's direction.
-                                let xi_owner = if reversed { -xi } else { xi };
-                                let param = se.t_range[0]
-                                    + 0.5 * (xi_owner + 1.0) * (se.t_range[1] - se.t_range[0]);
-                                fresh[idx] = Some(Node {
-                                    position: e.point(xi),
-                                    normal,
-                                    segment: s,
-                                    param,
-                                });
-                            }
-                        }
-                    }
-                    let fresh: Option<Vec<Node>> = fresh.into_iter().collect();
-                    nodes.extend(fresh.ok_or_else(|| Error::Numerical {
-                        context: "BEM mesh",
-                        detail: format!("a node of segment {s} is on none of its elements"),
-                    })?);
-                    let matching: Vec<usize> = (0..*n_nodes).map(local_of).collect();
-                    if reversed {
-                        segments[s].partner = Some((r, matching));
-                    } else {
-                        segments[s].owner_nodes = matching;
-                    }
-                    elements.extend(new_elements);
-                }
-                check_loop(&region.name, l, &elements[loop_start..], &segments, origin)?;
-                loop_ranges.push(loop_start..elements.len());
-            }
-            check_region_geometry(&region.name, &elements, &loop_ranges, &segments, origin)?;
-            for (l, range) in loop_ranges.into_iter().enumerate() {
-                check_orientation(&region.name, l, &elements[range])?;
-            }
-            let k = nodes.len().max(1) as f64;
-            let centroid = nodes.iter().fold([0.0, 0.0], |c, n| {
-                [c[0] + n.position[0] / k, c[1] + n.position[1] / k]
-            });
-            // Back to global coordinates, keeping the local copies for the integrals.
-            let centroid = [centroid[0] + origin[0], centroid[1] + origin[1]];
-            let local_elements = elements.clone();
-            let local_positions: Vec<[f64; 2]> = nodes.iter().map(|n| n.position).collect();
-            let add = |p: [f64; 2]| [p[0] + origin[0], p[1] + origin[1]];
-            for e in &mut elements {
-                e.geometry = e.geometry.map(add);
-            }
-            for n in &mut nodes {
-                n.position = add(n.position);
-            }
-            // The particular solution's origin: the common centre where every body force is
-            // a rotation about one centre (no constant part: the axisymmetric field alone),
-            // else the centroid of the nodes. Both move with the model.
-            let centers: Vec<[f64; 2]> = region
-                .body_forces
-                .iter()
-                .filter_map(|f| match *f {
-                    BodyForce::Centrifugal { center, .. } => Some(center),
-                    BodyForce::Gravity { .. } => None,
-                })
-                .collect();
-            let origin_bf = match centers.first() {
-                Some(&c)
-                    if centers.len() == region.body_forces.len()
-                        && centers.iter().all(|&d| d == c)
-                        && c[0].is_finite()
-                        && c[1].is_finite() =>
-                {
-                    c
-                }
-                _ => centroid,
-            };
-            let body_force = affine_body_force(&region.name, &region.body_forces, origin_bf)?;
-            regions.push(RegionMesh {
-                name: region.name.clone(),
-                material: region.material,
-                kernels: Kelvin2d::new(&region.material, model.plane),
-                elements,
-                nodes,
-                body_force,
-                local_elements,
-                local_positions,
-            });
+            regions.push(mesh_region(model.plane, r, region, &mut table, origin)?);
         }
         super::overlap::check_overlap(&regions)?;
         Ok(Self {
             plane: model.plane,
             regions,
-            segments,
+            segments: table.info,
             origin,
         })
     }
@@ -528,6 +310,352 @@ impl BemMesh {
     /// Number of boundary unknowns of the assembled system (two per node per region).
     pub fn dof(&self) -> usize {
         self.regions.iter().map(|r| 2 * r.nodes.len()).sum()
+    }
+}
+
+/// The model-local origin: the centre of the bounding box of the segments' defining points
+/// (the origin itself when no point is finite). The elements are generated from the segments
+/// shifted to it, so that the mesh's own differences (element lengths, node spacings, kernel
+/// distances) carry no rounding of large absolute coordinates (issue 11 item 2).
+fn model_origin(model: &BemModel) -> [f64; 2] {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for item in model.regions.iter().flat_map(|r| r.loops.iter().flatten()) {
+        if let LoopItem::Segment(s) = item {
+            for p in s.shape.extent_points() {
+                if p[0].is_finite() && p[1].is_finite() {
+                    for d in 0..2 {
+                        lo[d] = lo[d].min(p[d]);
+                        hi[d] = hi[d].max(p[d]);
+                    }
+                }
+            }
+        }
+    }
+    if lo[0] <= hi[0] && lo[1] <= hi[1] {
+        [0.5 * lo[0] + 0.5 * hi[0], 0.5 * lo[1] + 0.5 * hi[1]]
+    } else {
+        [0.0, 0.0]
+    }
+}
+
+/// The model's segments, each meshed once in its owner's direction in model-local
+/// coordinates; the regions' loops take their elements and nodes from here.
+struct SegmentTable {
+    /// The segments, in model order (owner nodes and partners filled in by the regions).
+    info: Vec<SegmentInfo>,
+    /// The elements of each segment and its number of functional nodes.
+    meshes: Vec<(Vec<SegmentElement>, usize)>,
+    /// Segment index by name.
+    by_name: HashMap<String, usize>,
+}
+
+/// The segment table of `model` (first pass over the regions' own segments), checking that
+/// region names are unique, that every region has loops and every loop a segment, that every
+/// segment is valid and that no segment is named twice.
+fn segment_table(model: &BemModel, origin: [f64; 2]) -> Result<SegmentTable> {
+    let mut segments: Vec<SegmentInfo> = Vec::new();
+    let mut seg_mesh = Vec::new();
+    let mut by_name: HashMap<String, usize> = HashMap::new();
+    let mut region_names: HashMap<&str, usize> = HashMap::new();
+    for (r, region) in model.regions.iter().enumerate() {
+        if region_names.insert(region.name.as_str(), r).is_some() {
+            return Err(Error::invalid(
+                "region.name",
+                &region.name,
+                "a region name must be unique",
+            ));
+        }
+        if region.loops.is_empty() || region.loops.iter().any(|l| l.is_empty()) {
+            return Err(Error::invalid(
+                format!("region '{}'.loops", region.name),
+                region.loops.len(),
+                "a region needs an outer loop and every loop at least one segment",
+            ));
+        }
+        for item in region.loops.iter().flatten() {
+            if let LoopItem::Segment(s) = item {
+                s.validate()?;
+                if by_name.contains_key(&s.name) {
+                    return Err(Error::invalid(
+                        "segment.name",
+                        &s.name,
+                        "a segment is named twice (names must be unique in the model)",
+                    ));
+                }
+                by_name.insert(s.name.clone(), segments.len());
+                let local = Segment {
+                    shape: s.shape.shifted(origin)?,
+                    ..s.clone()
+                };
+                let (elements, n_nodes) = mesh_segment(&local);
+                seg_mesh.push((elements, n_nodes));
+                segments.push(SegmentInfo {
+                    name: s.name.clone(),
+                    shape: s.shape.clone(),
+                    owner: r,
+                    owner_nodes: Vec::new(),
+                    partner: None,
+                });
+            }
+        }
+    }
+    Ok(SegmentTable {
+        info: segments,
+        meshes: seg_mesh,
+        by_name,
+    })
+}
+
+/// The mesh of region `r`: its boundary (model-local, checked), moved back to global
+/// coordinates with the local copies kept, and its body forces summed.
+fn mesh_region(
+    plane: PlaneCondition,
+    r: usize,
+    region: &Region,
+    table: &mut SegmentTable,
+    origin: [f64; 2],
+) -> Result<RegionMesh> {
+    let (mut elements, mut nodes) = region_boundary(r, region, table, origin)?;
+    let (centroid, local_elements, local_positions) = to_global(&mut elements, &mut nodes, origin);
+    let origin_bf = body_force_origin(region, centroid);
+    let body_force = affine_body_force(&region.name, &region.body_forces, origin_bf)?;
+    Ok(RegionMesh {
+        name: region.name.clone(),
+        material: region.material,
+        kernels: Kelvin2d::new(&region.material, plane),
+        elements,
+        nodes,
+        body_force,
+        local_elements,
+        local_positions,
+    })
+}
+
+/// The elements and nodes of region `r` in model-local coordinates, loop by loop, recording
+/// the owner nodes and partners in `table`; then the checks: each loop closed, the boundary
+/// not self-intersecting, the outer loop counter-clockwise and the holes clockwise.
+fn region_boundary(
+    r: usize,
+    region: &Region,
+    table: &mut SegmentTable,
+    origin: [f64; 2],
+) -> Result<(Vec<Element>, Vec<Node>)> {
+    let mut elements = Vec::new();
+    let mut nodes: Vec<Node> = Vec::new();
+    let mut loop_ranges = Vec::new();
+    for (l, lp) in region.loops.iter().enumerate() {
+        let loop_start = elements.len();
+        for item in lp {
+            let (s, reversed) = resolve_loop_item(r, &region.name, item, table)?;
+            let (els, n_nodes) = &table.meshes[s];
+            let n_nodes = *n_nodes;
+            let base = nodes.len();
+            let new_elements = oriented_elements(s, reversed, els, n_nodes, base);
+            nodes.extend(segment_nodes(
+                s,
+                reversed,
+                &new_elements,
+                els,
+                n_nodes,
+                base,
+            )?);
+            let matching: Vec<usize> = (0..n_nodes)
+                .map(|q| region_node(base, n_nodes, reversed, q))
+                .collect();
+            if reversed {
+                table.info[s].partner = Some((r, matching));
+            } else {
+                table.info[s].owner_nodes = matching;
+            }
+            elements.extend(new_elements);
+        }
+        check_loop(
+            &region.name,
+            l,
+            &elements[loop_start..],
+            &table.info,
+            origin,
+        )?;
+        loop_ranges.push(loop_start..elements.len());
+    }
+    check_region_geometry(&region.name, &elements, &loop_ranges, &table.info, origin)?;
+    for (l, range) in loop_ranges.into_iter().enumerate() {
+        check_orientation(&region.name, l, &elements[range])?;
+    }
+    Ok((elements, nodes))
+}
+
+/// The segment index of a loop item of region `r` and whether the region traverses it
+/// reversed (a shared segment); errors for a shared name that is unknown, the region's own
+/// segment or a segment already shared.
+fn resolve_loop_item(
+    r: usize,
+    region: &str,
+    item: &LoopItem,
+    table: &SegmentTable,
+) -> Result<(usize, bool)> {
+    match item {
+        LoopItem::Segment(s) => Ok((table.by_name[&s.name], false)),
+        LoopItem::Shared(name) => {
+            let field = format!("region '{region}'.shared");
+            let &s = table
+                .by_name
+                .get(name)
+                .ok_or_else(|| Error::invalid(&field, name, "names no segment of the model"))?;
+            if table.info[s].owner == r {
+                return Err(Error::invalid(
+                    &field,
+                    name,
+                    "a region cannot share its own segment",
+                ));
+            }
+            if table.info[s].partner.is_some() {
+                return Err(Error::invalid(
+                    &field,
+                    name,
+                    "the segment is already shared by another region",
+                ));
+            }
+            Ok((s, true))
+        }
+    }
+}
+
+/// Region-local index of segment-local node `q` of a segment with `n_nodes` nodes whose
+/// first region node is `base`.
+fn region_node(base: usize, n_nodes: usize, reversed: bool, q: usize) -> usize {
+    base + if reversed { n_nodes - 1 - q } else { q }
+}
+
+/// The elements of segment `s` in the region's traversal order, with region-local node
+/// indices from `base` (reversed: each element flipped and the order reversed).
+fn oriented_elements(
+    s: usize,
+    reversed: bool,
+    els: &[SegmentElement],
+    n_nodes: usize,
+    base: usize,
+) -> Vec<Element> {
+    let local_of = |q: usize| region_node(base, n_nodes, reversed, q);
+    let mut new_elements: Vec<Element> = els
+        .iter()
+        .map(|e| {
+            if reversed {
+                Element {
+                    geometry: [e.geometry[2], e.geometry[1], e.geometry[0]],
+                    local: [-e.local[2], -e.local[1], -e.local[0]],
+                    nodes: [
+                        local_of(e.nodes[2]),
+                        local_of(e.nodes[1]),
+                        local_of(e.nodes[0]),
+                    ],
+                    segment: s,
+                }
+            } else {
+                Element {
+                    geometry: e.geometry,
+                    local: e.local,
+                    nodes: e.nodes.map(local_of),
+                    segment: s,
+                }
+            }
+        })
+        .collect();
+    if reversed {
+        new_elements.reverse();
+    }
+    new_elements
+}
+
+/// The `n_nodes` functional nodes of segment `s` (region-local indices from `base`):
+/// position, normal and parameter (in the owner's direction) from the first element of
+/// `new_elements` that holds each; `els` are the same elements in the segment's own order.
+fn segment_nodes(
+    s: usize,
+    reversed: bool,
+    new_elements: &[Element],
+    els: &[SegmentElement],
+    n_nodes: usize,
+    base: usize,
+) -> Result<Vec<Node>> {
+    let mut fresh = vec![None; n_nodes];
+    for (e, se) in new_elements.iter().zip(if reversed {
+        els.iter().rev().collect::<Vec<_>>()
+    } else {
+        els.iter().collect()
+    }) {
+        for k in 0..3 {
+            let idx = e.nodes[k] - base;
+            if fresh[idx].is_none() {
+                let xi = e.local[k];
+                let (normal, _) = e.normal_jacobian(xi);
+                // Parameter in the owner's direction.
+                let xi_owner = if reversed { -xi } else { xi };
+                let param =
+                    se.t_range[0] + 0.5 * (xi_owner + 1.0) * (se.t_range[1] - se.t_range[0]);
+                fresh[idx] = Some(Node {
+                    position: e.point(xi),
+                    normal,
+                    segment: s,
+                    param,
+                });
+            }
+        }
+    }
+    let fresh: Option<Vec<Node>> = fresh.into_iter().collect();
+    fresh.ok_or_else(|| Error::Numerical {
+        context: "BEM mesh",
+        detail: format!("a node of segment {s} is on none of its elements"),
+    })
+}
+
+/// Moves a region's model-local elements and nodes back to global coordinates; returns the
+/// global centroid of the nodes and the local copies of the elements and node positions
+/// (kept for the integrals).
+fn to_global(
+    elements: &mut [Element],
+    nodes: &mut [Node],
+    origin: [f64; 2],
+) -> ([f64; 2], Vec<Element>, Vec<[f64; 2]>) {
+    let k = nodes.len().max(1) as f64;
+    let centroid = nodes.iter().fold([0.0, 0.0], |c, n| {
+        [c[0] + n.position[0] / k, c[1] + n.position[1] / k]
+    });
+    let centroid = [centroid[0] + origin[0], centroid[1] + origin[1]];
+    let local_elements = elements.to_vec();
+    let local_positions: Vec<[f64; 2]> = nodes.iter().map(|n| n.position).collect();
+    let add = |p: [f64; 2]| [p[0] + origin[0], p[1] + origin[1]];
+    for e in elements.iter_mut() {
+        e.geometry = e.geometry.map(add);
+    }
+    for n in nodes.iter_mut() {
+        n.position = add(n.position);
+    }
+    (centroid, local_elements, local_positions)
+}
+
+/// The particular solution's origin: the common centre where every body force is a rotation
+/// about one centre (no constant part: the axisymmetric field alone), else the `centroid` of
+/// the nodes. Both move with the model.
+fn body_force_origin(region: &Region, centroid: [f64; 2]) -> [f64; 2] {
+    let centers: Vec<[f64; 2]> = region
+        .body_forces
+        .iter()
+        .filter_map(|f| match *f {
+            BodyForce::Centrifugal { center, .. } => Some(center),
+            BodyForce::Gravity { .. } => None,
+        })
+        .collect();
+    match centers.first() {
+        Some(&c)
+            if centers.len() == region.body_forces.len()
+                && centers.iter().all(|&d| d == c)
+                && c[0].is_finite()
+                && c[1].is_finite() =>
+        {
+            c
+        }
+        _ => centroid,
     }
 }
 
