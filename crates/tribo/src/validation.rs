@@ -1542,8 +1542,9 @@ pub fn coupled_free_dense_check() -> Result<CoupledDenseCheck> {
     coupled_dense(crate::solvers::coupled::TangentialModel::Free)
 }
 
+/// [`coupled_dense_check`] and [`coupled_free_dense_check`]: the alternation, the dense
+/// matrices, the shift W, the dense projected Gauss-Seidel, the comparison.
 fn coupled_dense(model: crate::solvers::coupled::TangentialModel) -> Result<CoupledDenseCheck> {
-    use crate::kernels::love;
     use crate::solvers::coupled::{solve_coupled, CoupledParams, CoupledProblem, TangentialModel};
     let steel = ElasticMaterial::new(2.1e11, 0.3)?;
     let aluminium = ElasticMaterial::new(7.0e10, 0.33)?;
@@ -1569,54 +1570,8 @@ fn coupled_dense(model: crate::solvers::coupled::TangentialModel) -> Result<Coup
         &CoupledParams::new(1e-9, 60, model)?,
         None,
     )?;
-
-    // Dense influence matrices from each body's displacements (body 2 carries -q; its frame
-    // is mirrored, so its in-plane response adds to the compliance and its cross terms enter
-    // with the opposite sign). Row-major n x n: c_n (u_z by p), c[a][b] (u_a by q_b), k[b]
-    // (u_z by q_b), kq[a] (u_a by p).
-    let n = grid.len();
-    let (hx, hy) = (0.5 * grid.dx(), 0.5 * grid.dy());
-    let mut c_n = vec![0.0; n * n];
-    let mut c = [
-        [vec![0.0; n * n], vec![0.0; n * n]],
-        [vec![0.0; n * n], vec![0.0; n * n]],
-    ];
-    let mut k = [vec![0.0; n * n], vec![0.0; n * n]];
-    let mut kq = [vec![0.0; n * n], vec![0.0; n * n]];
-    for i in 0..n {
-        for j in 0..n {
-            let x = grid.x(i % n_side) - grid.x(j % n_side);
-            let y = grid.y(i / n_side) - grid.y(j / n_side);
-            let (g1, n1) = (steel.shear_modulus(), steel.poisson_ratio());
-            let (g2, n2) = (aluminium.shear_modulus(), aluminium.poisson_ratio());
-            let p1 = love::pressure_displacement(x, y, hx, hy, g1, n1);
-            let p2 = love::pressure_displacement(x, y, hx, hy, g2, n2);
-            let q1 = [
-                love::shear_x_displacement(x, y, hx, hy, g1, n1),
-                love::shear_y_displacement(x, y, hx, hy, g1, n1),
-            ];
-            let q2 = [
-                love::shear_x_displacement(x, y, hx, hy, g2, n2),
-                love::shear_y_displacement(x, y, hx, hy, g2, n2),
-            ];
-            let ij = i * n + j;
-            c_n[ij] = p1[2] + p2[2];
-            for comp in 0..2 {
-                for load in 0..2 {
-                    c[comp][load][ij] = q1[load][comp] + q2[load][comp];
-                }
-                k[comp][ij] = q1[comp][2] - q2[comp][2];
-                kq[comp][ij] = p1[comp] - p2[comp];
-            }
-        }
-    }
-    let row = |m: &[f64], i: usize, v: &[f64]| -> f64 {
-        m[i * n..(i + 1) * n]
-            .iter()
-            .zip(v)
-            .map(|(a, b)| a * b)
-            .sum()
-    };
+    let dense = DenseCoupled::new(&grid, n_side, &steel, &aluminium);
+    let n = dense.n;
     let free = model == TangentialModel::Free;
     let solved = [
         coupled.tangential.traction_x.clone(),
@@ -1629,9 +1584,9 @@ fn coupled_dense(model: crate::solvers::coupled::TangentialModel) -> Result<Coup
         stick
             .iter()
             .map(|&i| {
-                row(&c[1][0], i, &solved[0])
-                    + row(&c[1][1], i, &solved[1])
-                    + row(&kq[1], i, &coupled.normal.pressure)
+                dense.row(&dense.c[1][0], i, &solved[0])
+                    + dense.row(&dense.c[1][1], i, &solved[1])
+                    + dense.row(&dense.kq[1], i, &coupled.normal.pressure)
             })
             .sum::<f64>()
             / stick.len().max(1) as f64
@@ -1639,55 +1594,15 @@ fn coupled_dense(model: crate::solvers::coupled::TangentialModel) -> Result<Coup
         0.0
     };
     let shift = [coupled.tangential.shift, shift_y];
-    let delta = coupled.normal.approach;
-    let mut p = vec![0.0; n];
-    let mut q = [vec![0.0; n], vec![0.0; n]];
     let p_scale = coupled.normal.max_pressure();
-    let mut sweeps = 0;
-    loop {
-        let mut change: f64 = 0.0;
-        for i in 0..n {
-            let g =
-                gap0[i] - delta + row(&c_n, i, &p) + row(&k[0], i, &q[0]) + row(&k[1], i, &q[1]);
-            let p_new = (p[i] - g / c_n[i * n + i]).max(0.0);
-            change = change.max((p_new - p[i]).abs());
-            p[i] = p_new;
-            let bound = friction * p[i];
-            let diag = c[0][0][i * n + i];
-            let u = |comp: usize, q: &[Vec<f64>; 2], p: &[f64]| {
-                row(&c[comp][0], i, &q[0]) + row(&c[comp][1], i, &q[1]) + row(&kq[comp], i, p)
-            };
-            if free {
-                let t = [
-                    q[0][i] + (shift[0] - u(0, &q, &p)) / diag,
-                    q[1][i] + (shift[1] - u(1, &q, &p)) / diag,
-                ];
-                let norm = t[0].hypot(t[1]);
-                let scale = if norm > bound { bound / norm } else { 1.0 };
-                for comp in 0..2 {
-                    let v = t[comp] * scale;
-                    change = change.max((v - q[comp][i]).abs());
-                    q[comp][i] = v;
-                }
-            } else {
-                let t_new = (q[0][i] + (shift[0] - u(0, &q, &p)) / diag).clamp(-bound, bound);
-                change = change.max((t_new - q[0][i]).abs());
-                q[0][i] = t_new;
-            }
-        }
-        sweeps += 1;
-        if change <= 1e-13 * p_scale {
-            break;
-        }
-        if sweeps >= 20_000 {
-            return Err(crate::Error::NotConverged {
-                solver: "dense projected Gauss-Seidel (coupled check)",
-                iterations: sweeps,
-                residual: change / p_scale,
-                tolerance: 1e-13,
-            });
-        }
-    }
+    let (p, q, sweeps) = dense.gauss_seidel(
+        &gap0,
+        coupled.normal.approach,
+        shift,
+        friction,
+        free,
+        p_scale,
+    )?;
     let max_diff = |a: &[f64], b: &[f64]| {
         a.iter()
             .zip(b)
@@ -1703,6 +1618,142 @@ fn coupled_dense(model: crate::solvers::coupled::TangentialModel) -> Result<Coup
         dense_normal_load: p.iter().sum::<f64>() * area,
         dense_tangential_force: q[0].iter().sum::<f64>() * area,
     })
+}
+
+/// The dense influence matrices of [`coupled_dense`], from each body's displacements (body 2
+/// carries -q; its frame is mirrored, so its in-plane response adds to the compliance and its
+/// cross terms enter with the opposite sign). Row-major n x n: c_n (u_z by p), c[a][b] (u_a
+/// by q_b), k[b] (u_z by q_b), kq[a] (u_a by p).
+struct DenseCoupled {
+    n: usize,
+    c_n: Vec<f64>,
+    c: [[Vec<f64>; 2]; 2],
+    k: [Vec<f64>; 2],
+    kq: [Vec<f64>; 2],
+}
+
+impl DenseCoupled {
+    /// The matrices of the two bodies on `grid` (`n_side` elements a side).
+    fn new(
+        grid: &SurfaceGrid,
+        n_side: usize,
+        steel: &ElasticMaterial,
+        aluminium: &ElasticMaterial,
+    ) -> Self {
+        let n = grid.len();
+        let (hx, hy) = (0.5 * grid.dx(), 0.5 * grid.dy());
+        let mut c_n = vec![0.0; n * n];
+        let mut c = [
+            [vec![0.0; n * n], vec![0.0; n * n]],
+            [vec![0.0; n * n], vec![0.0; n * n]],
+        ];
+        let mut k = [vec![0.0; n * n], vec![0.0; n * n]];
+        let mut kq = [vec![0.0; n * n], vec![0.0; n * n]];
+        for i in 0..n {
+            for j in 0..n {
+                let x = grid.x(i % n_side) - grid.x(j % n_side);
+                let y = grid.y(i / n_side) - grid.y(j / n_side);
+                let (g1, n1) = (steel.shear_modulus(), steel.poisson_ratio());
+                let (g2, n2) = (aluminium.shear_modulus(), aluminium.poisson_ratio());
+                let p1 = love::pressure_displacement(x, y, hx, hy, g1, n1);
+                let p2 = love::pressure_displacement(x, y, hx, hy, g2, n2);
+                let q1 = [
+                    love::shear_x_displacement(x, y, hx, hy, g1, n1),
+                    love::shear_y_displacement(x, y, hx, hy, g1, n1),
+                ];
+                let q2 = [
+                    love::shear_x_displacement(x, y, hx, hy, g2, n2),
+                    love::shear_y_displacement(x, y, hx, hy, g2, n2),
+                ];
+                let ij = i * n + j;
+                c_n[ij] = p1[2] + p2[2];
+                for comp in 0..2 {
+                    for load in 0..2 {
+                        c[comp][load][ij] = q1[load][comp] + q2[load][comp];
+                    }
+                    k[comp][ij] = q1[comp][2] - q2[comp][2];
+                    kq[comp][ij] = p1[comp] - p2[comp];
+                }
+            }
+        }
+        Self { n, c_n, c, k, kq }
+    }
+
+    /// Row `i` of the n x n matrix `m` times `v`.
+    fn row(&self, m: &[f64], i: usize, v: &[f64]) -> f64 {
+        let n = self.n;
+        m[i * n..(i + 1) * n]
+            .iter()
+            .zip(v)
+            .map(|(a, b)| a * b)
+            .sum()
+    }
+
+    /// Projected Gauss-Seidel on the full complementarity system in p and tau at the
+    /// approach `delta` and shift `shift` (vector traction projected onto the disc when
+    /// `free`, else the x traction clamped), swept to a change of 1e-13 `p_scale` (at most
+    /// 20 000 sweeps); returns p, tau and the sweeps.
+    fn gauss_seidel(
+        &self,
+        gap0: &[f64],
+        delta: f64,
+        shift: [f64; 2],
+        friction: f64,
+        free: bool,
+        p_scale: f64,
+    ) -> Result<(Vec<f64>, [Vec<f64>; 2], usize)> {
+        let n = self.n;
+        let (c_n, c, k, kq) = (&self.c_n, &self.c, &self.k, &self.kq);
+        let row = |m: &[f64], i: usize, v: &[f64]| self.row(m, i, v);
+        let mut p = vec![0.0; n];
+        let mut q = [vec![0.0; n], vec![0.0; n]];
+        let mut sweeps = 0;
+        loop {
+            let mut change: f64 = 0.0;
+            for i in 0..n {
+                let g =
+                    gap0[i] - delta + row(c_n, i, &p) + row(&k[0], i, &q[0]) + row(&k[1], i, &q[1]);
+                let p_new = (p[i] - g / c_n[i * n + i]).max(0.0);
+                change = change.max((p_new - p[i]).abs());
+                p[i] = p_new;
+                let bound = friction * p[i];
+                let diag = c[0][0][i * n + i];
+                let u = |comp: usize, q: &[Vec<f64>; 2], p: &[f64]| {
+                    row(&c[comp][0], i, &q[0]) + row(&c[comp][1], i, &q[1]) + row(&kq[comp], i, p)
+                };
+                if free {
+                    let t = [
+                        q[0][i] + (shift[0] - u(0, &q, &p)) / diag,
+                        q[1][i] + (shift[1] - u(1, &q, &p)) / diag,
+                    ];
+                    let norm = t[0].hypot(t[1]);
+                    let scale = if norm > bound { bound / norm } else { 1.0 };
+                    for comp in 0..2 {
+                        let v = t[comp] * scale;
+                        change = change.max((v - q[comp][i]).abs());
+                        q[comp][i] = v;
+                    }
+                } else {
+                    let t_new = (q[0][i] + (shift[0] - u(0, &q, &p)) / diag).clamp(-bound, bound);
+                    change = change.max((t_new - q[0][i]).abs());
+                    q[0][i] = t_new;
+                }
+            }
+            sweeps += 1;
+            if change <= 1e-13 * p_scale {
+                break;
+            }
+            if sweeps >= 20_000 {
+                return Err(crate::Error::NotConverged {
+                    solver: "dense projected Gauss-Seidel (coupled check)",
+                    iterations: sweeps,
+                    residual: change / p_scale,
+                    tolerance: 1e-13,
+                });
+            }
+        }
+        Ok((p, q, sweeps))
+    }
 }
 
 /// Rows of [`coupled_dense_check`] and [`coupled_free_dense_check`]: the alternation against
