@@ -44,9 +44,11 @@
 //! serial and parallel give the same bits.
 
 use rayon::prelude::*;
+use spade::handles::{FixedFaceHandle, InnerTag};
 use spade::{
     AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
 };
+use std::collections::HashSet;
 
 use crate::analysis::damage::sum::ExactSum;
 use crate::analysis::damage::{DamageMesh, Execution};
@@ -192,6 +194,37 @@ pub fn triangulate_region(
     target_size: f64,
 ) -> Result<RegionTriangulation> {
     let r = check_region(mesh, region)?;
+    let (target_area, estimate) = triangle_estimate(mesh, region, r, target_size)?;
+    let (points, edges) = boundary_samples(r, target_size);
+    let nb = points.len();
+    let (centre, scale) = spade_frame(&points);
+    let (cdt, excluded) = refined_cdt(
+        &r.name,
+        &points,
+        edges,
+        (centre, scale),
+        target_area,
+        estimate,
+    )?;
+    let (nodes, triangles) = inner_triangles(&r.name, &cdt, &excluded, points, (centre, scale))?;
+    Ok(RegionTriangulation {
+        region,
+        nodes,
+        triangles,
+        boundary_nodes: nb,
+    })
+}
+
+/// The target triangle area sqrt(3)/4 h^2 for `target_size` h and the estimated triangle
+/// count of region `region` (`r`): its area over the target area plus the boundary samples.
+/// Errors: h not finite or not > 0, or an estimate over [`MAX_TRIANGLES`] (naming the
+/// smallest h that fits).
+fn triangle_estimate(
+    mesh: &BemMesh,
+    region: usize,
+    r: &RegionMesh,
+    target_size: f64,
+) -> Result<(f64, f64)> {
     if !(target_size.is_finite() && target_size > 0.0) {
         return Err(Error::invalid(
             "target_size",
@@ -222,8 +255,12 @@ pub fn triangulate_region(
             ),
         ));
     }
+    Ok((target_area, estimate))
+}
 
-    // Boundary samples, loop by loop, and the constraint edges closing each loop.
+/// Boundary samples of region `r` at spacing about `h`, loop by loop, and the constraint
+/// edges closing each loop.
+fn boundary_samples(r: &RegionMesh, h: f64) -> (Vec<[f64; 2]>, Vec<[usize; 2]>) {
     let mut points: Vec<[f64; 2]> = Vec::new();
     let mut edges: Vec<[usize; 2]> = Vec::new();
     for lp in loops(r) {
@@ -239,13 +276,15 @@ pub fn triangulate_region(
             edges.push([i, if i + 1 < last { i + 1 } else { first }]);
         }
     }
-    let nb = points.len();
+    (points, edges)
+}
 
-    // Spade works on coordinates centred on the region's bounding box and scaled by its
-    // size (well inside spade's allowed coordinate range whatever the units); the boundary
-    // nodes keep their exact coordinates, the interior nodes are mapped back.
+/// The frame spade works in: coordinates centred on the bounding box of `points` and scaled
+/// by its size (well inside spade's allowed coordinate range whatever the units); returns the
+/// centre and the scale.
+fn spade_frame(points: &[[f64; 2]]) -> ([f64; 2], f64) {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in &points {
+    for p in points {
         for d in 0..2 {
             lo[d] = lo[d].min(p[d]);
             hi[d] = hi[d].max(p[d]);
@@ -253,14 +292,42 @@ pub fn triangulate_region(
     }
     let centre = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
     let scale = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(f64::MIN_POSITIVE);
+    (centre, scale)
+}
+
+/// The triangulation spade builds and refines.
+type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
+
+/// Nodes (m) and counter-clockwise triangles of a triangulation.
+type NodesTriangles = (Vec<[f64; 2]>, Vec<[usize; 3]>);
+
+/// An [`Error::Numerical`] of [`triangulate_region`].
+fn numerical(detail: String) -> Error {
+    Error::Numerical {
+        context: "triangulate_region",
+        detail,
+    }
+}
+
+/// The constrained Delaunay triangulation of the boundary samples `points` and `edges` of
+/// region `name` in the spade `frame` (centre, scale), refined by Ruppert's algorithm to the
+/// target area within a vertex budget of 4 `estimate` + 1000; returns it and its excluded
+/// (outer) faces. Errors: samples that are not valid vertices, a boundary that crosses or
+/// touches itself, a refinement that does not finish.
+fn refined_cdt(
+    name: &str,
+    points: &[[f64; 2]],
+    edges: Vec<[usize; 2]>,
+    frame: ([f64; 2], f64),
+    target_area: f64,
+    estimate: f64,
+) -> Result<(Cdt, HashSet<FixedFaceHandle<InnerTag>>)> {
+    let (centre, scale) = frame;
+    let nb = points.len();
     let vertices: Vec<Point2<f64>> = points
         .iter()
         .map(|p| Point2::new((p[0] - centre[0]) / scale, (p[1] - centre[1]) / scale))
         .collect();
-    let numerical = |detail: String| Error::Numerical {
-        context: "triangulate_region",
-        detail,
-    };
     let mut conflicts = 0usize;
     let mut cdt =
         ConstrainedDelaunayTriangulation::<Point2<f64>>::try_bulk_load_cdt(vertices, edges, |_| {
@@ -273,10 +340,9 @@ pub fn triangulate_region(
         })?;
     if conflicts > 0 || cdt.num_vertices() != nb {
         return Err(numerical(format!(
-            "the sampled boundary of region '{}' crosses or touches itself ({conflicts} \
+            "the sampled boundary of region '{name}' crosses or touches itself ({conflicts} \
              crossing edges, {} coincident samples); refine the boundary mesh where loops \
              come close",
-            r.name,
             nb - cdt.num_vertices().min(nb)
         )));
     }
@@ -290,14 +356,26 @@ pub fn triangulate_region(
     let result = cdt.refine(params);
     if !result.refinement_complete {
         return Err(numerical(format!(
-            "the refinement of region '{}' did not finish within {budget} added vertices",
-            r.name
+            "the refinement of region '{name}' did not finish within {budget} added vertices"
         )));
     }
-    let excluded: std::collections::HashSet<_> = result.excluded_faces.into_iter().collect();
+    let excluded: HashSet<_> = result.excluded_faces.into_iter().collect();
+    Ok((cdt, excluded))
+}
 
-    // Keep the inner faces; number the boundary nodes as sampled and the interior nodes
-    // in order of first use.
+/// The inner faces of `cdt` (less `excluded`) as counter-clockwise triangles of region
+/// `name`: the boundary nodes `points` as sampled (exact coordinates), the interior nodes
+/// mapped back from the spade `frame` in order of first use. Errors: a triangle of zero area
+/// after the mapping, no triangle at all.
+fn inner_triangles(
+    name: &str,
+    cdt: &Cdt,
+    excluded: &HashSet<FixedFaceHandle<InnerTag>>,
+    points: Vec<[f64; 2]>,
+    frame: ([f64; 2], f64),
+) -> Result<NodesTriangles> {
+    let (centre, scale) = frame;
+    let nb = points.len();
     let mut index: Vec<usize> = (0..cdt.num_vertices())
         .map(|v| if v < nb { v } else { usize::MAX })
         .collect();
@@ -323,22 +401,16 @@ pub fn triangulate_region(
         }
         if a == 0.0 || !a.is_finite() {
             return Err(numerical(format!(
-                "a triangle of region '{}' has zero area after mapping back to model \
-                 coordinates",
-                r.name
+                "a triangle of region '{name}' has zero area after mapping back to model \
+                 coordinates"
             )));
         }
         triangles.push(tri);
     }
     if triangles.is_empty() {
-        return Err(numerical(format!("no triangle inside region '{}'", r.name)));
+        return Err(numerical(format!("no triangle inside region '{name}'")));
     }
-    Ok(RegionTriangulation {
-        region,
-        nodes,
-        triangles,
-        boundary_nodes: nb,
-    })
+    Ok((nodes, triangles))
 }
 
 /// Displacement, stress and strain at one point.
