@@ -40,7 +40,7 @@ fn column() -> (BemModel, BoundaryConditions) {
 /// u_x(x, t) of the column for the end pressure p0 H(t) (p0 = E = c = L = 1): the inverse of
 /// `p0 sinh(k (L - x)) / (s E k cosh(k L))`, k = s/c, expanded in reflections,
 /// `sum_n (-1)^n [R(t - (x + 2nL)/c) - R(t - (2L - x + 2nL)/c)]` with the ramp
-/// R(t) = max(t, 0) (DYNAMICS.md 3.1: u(0, t) a triangle wave, peak 2 p0 L/E at 2L/c).
+/// R(t) = max(t, 0) (docs/theory/DYNAMICS.md 3.1: u(0, t) a triangle wave, peak 2 p0 L/E at 2L/c).
 fn column_exact(x: f64, t: f64) -> f64 {
     let ramp = |t: f64| t.max(0.0);
     (0..8)
@@ -84,7 +84,7 @@ fn column_error(steps: usize, load: &TimeFunction, exact: &dyn Fn(f64, f64) -> f
 
 /// The sudden pressure (a step, 1 at t = 0): the wave fronts are kinks of u that CQ smears
 /// over a few steps; the error falls like a power of dt below 1 (a step sampled as 1 at
-/// t = 0 limits CQ to first order even for smooth responses, DYNAMICS.md pitfall 5 and
+/// t = 0 limits CQ to first order even for smooth responses, docs/theory/DYNAMICS.md pitfall 5 and
 /// table C, and here the responses have kinks). Measured (max over three probes and all
 /// steps, relative to the peak 2 p0 L/E): 80, 160, 320 steps to 4 L/c (beta = c dt/h =
 /// 0.8, 0.4, 0.2): 3.14e-2, 1.81e-2, 1.10e-2 (ratios 1.73, 1.65, order ~0.75). Asserted:
@@ -169,8 +169,8 @@ impl LaplaceResponse for CavityWall {
     }
 }
 
-/// The cylindrical cavity under a sudden internal pressure p0 H(t) (DYNAMICS.md 3.2, nu =
-/// 0.25, rho = mu = a = p0 = 1): the wall displacement u_r(a, t) against the reference
+/// The cylindrical cavity under a sudden internal pressure p0 H(t)
+/// (docs/theory/DYNAMICS.md 3.2, nu = 0.25, rho = mu = a = p0 = 1): the wall displacement u_r(a, t) against the reference
 /// table (Talbot at 30 digits) at t c2/a = 0.25 ... 3, on a ring a = 1, R = 4 whose outer
 /// boundary reflects the wave back to the wall only at 2 (R - a)/c1 = 3.46 a/c2, after the
 /// last compared time: until then the ring is the infinite plane. 16 quadratic elements per
