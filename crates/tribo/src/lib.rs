@@ -15,7 +15,10 @@
 //! 2. [`operators`]: discretized influence operators on grids (FFT convolution, dense) and
 //!    boundary meshes (the 2D BEM's H and G matrices);
 //! 3. [`solvers`]: contact problems; each returns a solution carrying its convergence record;
-//! 4. [`analysis`]: pure functions of fields (error measures against references, ...).
+//! 4. [`analysis`]: pure functions of fields (error measures against references, ...);
+//! 5. [`dynamics`]: the dynamic statement (wave effects) by convolution quadrature on the
+//!    2D BEM: Laplace-domain kernels and operators, CQ weights and convolutions, time
+//!    functions, the dynamic result type.
 //!
 //! [`validation`] runs the verification suite whose rows `tribo validate` prints and the
 //! tests assert.
