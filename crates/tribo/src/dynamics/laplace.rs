@@ -321,6 +321,112 @@ impl LaplaceBem {
         Ok(out)
     }
 
+    /// The output index of the unknown of DOF component (`region`, `node`, `direction`): its
+    /// displacement where the traction is known (or on an interface), its traction where the
+    /// displacement is known; None for an index out of range.
+    pub fn unknown_output(&self, region: usize, node: usize, direction: usize) -> Option<usize> {
+        match *self.dofs.get(region)?.get(node)?.get(direction)? {
+            Dof::U { col, .. } | Dof::T { col, .. } => Some(col),
+            Dof::Interface { u_col, .. } => Some(u_col),
+        }
+    }
+
+    /// The system unknowns (the first `outputs() - 2 probes` values of
+    /// [`LaplaceBem::respond`], same units and order; no probes) for several vectors of known
+    /// values at once: one assembly and one LU factorization at `s` for all of them (what a
+    /// transfer matrix of many inputs needs).
+    ///
+    /// Errors: as [`LaplaceBem::respond_state`] for each vector.
+    pub fn respond_columns(&self, s: c64, known: &[Vec<c64>]) -> Result<Vec<Vec<c64>>> {
+        for k in known {
+            self.check_input(s, k)?;
+        }
+        let mesh = &self.problem.mesh;
+        let ops = mesh
+            .regions
+            .iter()
+            .zip(&self.problem.operators)
+            .zip(&self.kernels)
+            .map(|((region, statics), kernel)| region_operators(region, statics, kernel, s))
+            .collect::<Result<Vec<_>>>()?;
+        let refs: Vec<(&Mat<c64>, &Mat<c64>)> = ops.iter().map(|(h, g)| (h, g)).collect();
+        let zero: Vec<Vec<[c64; 2]>> = mesh
+            .regions
+            .iter()
+            .map(|r| vec![[c64::ZERO; 2]; r.nodes.len()])
+            .collect();
+        let (a, _) = self
+            .problem
+            .assemble_system(&self.dofs, self.ncol, &refs, &zero, &[])?;
+        // Right-hand sides: the known column of G (known traction) or -H (known
+        // displacement) times the value, as the system build of the static solver.
+        let mut offsets = Vec::with_capacity(ops.len());
+        let mut offset = 0;
+        for (h, _) in &ops {
+            offsets.push(offset);
+            offset += h.nrows();
+        }
+        let mut b = Mat::<c64>::zeros(self.ncol, known.len());
+        for (j, values) in known.iter().enumerate() {
+            for (k, v) in self.known.iter().zip(values) {
+                if *v == c64::ZERO {
+                    continue;
+                }
+                let (h, g) = &ops[k.region];
+                let c = 2 * k.node + k.direction;
+                let off = offsets[k.region];
+                for row in 0..h.nrows() {
+                    if k.displacement {
+                        b[(off + row, j)] -= h[(row, c)] * v;
+                    } else {
+                        b[(off + row, j)] += g[(row, c)] * v;
+                    }
+                }
+            }
+        }
+        let (x, _) = self.problem.solve_assembled(a, b)?;
+        let scale = self.problem.traction_scale();
+        Ok((0..known.len())
+            .map(|j| {
+                (0..self.ncol)
+                    .map(|c| {
+                        let v = x[(c, j)];
+                        if self.traction_col[c] {
+                            v * scale
+                        } else {
+                            v
+                        }
+                    })
+                    .collect()
+            })
+            .collect())
+    }
+
+    /// Checks `s` and one vector of known values (see [`LaplaceBem::respond_state`]).
+    fn check_input(&self, s: c64, known: &[c64]) -> Result<()> {
+        if !(s.re.is_finite() && s.im.is_finite() && s.re > 0.0) {
+            return Err(Error::invalid(
+                "s",
+                format!("{s}"),
+                "the Laplace parameter must be finite with Re s > 0",
+            ));
+        }
+        if known.len() != self.known.len() {
+            return Err(Error::invalid(
+                "known",
+                known.len(),
+                format!("must give one value per known DOF ({})", self.known.len()),
+            ));
+        }
+        if known
+            .iter()
+            .any(|v| !(v.re.is_finite() && v.im.is_finite()))
+        {
+            return Err(Error::invalid("known", "a value", "must be finite"));
+        }
+        Ok(())
+    }
+
     /// The boundary state and probe displacements at `s` for the known values `known`.
     ///
     /// Errors: `known` of the wrong length or not finite, s not finite or Re s <= 0

@@ -7,6 +7,7 @@
 //! static-like BEM problem with the "instantaneous" matrices H(s0), G(s0), so the static
 //! contact machinery applies step by step with a history right-hand side.
 
+pub mod contact;
 pub mod cq;
 pub mod history;
 pub mod kernel;

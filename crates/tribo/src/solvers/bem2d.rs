@@ -591,6 +591,22 @@ impl BemProblem {
         known: &[Vec<[T; 2]>],
         extra: &[Option<Vec<f64>>],
     ) -> Result<(Mat<T>, f64)> {
+        let (a, b) = self.assemble_system(dofs, ncol, ops, known, extra)?;
+        self.solve_assembled(a, b)
+    }
+
+    /// The matrix `A` and right-hand side `b` of [`BemProblem::solve_system`] (the traction
+    /// columns scaled by [`BemProblem::traction_scale`]).
+    ///
+    /// Errors: [`Error::OutOfMemory`].
+    pub(crate) fn assemble_system<T: BemScalar>(
+        &self,
+        dofs: &[Vec<[Dof; 2]>],
+        ncol: usize,
+        ops: &[(&Mat<T>, &Mat<T>)],
+        known: &[Vec<[T; 2]>],
+        extra: &[Option<Vec<f64>>],
+    ) -> Result<(Mat<T>, Mat<T>)> {
         let nrow = self.dof();
         debug_assert_eq!(nrow, ncol);
         let scale = self.traction_scale();
@@ -634,6 +650,19 @@ impl BemProblem {
             }
             offset += n2;
         }
+        Ok((a, b))
+    }
+
+    /// LU-solves the assembled system `A x = b` (any number of right-hand sides) and checks
+    /// it: returns the solution and the relative residual (infinity norms over all columns).
+    ///
+    /// Errors: [`Error::OutOfMemory`]; a singular or inaccurate solve ([`Error::Numerical`]).
+    pub(crate) fn solve_assembled<T: BemScalar>(
+        &self,
+        a: Mat<T>,
+        b: Mat<T>,
+    ) -> Result<(Mat<T>, f64)> {
+        let (nrow, ncol) = (a.nrows(), a.ncols());
         // The LU's copy of A and the residual check's product: allocated inside faer.
         probe_memory(
             &format!("the LU factorization of the 2D BEM system ({nrow} x {ncol})"),
@@ -652,7 +681,9 @@ impl BemProblem {
         };
         let (na, nx, nb, nr) = (inf(&a), inf(&x), inf(&b), inf(&res));
         let residual = nr / (na * nx + nb).max(f64::MIN_POSITIVE);
-        if !(residual.is_finite() && residual < 1e-8) || (0..ncol).any(|i| !x[(i, 0)].finite()) {
+        if !(residual.is_finite() && residual < 1e-8)
+            || (0..x.ncols()).any(|j| (0..ncol).any(|i| !x[(i, j)].finite()))
+        {
             return Err(Error::Numerical {
                 context: "2D BEM solve",
                 detail: format!(

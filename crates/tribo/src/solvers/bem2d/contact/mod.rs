@@ -659,12 +659,14 @@ pub struct ContactProblem {
 
 mod bodies;
 mod condense;
+mod geometry;
 mod linalg;
 mod setup;
 mod step;
 
 use bodies::{find_free_bodies, free_body_equilibrium, node_frame};
 use condense::BodyAssembly;
+pub use geometry::{pair_geometries, PairGeometry, SlaveNodeGeometry};
 use linalg::{dot3, symmetric_eigen};
 use setup::{
     check_pair_bodies, claim_roles, classify_dofs, group_loads, load_groups, model_scales,
