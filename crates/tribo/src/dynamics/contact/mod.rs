@@ -81,6 +81,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod compliance;
+pub(crate) mod reference;
 mod step;
 
 #[cfg(test)]

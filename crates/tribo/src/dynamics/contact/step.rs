@@ -1,6 +1,7 @@
 //! One marching step: the contact problem with the instantaneous compliance `W_0` and the
 //! known right-hand side, solved by the primal-dual active set method of the static solver
-//! (Alart & Curnier 1991; Hüeber, Stadler & Wohlmuth 2008; see "Solver" in the module
+//! (Alart & Curnier 1991; Hüeber, Stadler & Wohlmuth, SIAM J. Sci. Comput. 30 (2008)
+//! 572-596; see "Solver" in the module
 //! docs of [`crate::solvers::bem2d::contact`]).
 
 use faer::linalg::solvers::Solve;
