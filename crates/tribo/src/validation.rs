@@ -34,6 +34,8 @@ use crate::solvers::tangential::{
 
 mod bem2d;
 pub use bem2d::bem2d_rows;
+pub(crate) mod dyn_verify;
+pub use dyn_verify::dyn_verify_rows;
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -2090,5 +2092,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(free_direction_rows()?);
     rows.extend(damage_rows()?);
     rows.extend(bem2d_rows()?);
+    rows.extend(dyn_verify_rows()?);
     Ok(rows)
 }
