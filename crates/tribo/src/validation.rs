@@ -34,7 +34,7 @@ use crate::solvers::tangential::{
 
 mod bem2d;
 pub use bem2d::bem2d_rows;
-pub(crate) mod dyn_verify;
+pub mod dyn_verify;
 pub use dyn_verify::dyn_verify_rows;
 
 /// How a row's error is measured.

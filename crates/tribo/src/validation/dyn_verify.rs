@@ -398,7 +398,10 @@ impl LaplaceResponse for AllDisplacements<'_> {
 
 /// Every nodal displacement and traction of region 0 (4 outputs per node: u_x, u_y, t_x,
 /// t_y), whether known or unknown: the state the static solution gives.
-pub struct BoundaryState<'a>(pub &'a LaplaceBem);
+pub struct BoundaryState<'a>(
+    /// The model.
+    pub &'a LaplaceBem,
+);
 
 impl LaplaceResponse for BoundaryState<'_> {
     fn inputs(&self) -> usize {
@@ -502,7 +505,7 @@ pub fn dyn_verify_rows() -> Result<Vec<ValidationRow>> {
         "Achenbach 1973: x^2 = 2 - 2/sqrt 3 for nu = 0.25",
     ));
     let a = lamb_arrivals(0.2, 0.25, 0.1)?;
-    // TODO tolerances from the measurement.
+    // Measured 0.5669 (-0.1 step); half a step allowed (c1 and c2 swapped: 1.0, 8 steps).
     rows.push(ValidationRow::new(
         lamb_case,
         "P arrival delay between the axis nodes at depth 1 and 2 m (onset), s",
@@ -512,23 +515,28 @@ pub fn dyn_verify_rows() -> Result<Vec<ValidationRow>> {
         0.05,
         lamb_src,
     ));
+    // Measured 1.1340 (+0.46 step; the finer test: +1.1 steps at dt = 0.05); 3/4 step
+    // allowed. At this resolution it separates cR from c1 (1/c1 = 0.577), not cleanly from
+    // c2 (1/c2 = 1.0): the library test does that at h = 0.1, dt = 0.05.
     rows.push(ValidationRow::new(
         lamb_case,
         "Rayleigh delay between the surface nodes at x = 1 and 2 m (peak of u_x), s",
         1.0 / cr,
         a.rayleigh_ux,
         ErrorMeasure::Absolute,
-        0.1,
+        0.075,
         lamb_src,
     ));
-    let run = stability_run(CqMethod::Bdf2, 1.0, 1000, 1)?;
+    // Measured 3.5e-7 at 1000 steps (BDF2 damps the pulse's echoes); an unstable mode grows
+    // by orders of magnitude over these 500 steps (~290 transits).
+    let run = stability_run(CqMethod::Bdf2, 1.0, 500, 1)?;
     rows.push(ValidationRow::new(
-        "Stability: clamped unit square (1 element per side), pressure pulse then free, BDF2, c1 dt/h = 1, 1000 steps",
+        "Stability: clamped unit square (1 element per side), pressure pulse then free, BDF2, c1 dt/h = 1, 500 steps",
         "max |u| over the last tenth / over the first tenth",
         0.0,
         run.late / run.early,
         ErrorMeasure::Bound,
-        1.0,
+        1e-3,
         "bounded response (no growth): docs/theory/DYNAMICS.md sec. 5",
     ));
     let err = block_slow_ramp_error(20.0, 0.2)?;
@@ -539,7 +547,7 @@ pub fn dyn_verify_rows() -> Result<Vec<ValidationRow>> {
         err,
         ErrorMeasure::Bound,
         2.5 * (2.0_f64 / 20.0).powi(2),
-        "static BEM solve; quasi-static error 2.5 (T_tr/T0)^2, T_tr = 2 s (measured 1.1e-2)",
+        "static BEM solve; tolerance 2.5 (T_tr/T0)^2, T_tr = 2 s the shear transit of the width (measured 1.1e-2)",
     ));
     Ok(rows)
 }

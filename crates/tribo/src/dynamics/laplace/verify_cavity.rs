@@ -99,22 +99,27 @@ fn cavity_time_study() {
     }
 }
 
-/// The cheap part of [`cavity_time_study`]: BDF2 and Radau IIA 2 on the ring with 4 + 4
-/// elements per half circle (the time error does not depend on the mesh at these sizes,
-/// see there). Asserted: the observed order within -0.35 .. +0.5 of the method's order (2,
-/// 3): a first-order error anywhere in the chain (a wrong weight or symbol, a sample-time
-/// shift of the stages) drops both to ~1.
+/// The cheap part of [`cavity_time_study`]: BDF2 on the ring with 4 + 4 elements per half
+/// circle (the time error does not depend on the mesh at these sizes, see there).
+/// Measured: 2.260e-2, 6.729e-3, order 1.75 (Radau IIA 2 on the same ring: 8.858e-4,
+/// 1.343e-4, order 2.72, in the ignored [`cavity_time_study_radau`]: together 200 s under
+/// load). Asserted: the observed order within -0.35 .. +0.5 of 2: a first-order error
+/// anywhere in the chain (a wrong weight or symbol, a sample-time shift) drops it to ~1.
 #[test]
 fn cavity_wall_converges_in_time_at_the_methods_order() {
     let wall = CavityWall::new(1.0, 2.0, 4, 4);
-    for (method, order) in [(CqMethod::Bdf2, 2.0), (CqMethod::RadauIia2, 3.0)] {
-        let (_, _, p) = time_study(&wall, 2.0, 3.0, method, 15);
-        assert!(
-            p > order - 0.35 && p < order + 0.5,
-            "{}: order {p:.2}",
-            method.name()
-        );
-    }
+    let (_, _, p) = time_study(&wall, 2.0, 3.0, CqMethod::Bdf2, 15);
+    assert!(p > 1.65 && p < 2.5, "bdf2: order {p:.2}");
+}
+
+/// Radau IIA 2 on the ring of [`cavity_wall_converges_in_time_at_the_methods_order`]
+/// (ignored: 130 s under load). Asserted: the observed order within -0.35 .. +0.5 of 3.
+#[test]
+#[ignore]
+fn cavity_time_study_radau() {
+    let wall = CavityWall::new(1.0, 2.0, 4, 4);
+    let (_, _, p) = time_study(&wall, 2.0, 3.0, CqMethod::RadauIia2, 15);
+    assert!(p > 2.65 && p < 3.5, "radau_iia_2: order {p:.2}");
 }
 
 /// The spatial error of the chain on the cavity wall: the ring a = 1, R = 3 (8 elements
