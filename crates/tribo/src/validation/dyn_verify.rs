@@ -527,7 +527,7 @@ pub fn dyn_verify_rows() -> Result<Vec<ValidationRow>> {
         0.075,
         lamb_src,
     ));
-    // Measured 3.5e-7 at 1000 steps (BDF2 damps the pulse's echoes); an unstable mode grows
+    // Measured 8.3e-7 (3.5e-7 at 1000 steps: BDF2 damps the pulse's echoes); an unstable mode grows
     // by orders of magnitude over these 500 steps (~290 transits).
     let run = stability_run(CqMethod::Bdf2, 1.0, 500, 1)?;
     rows.push(ValidationRow::new(
