@@ -36,6 +36,8 @@ mod bem2d;
 pub use bem2d::bem2d_rows;
 mod dyn_contact;
 pub use dyn_contact::dyn_contact_rows;
+pub mod dyn_verify;
+pub use dyn_verify::dyn_verify_rows;
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -2093,5 +2095,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(damage_rows()?);
     rows.extend(bem2d_rows()?);
     rows.extend(dyn_contact_rows()?);
+    rows.extend(dyn_verify_rows()?);
     Ok(rows)
 }

@@ -530,3 +530,15 @@ mod tests;
 
 #[cfg(test)]
 mod time_tests;
+
+#[cfg(test)]
+mod verify_cavity;
+
+#[cfg(test)]
+mod verify_stability;
+
+#[cfg(test)]
+mod verify_static;
+
+#[cfg(test)]
+mod verify_lamb;

@@ -12,4 +12,6 @@ pub mod cq;
 pub mod history;
 pub mod kernel;
 pub mod laplace;
+#[cfg(test)]
+pub(crate) mod testing;
 pub mod time_function;

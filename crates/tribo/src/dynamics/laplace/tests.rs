@@ -2,42 +2,11 @@
 //! (docs/theory/DYNAMICS.md sec. 3).
 
 use super::*;
-use crate::kernels::kelvin2d::PlaneCondition;
+use crate::dynamics::testing::{
+    cavity_bcs, cavity_wall_exact, column, complex, rectangle, ring, Errors,
+};
 use crate::material::ElasticMaterial;
-use crate::operators::bem2d::{Region, Segment};
 use crate::solvers::bem2d::{Profile, SegmentBc};
-
-/// A rectangle L x W with `nx` elements along x and `ny` across.
-fn rectangle(m: ElasticMaterial, l: f64, w: f64, nx: usize, ny: usize) -> BemModel {
-    BemModel::new(
-        PlaneCondition::Strain,
-        vec![Region::new(
-            "column",
-            m,
-            vec![
-                Segment::line("bottom", [0.0, 0.0], [l, 0.0], nx),
-                Segment::line("right", [l, 0.0], [l, w], ny),
-                Segment::line("top", [l, w], [0.0, w], nx),
-                Segment::line("left", [0.0, w], [0.0, 0.0], ny),
-            ],
-        )],
-    )
-}
-
-struct Errors(Vec<f64>);
-
-impl std::fmt::Display for Errors {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        for e in &self.0 {
-            write!(f, "{e:.2e} ")?;
-        }
-        Ok(())
-    }
-}
-
-fn complex(v: &[f64], f: c64) -> Vec<c64> {
-    v.iter().map(|&x| f * x).collect()
-}
 
 /// Max error of u_x against `exact(x)` and max |u_y|, over every node, relative to the
 /// max |exact|.
@@ -66,20 +35,14 @@ fn column_error(bem: &LaplaceBem, state: &LaplaceState, exact: &dyn Fn(f64) -> c
 /// integral stalls at O(1e-2) or worse).
 #[test]
 fn column_with_nu_zero_matches_the_1d_solution() {
-    let m = ElasticMaterial::new(1.0, 0.0).unwrap();
-    let (l, w) = (1.0, 0.25);
-    let bcs = BoundaryConditions::new()
-        .set(
-            "left",
-            SegmentBc::traction(Profile::Uniform(1.0), Profile::Uniform(0.0)),
-        )
-        .set("right", SegmentBc::roller_x());
+    let l = 1.0;
     for s in [c64::new(0.5, 0.0), c64::new(2.0, 3.0), c64::new(12.0, 0.0)] {
         let k = s; // c1 = sqrt(E / rho) = 1 with nu = 0
         let exact = |x: f64| (k * (l - x)).sinh() / (k * (k * l).cosh());
         let mut errors = vec![];
         for nx in [4, 8, 16] {
-            let bem = LaplaceBem::new(&rectangle(m, l, w, nx, 2), &[1.0], &bcs, &[]).unwrap();
+            let (model, bcs) = column(nx, 2);
+            let bem = LaplaceBem::new(&model, &[1.0], &bcs, &[]).unwrap();
             let known = complex(bem.static_known_values(), c64::ONE);
             let state = bem.respond_state(s, &known).unwrap();
             errors.push(column_error(&bem, &state, &exact));
@@ -144,16 +107,10 @@ fn small_s_reproduces_the_static_solution() {
 /// Interior displacement (probe) of the column against the 1D solution at a few s.
 #[test]
 fn column_probes_match_the_1d_solution() {
-    let m = ElasticMaterial::new(1.0, 0.0).unwrap();
-    let (l, w) = (1.0, 0.25);
-    let bcs = BoundaryConditions::new()
-        .set(
-            "left",
-            SegmentBc::traction(Profile::Uniform(1.0), Profile::Uniform(0.0)),
-        )
-        .set("right", SegmentBc::roller_x());
+    let l = 1.0;
+    let (model, bcs) = column(16, 2);
     let probes = [[0.3, 0.1], [0.55, 0.2], [0.8, 0.125]];
-    let bem = LaplaceBem::new(&rectangle(m, l, w, 16, 2), &[1.0], &bcs, &probes).unwrap();
+    let bem = LaplaceBem::new(&model, &[1.0], &bcs, &probes).unwrap();
     for s in [c64::new(0.5, 0.0), c64::new(2.0, 3.0)] {
         let exact = |x: f64| (s * (l - x)).sinh() / (s * (s * l).cosh());
         let known = complex(bem.static_known_values(), c64::ONE);
@@ -194,45 +151,17 @@ fn bad_inputs_are_errors() {
 /// every halving gains 6x, the finest below 5e-4.
 #[test]
 fn cavity_wall_matches_the_closed_form_at_large_s() {
-    use complex_bessel::besselk;
-    use std::f64::consts::PI;
-    let (mu, nu) = (1.0, 0.25);
-    let m = ElasticMaterial::new(2.0 * mu * (1.0 + nu), nu).unwrap();
     let (a, big) = (1.0, 3.0);
-    let lam = 2.0 * mu * nu / (1.0 - 2.0 * nu);
-    let c1 = ((lam + 2.0 * mu) / 1.0_f64).sqrt();
-    let bcs = BoundaryConditions::new()
-        .set("hole_a", SegmentBc::Pressure(Profile::Uniform(1.0)))
-        .set("hole_b", SegmentBc::Pressure(Profile::Uniform(1.0)));
+    let bcs = cavity_bcs();
     for s in [
         c64::new(10.0, 0.0),
         c64::new(10.0, 10.0),
         c64::new(12.0, -25.0),
     ] {
-        let k = s / c1;
-        let ka = k * a;
-        let k0 = besselk(0.0, ka).unwrap();
-        let k1 = besselk(1.0, ka).unwrap();
-        let d = k0 * (lam + 2.0 * mu) + k1 / ka * (2.0 * mu);
-        let exact = k1 / (k * d);
+        let exact = cavity_wall_exact(a, s);
         let mut errors = vec![];
         for n in [4, 8, 16] {
-            let model = BemModel::new(
-                PlaneCondition::Strain,
-                vec![Region::new(
-                    "ring",
-                    m,
-                    vec![
-                        Segment::arc("outer_a", [0.0, 0.0], big, 0.0, PI, 8),
-                        Segment::arc("outer_b", [0.0, 0.0], big, PI, 2.0 * PI, 8),
-                    ],
-                )
-                .with_hole(vec![
-                    Segment::arc("hole_a", [0.0, 0.0], a, PI, 0.0, n),
-                    Segment::arc("hole_b", [0.0, 0.0], a, 2.0 * PI, PI, n),
-                ])],
-            );
-            let bem = LaplaceBem::new(&model, &[1.0], &bcs, &[]).unwrap();
+            let bem = LaplaceBem::new(&ring(a, big, 8, n), &[1.0], &bcs, &[]).unwrap();
             let known = complex(bem.static_known_values(), c64::ONE);
             let state = bem.respond_state(s, &known).unwrap();
             let region = &bem.static_problem().mesh.regions[0];

@@ -4,38 +4,8 @@
 
 use super::*;
 use crate::dynamics::cq::{convolve, CqGrid, CqMethod, CqParams};
+use crate::dynamics::testing::{column, CavityWall};
 use crate::dynamics::time_function::TimeFunction;
-use crate::kernels::kelvin2d::PlaneCondition;
-use crate::material::ElasticMaterial;
-use crate::operators::bem2d::{Region, Segment};
-use crate::solvers::bem2d::{Profile, SegmentBc};
-
-/// Column L = 1 x W = 0.25, E = 1, nu = 0, rho = 1 (c = 1): 16 x 2 quadratic elements.
-fn column() -> (BemModel, BoundaryConditions) {
-    let m = ElasticMaterial::new(1.0, 0.0).unwrap();
-    let (l, w, nx, ny) = (1.0, 0.25, 16, 2);
-    let model = BemModel::new(
-        PlaneCondition::Strain,
-        vec![Region::new(
-            "column",
-            m,
-            vec![
-                Segment::line("bottom", [0.0, 0.0], [l, 0.0], nx),
-                Segment::line("right", [l, 0.0], [l, w], ny),
-                Segment::line("top", [l, w], [0.0, w], nx),
-                Segment::line("left", [0.0, w], [0.0, 0.0], ny),
-            ],
-        )],
-    );
-    // t_x = 1 on the face x = 0 (outward normal -x): sigma_xx = -1, a pressure p0 = 1.
-    let bcs = BoundaryConditions::new()
-        .set(
-            "left",
-            SegmentBc::traction(Profile::Uniform(1.0), Profile::Uniform(0.0)),
-        )
-        .set("right", SegmentBc::roller_x());
-    (model, bcs)
-}
 
 /// u_x(x, t) of the column for the end pressure p0 H(t) (p0 = E = c = L = 1): the inverse of
 /// `p0 sinh(k (L - x)) / (s E k cosh(k L))`, k = s/c, expanded in reflections,
@@ -56,7 +26,7 @@ fn column_exact(x: f64, t: f64) -> f64 {
 /// against [`column_exact`], relative to the peak 2 p0 L/E, for BDF2-CQ with `steps` steps
 /// to t = 4 L/c, the load `f`.
 fn column_error(steps: usize, load: &TimeFunction, exact: &dyn Fn(f64, f64) -> f64) -> f64 {
-    let (model, bcs) = column();
+    let (model, bcs) = column(16, 2);
     let probes = [[0.25, 0.125], [0.5, 0.1], [0.75, 0.15]];
     let bem = LaplaceBem::new(&model, &[1.0], &bcs, &probes).unwrap();
     let dt = 4.0 / steps as f64;
@@ -136,39 +106,6 @@ fn column_under_a_smooth_ramp_converges_at_second_order() {
     assert!(errors[2] < 2.5e-3, "{errors:?}");
 }
 
-/// The cavity wall's mean radial displacement (outputs: 1) of a ring under internal
-/// pressure, from the full Laplace-domain state: a response wrapper as a user's own
-/// post-processing would write it.
-struct CavityWall {
-    bem: LaplaceBem,
-    radius: f64,
-}
-
-impl LaplaceResponse for CavityWall {
-    fn inputs(&self) -> usize {
-        self.bem.inputs()
-    }
-
-    fn outputs(&self) -> usize {
-        1
-    }
-
-    fn respond(&self, s: c64, inputs: &[c64]) -> Result<Vec<c64>> {
-        let state = self.bem.respond_state(s, inputs)?;
-        let region = &self.bem.static_problem().mesh.regions[0];
-        let (mut sum, mut count) = (c64::ZERO, 0.0);
-        for (node, u) in region.nodes.iter().zip(&state.displacement[0]) {
-            let x = node.position;
-            let r = x[0].hypot(x[1]);
-            if (r - self.radius).abs() < 1e-9 {
-                sum += (u[0] * x[0] + u[1] * x[1]) / r;
-                count += 1.0;
-            }
-        }
-        Ok(vec![sum / count])
-    }
-}
-
 /// The cylindrical cavity under a sudden internal pressure p0 H(t)
 /// (docs/theory/DYNAMICS.md 3.2, nu = 0.25, rho = mu = a = p0 = 1): the wall displacement u_r(a, t) against the reference
 /// table (Talbot at 30 digits) at t c2/a = 0.25 ... 3, on a ring a = 1, R = 4 whose outer
@@ -182,32 +119,7 @@ impl LaplaceResponse for CavityWall {
 /// (ratio > 1.7) and is below 8e-3 (1.6 % of the static value) at dt = 0.025.
 #[test]
 fn cavity_wall_under_sudden_pressure_matches_the_reference_table() {
-    use std::f64::consts::PI;
-    let (mu, nu) = (1.0, 0.25);
-    let m = ElasticMaterial::new(2.0 * mu * (1.0 + nu), nu).unwrap();
-    let (a, big) = (1.0, 4.0);
-    let model = BemModel::new(
-        PlaneCondition::Strain,
-        vec![Region::new(
-            "ring",
-            m,
-            vec![
-                Segment::arc("outer_a", [0.0, 0.0], big, 0.0, PI, 16),
-                Segment::arc("outer_b", [0.0, 0.0], big, PI, 2.0 * PI, 16),
-            ],
-        )
-        .with_hole(vec![
-            Segment::arc("hole_a", [0.0, 0.0], a, PI, 0.0, 16),
-            Segment::arc("hole_b", [0.0, 0.0], a, 2.0 * PI, PI, 16),
-        ])],
-    );
-    let bcs = BoundaryConditions::new()
-        .set("hole_a", SegmentBc::Pressure(Profile::Uniform(1.0)))
-        .set("hole_b", SegmentBc::Pressure(Profile::Uniform(1.0)));
-    let wall = CavityWall {
-        bem: LaplaceBem::new(&model, &[1.0], &bcs, &[]).unwrap(),
-        radius: a,
-    };
+    let wall = CavityWall::new(1.0, 4.0, 16, 16);
     let reference = [
         (0.25, 0.1377853746),
         (0.5, 0.2586034173),
