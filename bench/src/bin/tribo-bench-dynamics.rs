@@ -1,5 +1,5 @@
-//! `tribo-bench-dynamics [--dof N,N,...] [--steps M,M,...] [--cfl B] [--history NC,M]
-//! [--one N,M] [--frequencies N,M]`
+//! `tribo-bench-dynamics [--dof N,N,...] [--steps M,M,...] [--cfl B] [--repeat R]
+//! [--history NC,M] [--one N,M] [--frequencies N,M]`
 //!
 //! Cost of the linear dynamic BEM (crates/tribo/src/dynamics): the cylindrical cavity of
 //! docs/theory/DYNAMICS.md 3.2 (ring a = 1 m, R = 4 m, mu = rho = 1, nu = 0.25, plane
@@ -10,8 +10,9 @@
 //! `dt = B l / c2` (default B = 1: the mesh-matched step; a smaller B samples frequencies
 //! the mesh cannot resolve and cuts every element into more pieces). Each (N, M) runs in a
 //! child process of its own (`--one`), so that the peak memory (VmHWM) is that size's
-//! alone; the static solve of the same model (mesh, assembly, LU) is timed in the same
-//! process, and the ratio of the two is printed (no external peer exists for a 2D CQ-BEM).
+//! alone, R times (default 1; the table gives the median time and the largest peak); the
+//! static solve of the same model (mesh, assembly, LU) is timed in the same process, and
+//! the ratio of the two is printed (no external peer exists for a 2D CQ-BEM).
 //!
 //! `--frequencies N,M` times single Laplace-domain solves at five points of the BDF2
 //! contour (the cost profile along the contour); `--history NC,M` times the contact
@@ -35,7 +36,7 @@ use tribo::solvers::bem2d::{BoundaryConditions, Profile, SegmentBc};
 use tribo::ElasticMaterial;
 
 const USAGE: &str = "usage: tribo-bench-dynamics [--dof N,N,...] [--steps M,M,...] [--cfl B] \
-                     [--history NC,M] [--one N,M] [--frequencies N,M]";
+                     [--repeat R] [--history NC,M] [--one N,M] [--frequencies N,M]";
 
 fn peak_rss_bytes() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -251,12 +252,19 @@ fn run() -> Result<(), String> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let (mut dofs, mut steps) = (vec![250, 500, 1000], vec![250, 500, 1000]);
     let mut cfl = 1.0;
+    let mut repeat = 1;
     let mut i = 0;
     let value = |i: usize| args.get(i + 1).ok_or_else(|| USAGE.to_string());
     while i < args.len() {
         match args[i].as_str() {
             "--dof" => dofs = parse_list(value(i)?)?,
             "--steps" => steps = parse_list(value(i)?)?,
+            "--repeat" => {
+                repeat = value(i)?
+                    .parse::<usize>()
+                    .map_err(|_| format!("--repeat: not an integer: {}", args[i + 1]))?
+                    .max(1)
+            }
             "--cfl" => {
                 cfl = value(i)?
                     .parse()
@@ -285,23 +293,39 @@ fn run() -> Result<(), String> {
     let mut rows: Vec<Value> = Vec::new();
     for &n in &dofs {
         for &m in &steps {
-            let out = Command::new(&exe)
-                .args(["--cfl", &cfl.to_string(), "--one", &format!("{n},{m}")])
-                .output()
-                .map_err(|e| e.to_string())?;
-            if !out.status.success() {
-                return Err(format!(
-                    "N = {n}, M = {m} failed: {}",
-                    String::from_utf8_lossy(&out.stderr)
-                ));
+            let mut runs: Vec<Value> = Vec::new();
+            for _ in 0..repeat {
+                let out = Command::new(&exe)
+                    .args(["--cfl", &cfl.to_string(), "--one", &format!("{n},{m}")])
+                    .output()
+                    .map_err(|e| e.to_string())?;
+                if !out.status.success() {
+                    return Err(format!(
+                        "N = {n}, M = {m} failed: {}",
+                        String::from_utf8_lossy(&out.stderr)
+                    ));
+                }
+                let line = String::from_utf8_lossy(&out.stdout);
+                eprintln!("   {}", line.trim());
+                runs.push(serde_json::from_str(line.trim()).map_err(|e| e.to_string())?);
             }
-            let line = String::from_utf8_lossy(&out.stdout);
-            eprintln!("   {}", line.trim());
-            rows.push(serde_json::from_str(line.trim()).map_err(|e| e.to_string())?);
+            // The median run by CQ time, with the largest peak memory of all runs.
+            let key = |r: &Value| r["cq_seconds"].as_f64().unwrap_or(f64::NAN);
+            runs.sort_by(|a, b| key(a).total_cmp(&key(b)));
+            let peak = runs
+                .iter()
+                .filter_map(|r| r["peak_rss_bytes"].as_f64())
+                .fold(0.0_f64, f64::max);
+            let mut row = runs[runs.len() / 2].clone();
+            row["peak_rss_bytes"] = json!(peak);
+            rows.push(row);
         }
     }
     let f = |r: &Value, k: &str| r[k].as_f64().unwrap_or(f64::NAN);
-    println!("## Linear dynamic BEM, all steps at once: the cavity (BDF2, dt = {cfl} l/c2)");
+    println!(
+        "## Linear dynamic BEM, all steps at once: the cavity (BDF2, dt = {cfl} l/c2, median \
+         of {repeat} run(s))"
+    );
     println!();
     println!("| BEM DOF | steps M | frequencies | static solve s | CQ s | per frequency s | per frequency / static | peak MiB |");
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|");

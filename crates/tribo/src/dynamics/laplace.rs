@@ -77,7 +77,8 @@ fn pieces(e: &Element, kernel: &LaplaceKelvin2d, s: c64) -> usize {
 /// geometry point g1.
 fn distance_bound(e: &Element, p: [f64; 2]) -> f64 {
     let g = &e.geometry;
-    (g[1][0] - p[0]).hypot(g[1][1] - p[1]) - e.chord_length()
+    let (dx, dy) = (g[1][0] - p[0], g[1][1] - p[1]);
+    (dx * dx + dy * dy).sqrt() - e.chord_length()
 }
 
 /// Whether element `e` is far from `p` for the kernel at s: Re(s) d / c1 > `far_decay`
