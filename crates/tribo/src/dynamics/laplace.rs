@@ -23,6 +23,16 @@
 //! on the length |c2/s|, so every element is first cut into `ceil(|s| l / c2)` equal pieces
 //! (l its chord), at most [`MAX_PIECES`], each integrated with the static rules.
 //!
+//! **Speed** (issue 13). The kernels' radial functions depend on r alone at a fixed s: one
+//! [`RadialTable`] per region and frequency (Chebyshev interpolants on intervals of c2/|s|,
+//! equal to the direct Bessel form to round-off) serves every quadrature point, instead of
+//! four complex Bessel evaluations per point. An element at least d away from the source
+//! point with Re(s) d/c1 > [`FAR_DECAY`] is not integrated: the dynamic kernels there are
+//! below e^-45 of their size, so its difference integrals are minus its static ones (one
+//! static element integral, no pieces), and the H(s), G(s) entries of node pairs whose
+//! elements are all far are 0 to rounding (where the direct integration left the static
+//! rule's own quadrature error, up to 1e-8 of the largest entry on curved elements).
+//!
 //! **Solve.** The static system build ([`BemProblem`]'s, generic over the scalar) with
 //! complex H(s), G(s): known values are the transformed prescribed displacements (m s) and
 //! tractions (Pa s) per known DOF. Bodies need no restraint (inertia holds them for
