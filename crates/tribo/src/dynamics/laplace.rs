@@ -31,7 +31,7 @@
 //! below e^-45 of their size, so its difference integrals are minus its static ones (one
 //! static element integral, no pieces), and the H(s), G(s) entries of node pairs whose
 //! elements are all far are 0 to rounding (where the direct integration left the static
-//! rule's own quadrature error, up to 1e-8 of the largest entry on curved elements).
+//! rule's own quadrature error, up to 8e-8 of the largest entry on curved elements).
 //!
 //! **Solve.** The static system build ([`BemProblem`]'s, generic over the scalar) with
 //! complex H(s), G(s): known values are the transformed prescribed displacements (m s) and
