@@ -68,6 +68,9 @@ use crate::error::{Error, Result};
 use crate::kernels::kelvin2d::{Kelvin2d, PlaneCondition};
 use crate::material::ElasticMaterial;
 
+mod table;
+pub use table::RadialTable;
+
 /// |z2| = |s| r / c2 below which the differences from Kelvin are summed from the ascending
 /// series, above which the Bessel form is used.
 ///
