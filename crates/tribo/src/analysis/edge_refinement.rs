@@ -1367,9 +1367,8 @@ mod tests {
                 .unwrap();
                 let mut rows: Vec<(f64, usize, f64, f64, f64, f64)> = Vec::new();
                 let mut by_ring = [0.0f64; 6];
-                for iy in 0..ys.len() {
-                    for ix in 0..xs.len() {
-                        let (x, y) = (xs[ix], ys[iy]);
+                for (iy, &y) in ys.iter().enumerate() {
+                    for (ix, &x) in xs.iter().enumerate() {
                         let got = s.stress[field.index(ix, iy, 0)];
                         let want = sliding_sphere_stress(x, y, 0.0, a, p0, f, 0.3);
                         let mut d = (got - want).to_array().map(|v| v.abs() / p0).to_vec();
