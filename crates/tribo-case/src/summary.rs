@@ -765,6 +765,46 @@ pub struct Located {
     pub location: [f64; 3],
 }
 
+/// The edge refinement a stress field used, as `summary.json` echoes it: `"band"` or the
+/// refinement factor N (> 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EdgeRefinementEcho {
+    /// `field.edge_refinement = "band"`: the element tractions with the edge band.
+    Band,
+    /// `field.edge_refinement = N > 1`: the edge-aware tractions refined N times per side.
+    Factor(usize),
+}
+
+impl EdgeRefinementEcho {
+    /// The echo of `field.edge_refinement` as the pipeline holds it
+    /// ([`crate::case::EDGE_REFINEMENT_BAND`] for the band); `None` for the default 1.
+    pub fn of(factor: usize) -> Option<Self> {
+        match factor {
+            crate::case::EDGE_REFINEMENT_BAND => Some(Self::Band),
+            1 => None,
+            n => Some(Self::Factor(n)),
+        }
+    }
+}
+
+impl std::fmt::Display for EdgeRefinementEcho {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Band => f.write_str("edge band"),
+            Self::Factor(n) => write!(f, "edge-aware tractions refined x{n}"),
+        }
+    }
+}
+
+impl Serialize for EdgeRefinementEcho {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Self::Band => serializer.serialize_str("band"),
+            Self::Factor(n) => serializer.serialize_u64(*n as u64),
+        }
+    }
+}
+
 /// The subsurface stress field in `summary.json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct StressSummary {
@@ -778,10 +818,11 @@ pub struct StressSummary {
     pub depth: f64,
     /// "direct sum".
     pub method: &'static str,
-    /// `field.edge_refinement` where it is > 1: the field is that of the edge-aware tractions
-    /// on a grid this many times finer per side (absent: the element tractions, bilinear).
+    /// `field.edge_refinement` where it is not the default (1): `"band"` (the element
+    /// tractions with the edge band) or N > 1 (the field of the edge-aware tractions on a grid
+    /// N times finer per side); absent: the element tractions, bilinear.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub edge_refinement: Option<usize>,
+    pub edge_refinement: Option<EdgeRefinementEcho>,
     /// The bulk stress superposed (kind, operating stress Pa), if any.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bulk: Option<(&'static str, f64)>,
@@ -812,7 +853,7 @@ impl StressSummary {
             half_width: half,
             depth: f.grid.z.last().copied().unwrap_or(0.0),
             method: st.method.text(),
-            edge_refinement: (st.edge_refinement > 1).then_some(st.edge_refinement),
+            edge_refinement: EdgeRefinementEcho::of(st.edge_refinement),
             bulk: st.bulk.map(|(k, s)| (k.name(), s)),
             max_von_mises: loc(f.max_of(|s| s.von_mises())),
             max_shear: loc(f.max_of(|s| s.max_shear())),

@@ -217,8 +217,8 @@ fn stress(o: &mut String, st: &StressSummary) {
         st.max_principal.value,
         loc(st.max_principal.location)
     );
-    if let Some(n) = st.edge_refinement {
-        let _ = writeln!(o, "                edge-aware tractions refined x{n}");
+    if let Some(e) = st.edge_refinement {
+        let _ = writeln!(o, "                {e}");
     }
 }
 

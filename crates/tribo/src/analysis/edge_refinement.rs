@@ -1159,4 +1159,251 @@ mod tests {
             assert!(row[1] < 0.6 * row[0], "{table:?}");
         }
     }
+    /// The validate rows of the band's surface layer pass, and are cheap (printed: values and
+    /// time).
+    #[test]
+    fn band_surface_rows_pass() {
+        let start = std::time::Instant::now();
+        let rows = crate::validation::sliding_sphere_band_surface_rows().unwrap();
+        for r in &rows {
+            eprintln!(
+                "{}: {:.4e} (tolerance {:.0e})",
+                r.case, r.error, r.tolerance
+            );
+            assert!(r.passed, "{r:?}");
+        }
+        eprintln!("{:.1} s", start.elapsed().as_secs_f64());
+    }
+
+    /// A prototype (test-local) of a reconstruction exact for a quadratic p^2 (the Hertz
+    /// pressure): at an unloaded node next to the contact, p^2 extrapolated quadratically,
+    /// 3 g(+d) - 3 g(+2d) + g(+3d), over the directions with three loaded nodes (linear or
+    /// half-way as [`EdgeReconstruction`] where there are none), and inside a cell the bilinear
+    /// interpolant of g minus t (1 - t) D_xx / 2 + s (1 - s) D_yy / 2, D the nodal second
+    /// differences (central, else one-sided) interpolated bilinearly. Returns p at (x, y).
+    fn quadratic_reconstruction(grid: &SurfaceGrid, p: &[f64]) -> impl Fn(f64, f64) -> f64 {
+        let (nx, ny) = (grid.nx() as isize, grid.ny() as isize);
+        let ring = 4isize;
+        let (ex, ey) = (nx + 2 * ring, ny + 2 * ring);
+        let at = |i: isize, j: isize| -> f64 {
+            if i < 0 || j < 0 || i >= nx || j >= ny {
+                0.0
+            } else {
+                p[grid.index(i as usize, j as usize)]
+            }
+        };
+        let big = p.iter().fold(0.0f64, |m, &v| m.max(v * v));
+        let mut g = vec![f64::NAN; (ex * ey) as usize];
+        let mut valid = vec![false; (ex * ey) as usize];
+        let k = |i: isize, j: isize| ((j + ring) * ex + i + ring) as usize;
+        for j in -ring..ny + ring {
+            for i in -ring..nx + ring {
+                let v = at(i, j);
+                if v > 0.0 {
+                    g[k(i, j)] = v * v;
+                    valid[k(i, j)] = true;
+                    continue;
+                }
+                let (mut quad, mut nq, mut lin, mut nl) = (0.0, 0.0, 0.0, 0.0);
+                for dj in -1..=1isize {
+                    for di in -1..=1isize {
+                        if (di, dj) == (0, 0) {
+                            continue;
+                        }
+                        let v1 = at(i + di, j + dj);
+                        if v1 <= 0.0 {
+                            continue;
+                        }
+                        let (v2, v3) = (at(i + 2 * di, j + 2 * dj), at(i + 3 * di, j + 3 * dj));
+                        if v2 > 0.0 && v3 > 0.0 {
+                            quad += 3.0 * v1 * v1 - 3.0 * v2 * v2 + v3 * v3;
+                            nq += 1.0;
+                        }
+                        lin += if v2 > 0.0 {
+                            2.0 * v1 * v1 - v2 * v2
+                        } else {
+                            -v1 * v1
+                        };
+                        nl += 1.0;
+                    }
+                }
+                if nq > 0.0 {
+                    g[k(i, j)] = (quad / nq).min(0.0);
+                    valid[k(i, j)] = true;
+                } else if nl > 0.0 {
+                    g[k(i, j)] = (lin / nl).min(0.0);
+                    valid[k(i, j)] = true;
+                } else {
+                    g[k(i, j)] = -big;
+                }
+            }
+        }
+        let second = |i: isize, j: isize, di: isize, dj: isize| -> f64 {
+            let ok = |a: isize, b: isize| {
+                a >= -ring && b >= -ring && a < nx + ring && b < ny + ring && valid[k(a, b)]
+            };
+            for c in [0isize, 1, -1] {
+                let (i0, j0) = (i + c * di, j + c * dj);
+                if ok(i0 - di, j0 - dj) && ok(i0, j0) && ok(i0 + di, j0 + dj) {
+                    return g[k(i0 - di, j0 - dj)] - 2.0 * g[k(i0, j0)] + g[k(i0 + di, j0 + dj)];
+                }
+            }
+            0.0
+        };
+        let mut sec_x = vec![0.0; g.len()];
+        let mut sec_y = vec![0.0; g.len()];
+        for j in -ring..ny + ring {
+            for i in -ring..nx + ring {
+                sec_x[k(i, j)] = second(i, j, 1, 0);
+                sec_y[k(i, j)] = second(i, j, 0, 1);
+            }
+        }
+        let (x0, y0, dx, dy) = (grid.x(0), grid.y(0), grid.dx(), grid.dy());
+        move |x: f64, y: f64| {
+            let kk = |i: isize, j: isize| ((j + ring) * ex + i + ring) as usize;
+            let u = (x - x0) / dx;
+            let v = (y - y0) / dy;
+            let (i, j) = (u.floor() as isize, v.floor() as isize);
+            if i < -ring + 1 || j < -ring + 1 || i >= nx + ring - 2 || j >= ny + ring - 2 {
+                return 0.0;
+            }
+            let (t, s) = (u - i as f64, v - j as f64);
+            let corners = [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)];
+            let w = [(1.0 - t) * (1.0 - s), t * (1.0 - s), (1.0 - t) * s, t * s];
+            let mut val = 0.0;
+            let (mut dxx, mut dyy) = (0.0, 0.0);
+            for (&(a, b), &wk) in corners.iter().zip(&w) {
+                val += wk * g[kk(a, b)];
+                dxx += wk * sec_x[kk(a, b)];
+                dyy += wk * sec_y[kk(a, b)];
+            }
+            let gxy = val - 0.5 * t * (1.0 - t) * dxx - 0.5 * s * (1.0 - s) * dyy;
+            gxy.max(0.0).sqrt()
+        }
+    }
+
+    /// Issue 11 item 1, off the surface lines (measurement, printed): the band x8 (FFT path)
+    /// at 48 x 48 pseudo-random surface points over |x|, |y| <= 1.3a (off the element edges
+    /// generically) against Hamilton (1983), q_x = f p, f = 0.5, from the Hertz pressure at
+    /// the centres, the element averages and the solved contact; the worst error with its
+    /// component and location, and the error of the band's tractions themselves there.
+    /// Measured (worst by |r - a| in elements: [< 1, 1-2, ..., >= 5], f = 0.5):
+    /// - sampled x8 [0.034, 0.0026, 0.0034, 0.0029, 0.0020, 0.0013], x16 [0.044, ...];
+    /// - averaged x8 [0.120, 0.010, ...]; solved x8 [0.0445, 0.0041, 0.0030, ...], x16
+    ///   [0.053, 0.0034, ...];
+    ///
+    /// the worst points are sigma_zz just inside the edge (r = 0.9999a, -9.9 deg) and sigma_xx
+    /// just outside it (r = 1.005a), i.e. the represented pressure itself (sigma_zz = -p at
+    /// z = 0). The reconstruction alone: |E - p_Hertz| 0.046 p0 (sampled), 0.055 (solved);
+    /// the quadratic prototype [`quadratic_reconstruction`] 1.2e-14 (sampled: exact for a
+    /// quadratic p^2), 0.056 (solved: its edge cells are off Hertz). docs/theory/HALFSPACE.md
+    /// 2.5, "Off the lines".
+    #[test]
+    #[ignore = "measurement"]
+    fn off_line_measure() {
+        let (hertz, grid, averaged, solved) = sphere_pressures();
+        let (a, p0) = (hertz.semi_major, hertz.max_pressure);
+        let sampled = grid.sample(|x, y| hertz.pressure(x, y));
+        // A fixed LCG: reproducible points.
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut xs: Vec<f64> = (0..48).map(|_| (2.0 * next() - 1.0) * 1.3 * a).collect();
+        let mut ys: Vec<f64> = (0..48).map(|_| (2.0 * next() - 1.0) * 1.3 * a).collect();
+        xs.sort_by(f64::total_cmp);
+        ys.sort_by(f64::total_cmp);
+        let field = FieldGrid {
+            x: xs.clone(),
+            y: ys.clone(),
+            z: vec![0.0],
+        };
+        let names = ["xx", "yy", "zz", "xy", "yz", "xz", "vM"];
+        // The reconstruction itself against the Hertz pressure at the same points.
+        for (name, p) in [("sampled", &sampled), ("solved", &solved)] {
+            let e = EdgeReconstruction::new(&pressure_only(&grid, p)).unwrap();
+            let worst = xs
+                .iter()
+                .flat_map(|&x| ys.iter().map(move |&y| (x, y)))
+                .map(|(x, y)| (e.at(x, y)[0] - hertz.pressure(x, y)).abs() / p0)
+                .fold(0.0f64, f64::max);
+            let quad = quadratic_reconstruction(&grid, p);
+            let worst_quad = xs
+                .iter()
+                .flat_map(|&x| ys.iter().map(move |&y| (x, y)))
+                .map(|(x, y)| (quad(x, y) - hertz.pressure(x, y)).abs() / p0)
+                .fold(0.0f64, f64::max);
+            eprintln!(
+                "{name}: reconstruction |E - p_Hertz| worst {worst:.4} p0, quadratic prototype \
+                 {worst_quad:.2e} p0"
+            );
+        }
+        for (name, p, factor) in [
+            ("sampled", &sampled, 8),
+            ("sampled", &sampled, 16),
+            ("averaged", &averaged, 8),
+            ("solved", &solved, 8),
+            ("solved", &solved, 16),
+        ] {
+            for f in [0.0, 0.5] {
+                let q: Vec<f64> = p.iter().map(|v| f * v).collect();
+                let t = SurfaceTractions {
+                    grid: &grid,
+                    pressure: p,
+                    shear_x: Some(&q),
+                    shear_y: None,
+                };
+                let start = std::time::Instant::now();
+                let band = EdgeBand::new(&t, factor).unwrap();
+                let s = crate::analysis::stress_field::stress_field_interpolated_banded(
+                    &band,
+                    0.3,
+                    &field,
+                    |_| {},
+                )
+                .unwrap();
+                let mut rows: Vec<(f64, usize, f64, f64, f64, f64)> = Vec::new();
+                let mut by_ring = [0.0f64; 6];
+                for (iy, &y) in ys.iter().enumerate() {
+                    for (ix, &x) in xs.iter().enumerate() {
+                        let got = s.stress[field.index(ix, iy, 0)];
+                        let want = sliding_sphere_stress(x, y, 0.0, a, p0, f, 0.3);
+                        let mut d = (got - want).to_array().map(|v| v.abs() / p0).to_vec();
+                        d.push((got.von_mises() - want.von_mises()).abs() / p0);
+                        let (k, e) =
+                            d.iter()
+                                .enumerate()
+                                .fold((0, 0.0), |m, (k, &v)| if v > m.1 { (k, v) } else { m });
+                        let r = x.hypot(y) / a;
+                        let ring = ((r - 1.0).abs() / 0.0375).min(5.0) as usize;
+                        by_ring[ring] = by_ring[ring].max(e);
+                        let u = (x - grid.x(0)) / grid.dx();
+                        let v = (y - grid.y(0)) / grid.dy();
+                        let frac = (u - u.round()).abs().max((v - v.round()).abs());
+                        rows.push((e, k, r, y.atan2(x).to_degrees(), frac, {
+                            let mut g = got.to_array().to_vec();
+                            g.push(got.von_mises());
+                            let mut w = want.to_array().to_vec();
+                            w.push(want.von_mises());
+                            (g[k] - w[k]) / p0
+                        }));
+                    }
+                }
+                rows.sort_by(|a, b| b.0.total_cmp(&a.0));
+                eprintln!(
+                    "{name} x{factor} f {f} ({:.1} s): by |r - a| in elements 0..5+: {by_ring:.4?}",
+                    start.elapsed().as_secs_f64()
+                );
+                for r in rows.iter().take(6) {
+                    eprintln!(
+                        "   {:.4} {} at r {:.4}a, {:.1} deg, node offset {:.2} (signed {:.4})",
+                        r.0, names[r.1], r.2, r.3, r.4, r.5
+                    );
+                }
+            }
+        }
+    }
 }
