@@ -34,6 +34,8 @@ use crate::solvers::tangential::{
 
 mod bem2d;
 pub use bem2d::bem2d_rows;
+mod dyn_stress;
+pub use dyn_stress::dyn_stress_rows;
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -2090,5 +2092,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(free_direction_rows()?);
     rows.extend(damage_rows()?);
     rows.extend(bem2d_rows()?);
+    rows.extend(dyn_stress_rows()?);
     Ok(rows)
 }

@@ -8,6 +8,7 @@
 //! contact machinery applies step by step with a history right-hand side.
 
 pub mod cq;
+pub mod energy;
 pub mod history;
 pub mod kernel;
 pub mod laplace;
