@@ -36,7 +36,7 @@ fn column() -> LaplaceBem {
 }
 
 /// u_x(0, t) of the column under p0 H(t) (p0 = E = c = L = 1): the triangle wave of
-/// DYNAMICS.md 3.1, t for t < 2, 4 - t for 2 < t < 4, period 4.
+/// docs/theory/DYNAMICS.md 3.1, t for t < 2, 4 - t for 2 < t < 4, period 4.
 fn end_displacement(t: f64) -> f64 {
     let t = t.rem_euclid(4.0);
     if t < 2.0 {
