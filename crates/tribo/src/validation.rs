@@ -38,6 +38,8 @@ mod dyn_contact;
 pub use dyn_contact::dyn_contact_rows;
 pub mod dyn_verify;
 pub use dyn_verify::dyn_verify_rows;
+mod dyn_stress;
+pub use dyn_stress::dyn_stress_rows;
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -2198,5 +2200,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(bem2d_rows()?);
     rows.extend(dyn_contact_rows()?);
     rows.extend(dyn_verify_rows()?);
+    rows.extend(dyn_stress_rows()?);
     Ok(rows)
 }

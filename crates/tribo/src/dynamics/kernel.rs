@@ -423,5 +423,7 @@ fn bessel_k01(z: c64) -> Result<(c64, c64)> {
     }
 }
 
+pub mod stress;
+
 #[cfg(test)]
 mod tests;

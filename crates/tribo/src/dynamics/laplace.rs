@@ -240,6 +240,8 @@ pub struct LaplaceBem {
     traction_col: Vec<bool>,
     /// (region, model-local evaluation point) per probe.
     probes: Vec<(usize, [f64; 2])>,
+    /// (region, model-local evaluation point) per stress probe ([`stress`]).
+    stress_probes: Vec<(usize, [f64; 2])>,
 }
 
 impl LaplaceBem {
@@ -334,6 +336,7 @@ impl LaplaceBem {
             known: known.into_iter().map(|k| k.1).collect(),
             traction_col,
             probes,
+            stress_probes: Vec::new(),
             problem,
         })
     }
@@ -355,10 +358,12 @@ impl LaplaceBem {
     }
 
     /// Number of outputs: the system unknowns (in column order: the unknown of each
-    /// non-interface DOF, the displacement then the traction of each interface DOF) then
-    /// two displacement components per probe.
+    /// non-interface DOF, the displacement then the traction of each interface DOF), then
+    /// two displacement components per probe, then three stress components (sigma_xx,
+    /// sigma_yy, sigma_xy) per stress probe ([`LaplaceBem::with_stress_probes`], from
+    /// [`LaplaceBem::first_stress_output`] on).
     pub fn outputs(&self) -> usize {
-        self.ncol + 2 * self.probes.len()
+        self.ncol + 2 * self.probes.len() + 3 * self.stress_probes.len()
     }
 
     /// What each input is.
@@ -393,6 +398,11 @@ impl LaplaceBem {
         }
         for p in &state.probes {
             out.extend_from_slice(p);
+        }
+        if !self.stress_probes.is_empty() {
+            for p in self.probe_stresses(s, &state)? {
+                out.extend_from_slice(&p);
+            }
         }
         Ok(out)
     }
@@ -622,6 +632,8 @@ impl LaplaceResponse for LaplaceBem {
         LaplaceBem::respond(self, s, inputs)
     }
 }
+
+pub mod stress;
 
 #[cfg(test)]
 mod tests;

@@ -1000,20 +1000,7 @@ impl BemSolution {
         let region = &self.mesh.regions[r];
         let e = &region.elements[k];
         let (u, t) = self.nodal(r, e);
-        let (n, jac) = e.normal_jacobian(xi);
-        let s = [-n[1], n[0]];
-        let nk = e.field_shape(xi);
-        let dn = e.field_shape_derivative(xi);
-        let tt: [f64; 2] = [0, 1].map(|d| (0..3).map(|m| nk[m] * t[m][d]).sum());
-        let du: [f64; 2] = [0, 1].map(|d| (0..3).map(|m| dn[m] * u[m][d]).sum::<f64>() / jac);
-        let eps_tt = du[0] * s[0] + du[1] * s[1];
-        let snn = tt[0] * n[0] + tt[1] * n[1];
-        let snt = tt[0] * s[0] + tt[1] * s[1];
-        let stt = region.kernels.tangential_stress(eps_tt, snn);
-        let comp = |i: usize, j: usize| {
-            snn * n[i] * n[j] + stt * s[i] * s[j] + snt * (n[i] * s[j] + s[i] * n[j])
-        };
-        [comp(0, 0), comp(1, 1), comp(0, 1)]
+        element_boundary_stress(&region.kernels, e, &u, &t, xi)
     }
 
     /// The resultant of the traction on segment `name` (on its owner region): the force
@@ -1090,6 +1077,34 @@ impl BemSolution {
         }
         Ok(out)
     }
+}
+
+/// The in-plane stress [xx, yy, xy] (Pa) on element `e` at local coordinate `xi` from its
+/// nodal displacements `u` (m) and tractions `t` (Pa) (Hooke's law is instantaneous, so the
+/// same recovery serves the static and the dynamic BEM): the traction gives sigma_nn and
+/// sigma_nt, the tangential derivative of u along the element the strain eps_tt, and
+/// [`Kelvin2d::tangential_stress`] sigma_tt.
+pub(crate) fn element_boundary_stress(
+    kernels: &Kelvin2d,
+    e: &Element,
+    u: &[[f64; 2]; 3],
+    t: &[[f64; 2]; 3],
+    xi: f64,
+) -> [f64; 3] {
+    let (n, jac) = e.normal_jacobian(xi);
+    let s = [-n[1], n[0]];
+    let nk = e.field_shape(xi);
+    let dn = e.field_shape_derivative(xi);
+    let tt: [f64; 2] = [0, 1].map(|d| (0..3).map(|m| nk[m] * t[m][d]).sum());
+    let du: [f64; 2] = [0, 1].map(|d| (0..3).map(|m| dn[m] * u[m][d]).sum::<f64>() / jac);
+    let eps_tt = du[0] * s[0] + du[1] * s[1];
+    let snn = tt[0] * n[0] + tt[1] * n[1];
+    let snt = tt[0] * s[0] + tt[1] * s[1];
+    let stt = kernels.tangential_stress(eps_tt, snn);
+    let comp = |i: usize, j: usize| {
+        snn * n[i] * n[j] + stt * s[i] * s[j] + snt * (n[i] * s[j] + s[i] * n[j])
+    };
+    [comp(0, 0), comp(1, 1), comp(0, 1)]
 }
 
 fn cross2(a: [f64; 2], b: [f64; 2]) -> f64 {
