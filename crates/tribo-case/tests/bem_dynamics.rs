@@ -1,6 +1,8 @@
 //! The dynamic 2D case end to end on typed results (`[dynamics]`, issue 13): the column
 //! (nu = 0, the 1D wave equation, exact in 2D) and the cylindrical cavity of the examples
 //! against their closed forms and the reference table of docs/theory/DYNAMICS.md sec. 3.
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::Path;
 

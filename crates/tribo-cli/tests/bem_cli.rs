@@ -461,13 +461,10 @@ fn bad_dynamic_input_is_refused_naming_the_item() {
     ) + "[dynamics]\ntime_step = \"1 us\"\nsteps = 20\n[[probe]]\nname = \"c\"\nat = [\"5 mm\", \"5 mm\"]\n";
     let ok = ok.replace("nu = 0.3\n", "nu = 0.3\ndensity = \"7850 kg/m^3\"\n");
     // The base is valid (a dry run: nothing solved).
-    let o = tribo(&["run", "-", "--dry-run", "--quiet"], &ok);
+    let o = tribo(&["run", "-", "--dry-run", "--quiet"], Some(&ok));
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let e = refused(&ok.replace("time_step = \"1 us\"", "time_step = \"-1 us\""));
-    assert!(
-        e.contains("dynamics.time_step") && e.contains("> 0"),
-        "{e}"
-    );
+    assert!(e.contains("dynamics.time_step") && e.contains("> 0"), "{e}");
     let e = refused(&ok.replace("density = \"7850 kg/m^3\"\n", ""));
     assert!(
         e.contains("materials.steel.density") && e.contains("(missing)"),
@@ -483,6 +480,8 @@ fn bad_dynamic_input_is_refused_naming_the_item() {
         e.contains("probe[0].at") && e.contains("outside every region"),
         "{e}"
     );
-    let e = refused(&(ok.clone() + "[[contact]]\nslave = \"top\"\nmaster = \"bottom\"\nfriction = 0.1\n"));
+    let e = refused(
+        &(ok.clone() + "[[contact]]\nslave = \"top\"\nmaster = \"bottom\"\nfriction = 0.1\n"),
+    );
     assert!(e.contains("dynamics") && e.contains("contact"), "{e}");
 }
