@@ -308,7 +308,7 @@ impl LaplaceBem {
     /// traction alike): the load pattern of one condition alone, for loads with one time
     /// function per condition (`sum_b f_b(t) * known_values_of(bcs_b)`).
     ///
-    /// Errors: as [`BemProblem::dofs`]; a layout that differs from the model's
+    /// Errors: a condition naming no segment of the model (as [`BemProblem::solve`]); a layout that differs from the model's
     /// ([`Error::InvalidParameter`]).
     pub fn known_values_of(&self, bcs: &BoundaryConditions) -> Result<Vec<f64>> {
         let (dofs, ncol) = self.problem.dofs(bcs)?;

@@ -5,7 +5,7 @@
 //!
 //! Wired into the root schema (`schema.rs`): `dynamics` and `probe` of the root raw case,
 //! `time` of the raw `[[bc]]`, `density` of the raw material; `validate.rs` calls
-//! [`validate`] after the static rules, with a `DynamicsContext` built from the validated
+//! `validate` after the static rules, with a `DynamicsContext` built from the validated
 //! case and the locator of its outlines ([`outline_locator`]; probes in gmsh regions are
 //! checked against the built model by the pipeline, [`model_locator`]).
 //!
