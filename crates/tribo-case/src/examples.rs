@@ -50,6 +50,18 @@ pub const EXAMPLES: &[Example] = &[
         text: include_str!("../examples/cases/clamp-knife-base.toml"),
     },
     Example {
+        name: "cavity",
+        description: "cylindrical cavity (a = 0.1 m) under sudden pressure: elastic waves by \
+                      convolution quadrature (2D BEM, [dynamics]), wall vs the reference table",
+        text: include_str!("../examples/cases/cavity.toml"),
+    },
+    Example {
+        name: "column",
+        description: "column (nu = 0) under sudden end pressure: wave front, reflection, \
+                      stress doubling (2D BEM, [dynamics])",
+        text: include_str!("../examples/cases/column.toml"),
+    },
+    Example {
         name: "sphere-on-flat",
         description: "steel ball (R = 10 mm) on a flat, 100 N: circular Hertz contact",
         text: include_str!("../examples/cases/sphere-on-flat.toml"),

@@ -116,6 +116,9 @@ pub fn bem(summary: &BemSummary, dir: &Path) -> String {
     if let Some(c) = &summary.compare {
         bem_compare(&mut s, c);
     }
+    if let Some(d) = &summary.dynamics {
+        bem_dynamics(&mut s, d);
+    }
     let _ = writeln!(
         s,
         "  time: setup {:.2} s, steps {:.2} s, fields {:.2} s, damage {:.2} s, comparison {:.2} s",
@@ -386,6 +389,41 @@ fn bem_damage(s: &mut String, d: &tribo_case::bem::summary::DamageSummary) {
 }
 
 /// The compare lines of a 2D summary.
+/// The lines of a dynamic run: the time grid, each probe's peaks against its static value.
+fn bem_dynamics(s: &mut String, d: &tribo_case::bem::summary::DynamicsSummary) {
+    let _ = writeln!(
+        s,
+        "  dynamics: {} steps of {} s to {} s ({:?}, all steps at once: {} Laplace-domain \
+         solves in {:.2} s)",
+        d.steps,
+        num(d.time_step_s),
+        num(d.duration_s),
+        d.method,
+        d.laplace_solves,
+        d.convolution_s
+    );
+    for p in &d.probes {
+        let amp = p
+            .amplification
+            .map_or_else(String::new, |a| format!(", {a:.3} x static"));
+        let _ = writeln!(
+            s,
+            "    probe {:<10} max |u| = {} m at {} s{amp}; max |v| = {} m/s at {} s",
+            p.name,
+            num(p.max_displacement_m),
+            num(p.max_displacement_time_s),
+            num(p.max_velocity_m_per_s),
+            num(p.max_velocity_time_s)
+        );
+    }
+    if !d.stresses {
+        let _ = writeln!(
+            s,
+            "    (displacements and velocities only: dynamic stresses are not computed yet)"
+        );
+    }
+}
+
 fn bem_compare(s: &mut String, c: &tribo_case::bem::summary::CompareSummary) {
     let _ = writeln!(
         s,

@@ -448,3 +448,40 @@ fn invalid_geometry_and_corrupt_meshes_exit_2() {
     let e = refused(&GMSH_RING.replace("FILE", &file.to_str().unwrap().replace('\\', "/")));
     assert!(e.contains("msh line") && e.contains("second $Nodes"), "{e}");
 }
+
+/// Bad dynamic input (`[dynamics]`, docs/user/case-bem2d-dynamics.md): exit 2, nothing
+/// written, the error naming the item: a time step that is not positive, a density missing,
+/// a time table that is not increasing, a probe outside every body; and what the linear
+/// dynamic run does not do yet (contact pairs with `[dynamics]`), naming `[dynamics]`.
+#[test]
+fn bad_dynamic_input_is_refused_naming_the_item() {
+    let ok = PLATE.replace(
+        "RIGHT",
+        "tx = \"1 MPa\"\ntime = { points = [[0, 0], [\"10 us\", 1]] }",
+    ) + "[dynamics]\ntime_step = \"1 us\"\nsteps = 20\n[[probe]]\nname = \"c\"\nat = [\"5 mm\", \"5 mm\"]\n";
+    let ok = ok.replace("nu = 0.3\n", "nu = 0.3\ndensity = \"7850 kg/m^3\"\n");
+    // The base is valid (a dry run: nothing solved).
+    let o = tribo(&["run", "-", "--dry-run", "--quiet"], Some(&ok));
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let e = refused(&ok.replace("time_step = \"1 us\"", "time_step = \"-1 us\""));
+    assert!(e.contains("dynamics.time_step") && e.contains("> 0"), "{e}");
+    let e = refused(&ok.replace("density = \"7850 kg/m^3\"\n", ""));
+    assert!(
+        e.contains("materials.steel.density") && e.contains("(missing)"),
+        "{e}"
+    );
+    let e = refused(&ok.replace("[\"10 us\", 1]", "[\"10 us\", 1], [\"5 us\", 0]"));
+    assert!(
+        e.contains("bc[2].time.points[2][0]") && e.contains("increase"),
+        "{e}"
+    );
+    let e = refused(&ok.replace("at = [\"5 mm\", \"5 mm\"]", "at = [\"15 mm\", \"5 mm\"]"));
+    assert!(
+        e.contains("probe[0].at") && e.contains("outside every region"),
+        "{e}"
+    );
+    let e = refused(
+        &(ok.clone() + "[[contact]]\nslave = \"top\"\nmaster = \"bottom\"\nfriction = 0.1\n"),
+    );
+    assert!(e.contains("dynamics") && e.contains("contact"), "{e}");
+}

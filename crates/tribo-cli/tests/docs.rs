@@ -95,6 +95,21 @@ impl Doc {
         Doc { page, rows }
     }
 
+    /// The 2D reference with its dynamic keys (docs/user/case-bem2d-dynamics.md): one
+    /// schema over two pages.
+    fn bem() -> Doc {
+        let mut doc = Doc::load("docs/user/case-bem2d.md");
+        let dynamic = Doc::load("docs/user/case-bem2d-dynamics.md");
+        for (k, ty) in dynamic.rows {
+            assert!(
+                doc.rows.insert(k.clone(), ty).is_none(),
+                "`{k}` documented on both 2D pages"
+            );
+        }
+        doc.page = "docs/user/case-bem2d.md and case-bem2d-dynamics.md";
+        doc
+    }
+
     /// A documented key, or a table holding documented keys.
     fn documents(&self, key: &str) -> bool {
         self.rows.contains_key(key)
@@ -434,9 +449,10 @@ fn rigid_top(case: &mut Table) {
 
 #[test]
 fn bem2d_reference_documents_exactly_the_accepted_keys() {
-    let doc = Doc::load("docs/user/case-bem2d.md");
+    let doc = Doc::bem();
     let base = first_toml_block("docs/user/case-bem2d.md");
     let knife = example("clamp-knife-base");
+    let column = example("column");
     let run = ["run", "-", "--dry-run", "--quiet"];
     let mesh = "kind = \"bem2d\"\n[[mesh]]\nfile = \"part.msh\"\n";
     check_schema(
@@ -482,6 +498,13 @@ fn bem2d_reference_documents_exactly_the_accepted_keys() {
                 &knife,
                 Probe::Insert("clamp_knife_base"),
             ),
+            ("dynamics", &column, Probe::Insert("dynamics")),
+            (
+                "<time>",
+                &column,
+                Probe::Replace("bc.0.time", "{ zz_probe = 1 }"),
+            ),
+            ("probe", &column, Probe::Insert("probe.0")),
         ],
     );
 }
@@ -512,7 +535,7 @@ fn fatigue_diagram_table_documents_exactly_the_accepted_keys() {
 #[test]
 fn every_example_and_every_key_of_it_is_documented_and_the_references_examples_run() {
     let halfspace = Doc::load("docs/user/case-halfspace.md");
-    let bem = Doc::load("docs/user/case-bem2d.md");
+    let bem = Doc::bem();
     let fatigue = Doc::load("docs/user/fatigue.md");
     let names = example_names();
     assert!(names.len() >= 10, "only {} examples listed", names.len());
@@ -698,7 +721,11 @@ fn outputs_reference_lists_every_file_column_and_unit() {
     let page = read("docs/user/outputs.md");
     let bem = first_toml_block("docs/user/case-bem2d.md");
     let mut missing = Vec::new();
-    for (name, case) in [("roller-shaft", example("roller-shaft")), ("bem2d", bem)] {
+    for (name, case) in [
+        ("roller-shaft", example("roller-shaft")),
+        ("bem2d", bem),
+        ("column", example("column")),
+    ] {
         let dir = tempfile::tempdir().expect("tempdir");
         let out = dir.path().to_str().expect("UTF-8 path");
         let o = tribo(&["run", "-", "-q", "-o", out], &case);
@@ -730,6 +757,7 @@ fn outputs_reference_lists_every_file_column_and_unit() {
                 .chain(names.iter().flat_map(|n| {
                     ["<step>", "<name>", "<quantity>"].map(|p| file.replacen(n.as_str(), p, 1))
                 }))
+                .chain(snapshot_form(file))
                 .collect();
             if !forms.iter().any(|f| page.contains(&format!("`{f}`"))) {
                 missing.push(format!("{name}: file `{file}`"));
@@ -748,6 +776,13 @@ fn outputs_reference_lists_every_file_column_and_unit() {
         "not in docs/user/outputs.md:\n{}",
         missing.join("\n")
     );
+}
+
+/// `fields_0003.vtu` -> `fields_<NNNN>.vtu` (the dynamic snapshots' numbered files).
+fn snapshot_form(file: &str) -> Option<String> {
+    let digits = file.strip_prefix("fields_")?.strip_suffix(".vtu")?;
+    (digits.len() >= 4 && digits.bytes().all(|b| b.is_ascii_digit()))
+        .then(|| "fields_<NNNN>.vtu".to_string())
 }
 
 // ------------------------------------------------------------------ the CLI reference

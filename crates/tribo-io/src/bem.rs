@@ -1,7 +1,8 @@
 //! The files of a 2D boundary element run: `summary.json`, `interfaces.csv`/`.png`, per step
 //! `fields_<step>.vtu` and the maps `sigma_xx_<step>.png`, `sigma_int_<step>.png`; with
 //! `[damage]` `psi_<quantity>.png` and `damage_sweep.csv`/`.png`; with `[compare]`
-//! `compare.csv`/`.png`.
+//! `compare.csv`/`.png`; with `[dynamics]` the files of [`crate::dynamics`] (`probes.csv`,
+//! `fields_NNNN.vtu`, `fields.pvd`, ...).
 
 use crate::atomic::{prepare_dir, write_atomic};
 use crate::error::{IoError, IoResult};
@@ -57,6 +58,9 @@ pub fn files(out: &BemOutcome, summary: &BemSummary, plots: bool) -> Vec<String>
     }
     if summary.compare.is_some() {
         f.extend(["compare.csv".into(), "compare.png".into()]);
+    }
+    if let Some(d) = &out.dynamics {
+        f.extend(crate::dynamics::dynamics_files(&d.history, true));
     }
     f.push(SUMMARY.into());
     if !plots {
@@ -116,6 +120,9 @@ fn check(out: &BemOutcome, summary: &BemSummary) -> IoResult<()> {
     if let Some(d) = &v.damage {
         finite_all("damage", d.psi.iter().copied())?;
     }
+    if let Some(d) = &out.dynamics {
+        crate::dynamics::check(&d.history)?;
+    }
     Ok(())
 }
 
@@ -164,6 +171,9 @@ pub fn write_bem(
     check(out, &summary)?;
     prepare_dir(dir, SUMMARY, opts.remove_temporary_on_signal)?;
     write_data(dir, case, out, &summary)?;
+    if let Some(d) = &out.dynamics {
+        crate::dynamics::write_dynamics(dir, &d.history, opts)?;
+    }
     #[cfg(feature = "png")]
     if plots {
         crate::plot::bem::write_plots(dir, case, out, &summary)?;

@@ -29,6 +29,10 @@ use crate::{WriteOptions, Written};
 pub const PROBES_HEADER: &str = "time_s,probe,x_m,y_m,ux_m,uy_m,vx_m_per_s,vy_m_per_s,\
 sigma_xx_Pa,sigma_yy_Pa,sigma_xy_Pa,sigma_zz_Pa";
 
+/// The header of `probes.csv` of a history without stresses
+/// ([`DynamicHistory::stresses`]): the stress columns left out, not zeros.
+pub const PROBES_HEADER_NO_STRESS: &str = "time_s,probe,x_m,y_m,ux_m,uy_m,vx_m_per_s,vy_m_per_s";
+
 /// The header of `contacts.csv`.
 pub const CONTACTS_HEADER: &str = "time_s,slave,master,contact_length_m,normal_force_N_per_m,\
 tangential_force_N_per_m,stick_length_m,slip_length_m";
@@ -41,9 +45,32 @@ fn num(x: f64) -> String {
     format!("{:e}", x + 0.0)
 }
 
-/// `probes.csv`: one line per sample time and probe (time first, probes in order).
+/// `probes.csv`: one line per sample time and probe (time first, probes in order); the
+/// stress columns only where the history has stresses.
 pub fn probes_csv(h: &DynamicHistory) -> String {
     let mut s = String::with_capacity(160 * h.times.len() * h.probes.len() + 128);
+    if !h.stresses {
+        s.push_str(PROBES_HEADER_NO_STRESS);
+        s.push('\n');
+        for (k, &t) in h.times.iter().enumerate() {
+            for p in &h.probes {
+                let (u, v) = (p.displacement[k], p.velocity[k]);
+                let _ = writeln!(
+                    s,
+                    "{},{},{},{},{},{},{},{}",
+                    num(t),
+                    p.name,
+                    num(p.point[0]),
+                    num(p.point[1]),
+                    num(u[0]),
+                    num(u[1]),
+                    num(v[0]),
+                    num(v[1]),
+                );
+            }
+        }
+        return s;
+    }
     s.push_str(PROBES_HEADER);
     s.push('\n');
     for (k, &t) in h.times.iter().enumerate() {
@@ -138,7 +165,7 @@ pub fn snapshot_file(k: usize, n: usize) -> String {
 /// VTK XML unstructured grid of snapshot `k` (binary, raw appended data): points (z = 0),
 /// triangles (VTK type 5), cell data `region` (the model's region index), point data
 /// `displacement_m` (3 components, z = 0), the stresses (Pa) and strains as in the static
-/// `fields_<step>.vtu`.
+/// `fields_<step>.vtu` (only where the history has stresses, [`DynamicHistory::stresses`]).
 pub fn snapshot_vtu(h: &DynamicHistory, k: usize) -> Vec<u8> {
     let mesh = &h.snapshot_mesh.regions;
     let snap = &h.snapshots[k];
@@ -179,9 +206,12 @@ pub fn snapshot_vtu(h: &DynamicHistory, k: usize) -> Vec<u8> {
         .flat_map(|r| std::iter::repeat_n(r.index as i32, r.triangles.len()))
         .collect();
     f.array("        ", "region", 1, region.into_iter());
-    f.xml(
-        "      </CellData>\n      <PointData Scalars=\"sigma_xx_Pa\" Vectors=\"displacement_m\">\n",
-    );
+    f.xml("      </CellData>\n");
+    f.xml(if h.stresses {
+        "      <PointData Scalars=\"sigma_xx_Pa\" Vectors=\"displacement_m\">\n"
+    } else {
+        "      <PointData Vectors=\"displacement_m\">\n"
+    });
     let samples = || snap.samples.iter().flatten();
     let displacement: Vec<f64> = samples()
         .flat_map(|x| [x.displacement[0] + 0.0, x.displacement[1] + 0.0, 0.0])
@@ -198,7 +228,8 @@ pub fn snapshot_vtu(h: &DynamicHistory, k: usize) -> Vec<u8> {
         ("eps_xy", |x| x.strain.xy),
         ("eps_zz", |x| x.strain.zz),
     ];
-    for (name, get) in scalars {
+    let scalars = if h.stresses { &scalars[..] } else { &[] };
+    for &(name, get) in scalars {
         let values: Vec<f64> = samples().map(|x| get(x) + 0.0).collect();
         f.array("        ", name, 1, values.into_iter());
     }
@@ -252,7 +283,7 @@ pub fn dynamics_files(h: &DynamicHistory, plots: bool) -> Vec<String> {
 
 /// Every number the files show must be finite, and the history whole (nothing written
 /// otherwise).
-fn check(h: &DynamicHistory) -> IoResult<()> {
+pub(crate) fn check(h: &DynamicHistory) -> IoResult<()> {
     check_finite("sample times", &h.times)?;
     for p in &h.probes {
         let values: Vec<f64> = p

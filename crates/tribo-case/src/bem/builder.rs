@@ -348,6 +348,7 @@ impl BemCaseBuilder {
                 e: Quantity::from_si(youngs_modulus),
                 nu: Quantity::from_si(poisson_ratio),
                 source: None,
+                density: None,
             },
         );
         self

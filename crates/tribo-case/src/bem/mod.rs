@@ -5,6 +5,7 @@
 
 pub mod builder;
 pub mod case;
+pub mod dynamics;
 pub mod pipeline;
 pub mod summary;
 pub mod template;

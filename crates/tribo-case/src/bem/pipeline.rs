@@ -179,6 +179,10 @@ pub struct BemOutcome {
     pub main: Variant,
     /// The comparison: (material name, its run), in the order of `compare.materials`.
     pub compare: Vec<(String, Variant)>,
+    /// The dynamic run (`[dynamics]`); the static run above is then the response to the
+    /// loads at their full values (every time function at 1), the long-time limit of
+    /// steps and ramps.
+    pub dynamics: Option<super::dynamics::DynamicOutcome>,
 }
 
 /// What one gmsh file gave the model (for the summary).
@@ -475,8 +479,45 @@ fn conditions(
     Ok(bcs)
 }
 
+/// The boundary conditions of a dynamic run: condition b (index into `case.bcs`) at its
+/// group's factor in `factors` times `scale(b)` (the same DOFs known whatever the scale).
+pub(crate) fn scaled_conditions(
+    case: &BemCase,
+    built: &BuiltModel,
+    factors: &BTreeMap<String, f64>,
+    scale: &dyn Fn(usize) -> f64,
+) -> CaseResult<BoundaryConditions> {
+    let shapes = segment_shapes(&built.model);
+    let mut bcs = BoundaryConditions::new();
+    for (k, b) in case.bcs.iter().enumerate() {
+        let targets: Vec<&str> = if shapes.contains_key(&b.segment) {
+            vec![b.segment.as_str()]
+        } else if let Some(parts) = built.curves.get(&b.segment) {
+            parts.iter().map(String::as_str).collect()
+        } else {
+            return Err(CaseError::field(
+                format!("{}.segment", b.origin),
+                format!("{:?}", b.segment),
+                "names no segment of the model",
+            ));
+        };
+        let group = b
+            .group
+            .as_ref()
+            .map_or(1.0, |g| factors.get(g).copied().unwrap_or(0.0));
+        for segment in targets {
+            let shape = shapes.get(segment);
+            bcs = bcs.set(
+                segment,
+                library_bc(&b.kind, group * scale(k), shape, &b.origin)?,
+            );
+        }
+    }
+    Ok(bcs)
+}
+
 /// The default edge of the field triangles: 1/40 of the model's largest extent.
-fn default_field_size(mesh: &BemMesh) -> f64 {
+pub(crate) fn default_field_size(mesh: &BemMesh) -> f64 {
     let mut lo = [f64::INFINITY; 2];
     let mut hi = [f64::NEG_INFINITY; 2];
     for n in mesh.regions.iter().flat_map(|r| r.nodes.iter()) {
@@ -494,7 +535,11 @@ fn default_field_size(mesh: &BemMesh) -> f64 {
 }
 
 /// The region names of the fields to sample.
-fn field_regions(case: &BemCase, mesh: &BemMesh, only: Option<&[&str]>) -> CaseResult<Vec<usize>> {
+pub(crate) fn field_regions(
+    case: &BemCase,
+    mesh: &BemMesh,
+    only: Option<&[&str]>,
+) -> CaseResult<Vec<usize>> {
     let all: Vec<String> = mesh.regions.iter().map(|r| r.name.clone()).collect();
     let wanted: Vec<String> = match (only, &case.field.regions) {
         (Some(list), _) => list.iter().map(|s| s.to_string()).collect(),
@@ -765,7 +810,19 @@ pub fn solve(case: &BemCase, progress: &mut dyn Progress) -> CaseResult<BemOutco
             compare.push((m.clone(), v));
         }
     }
-    Ok(BemOutcome { main, compare })
+    let dynamics = match &case.dynamics {
+        None => None,
+        Some(spec) => {
+            let built = model(case, None)?;
+            let statics = &main.steps[main.steps.len() - 1].solution;
+            Some(super::dynamics::run(case, spec, &built, statics, progress)?)
+        }
+    };
+    Ok(BemOutcome {
+        main,
+        compare,
+        dynamics,
+    })
 }
 
 /// The plane condition's name.

@@ -9,6 +9,7 @@ use tribo::analysis::bem_field::FieldSample;
 use tribo::analysis::damage::{DamageQuantity, DangerousRegion, TensorKind};
 use tribo::solvers::bem2d::contact::{ContactState, PairResult};
 
+use super::case::dynamics::Method;
 use super::case::{BcKind, BemCase, ComponentSpec};
 use super::pipeline::{extremes, plane_name, tensor, BemOutcome, DamageUnit, RegionField, Variant};
 use crate::error::CaseResult;
@@ -256,6 +257,57 @@ pub struct CompareSummary {
     pub paper_change_percent: Option<Vec<Option<f64>>>,
 }
 
+/// One probe of a dynamic run: its peaks and the static value.
+#[derive(Debug, Clone, Serialize)]
+pub struct ProbeSummary {
+    /// Probe name.
+    pub name: String,
+    /// Where, m.
+    pub at_m: [f64; 2],
+    /// Largest |u| over the run, m.
+    pub max_displacement_m: f64,
+    /// Its time, s.
+    pub max_displacement_time_s: f64,
+    /// Largest |v| over the run, m/s.
+    pub max_velocity_m_per_s: f64,
+    /// Its time, s.
+    pub max_velocity_time_s: f64,
+    /// The static displacement under the loads at their full values, m.
+    pub static_displacement_m: [f64; 2],
+    /// max |u| / |u_static| (None where the static displacement is zero): the dynamic
+    /// amplification.
+    pub amplification: Option<f64>,
+}
+
+/// The dynamic run (`[dynamics]`).
+#[derive(Debug, Clone, Serialize)]
+pub struct DynamicsSummary {
+    /// The convolution quadrature's rule ("bdf2", "radau_iia_2", "radau_iia_3").
+    pub method: Method,
+    /// "all_at_once" (the linear run).
+    pub realisation: &'static str,
+    /// Time step, s.
+    pub time_step_s: f64,
+    /// Steps.
+    pub steps: usize,
+    /// Duration, s.
+    pub duration_s: f64,
+    /// Laplace-domain solves (contour frequencies times stages).
+    pub laplace_solves: usize,
+    /// Points convolved (probes and snapshot points).
+    pub points: usize,
+    /// Field snapshots written.
+    pub snapshots: usize,
+    /// Whether stresses are computed (not yet: no stress columns are written).
+    pub stresses: bool,
+    /// The probes.
+    pub probes: Vec<ProbeSummary>,
+    /// Setup (model, load patterns, triangulation), s.
+    pub setup_s: f64,
+    /// The Laplace-domain solves and FFTs, s.
+    pub convolution_s: f64,
+}
+
 /// Timings, s.
 #[derive(Debug, Clone, Serialize)]
 pub struct TimingSummary {
@@ -300,6 +352,9 @@ pub struct BemSummary {
     pub damage: Option<DamageSummary>,
     /// Comparison.
     pub compare: Option<CompareSummary>,
+    /// The dynamic run (absent for a static case).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dynamics: Option<DynamicsSummary>,
     /// Timings.
     pub timings: TimingSummary,
     /// Files written.
@@ -362,7 +417,58 @@ pub const UNITS: &[(&str, &str)] = &[
     ("compare.rows[].change_percent[]", "%"),
     ("compare.paper_change_percent[]", "%"),
     ("timings.*", "s"),
+    ("dynamics.time_step_s", "s"),
+    ("dynamics.steps", "1"),
+    ("dynamics.duration_s", "s"),
+    ("dynamics.laplace_solves", "1"),
+    ("dynamics.points", "1"),
+    ("dynamics.snapshots", "1"),
+    ("dynamics.probes[].at_m[]", "m"),
+    ("dynamics.probes[].max_displacement_m", "m"),
+    ("dynamics.probes[].max_displacement_time_s", "s"),
+    ("dynamics.probes[].max_velocity_m_per_s", "m/s"),
+    ("dynamics.probes[].max_velocity_time_s", "s"),
+    ("dynamics.probes[].static_displacement_m[]", "m"),
+    ("dynamics.probes[].amplification", "1"),
+    ("dynamics.setup_s", "s"),
+    ("dynamics.convolution_s", "s"),
 ];
+
+/// The summary of a dynamic run.
+fn dynamics_summary(out: &BemOutcome) -> Option<DynamicsSummary> {
+    let d = out.dynamics.as_ref()?;
+    Some(DynamicsSummary {
+        method: d.method,
+        realisation: "all_at_once",
+        time_step_s: d.time_step,
+        steps: d.steps,
+        duration_s: d.duration,
+        laplace_solves: d.laplace_solves,
+        points: d.points,
+        snapshots: d.history.snapshots.len(),
+        stresses: d.history.stresses,
+        probes: d
+            .peaks
+            .iter()
+            .zip(&d.history.probes)
+            .map(|(p, h)| {
+                let st = p.static_displacement[0].hypot(p.static_displacement[1]);
+                ProbeSummary {
+                    name: p.name.clone(),
+                    at_m: h.point,
+                    max_displacement_m: p.max_displacement,
+                    max_displacement_time_s: p.max_displacement_time,
+                    max_velocity_m_per_s: p.max_velocity,
+                    max_velocity_time_s: p.max_velocity_time,
+                    static_displacement_m: p.static_displacement,
+                    amplification: (st > 0.0).then(|| p.max_displacement / st),
+                }
+            })
+            .collect(),
+        setup_s: d.timings.setup,
+        convolution_s: d.timings.convolution,
+    })
+}
 
 fn at(v: (f64, [f64; 2])) -> At {
     At {
@@ -667,6 +773,7 @@ impl BemSummary {
         let steps = step_summaries(case, v)?;
         let damage = damage_summary(case, v);
         let compare = compare_summary(case, out);
+        let dynamics = dynamics_summary(out);
         let compare_s: f64 = out
             .compare
             .iter()
@@ -680,6 +787,7 @@ impl BemSummary {
             .filter(|(p, _)| match p.split(['.', '[']).next() {
                 Some("damage") => damage.is_some(),
                 Some("compare") => compare.is_some(),
+                Some("dynamics") => dynamics.is_some(),
                 _ => true,
             })
             .collect();
@@ -717,6 +825,7 @@ impl BemSummary {
             steps,
             damage,
             compare,
+            dynamics,
             timings: TimingSummary {
                 setup_s: v.timings.setup,
                 steps_s: v.timings.steps,

@@ -1,7 +1,8 @@
 //! Hostile input: random TOML documents built from the schema's keys, with wrong types,
 //! out-of-range and non-finite values, huge numbers, empty tables and removed keys, over
 //! every embedded half-space example and the 2D BEM bases (the clamp-knife-base template, the
-//! outline case of docs/user/case-bem2d.md). Parsing never panics, and every error names a key.
+//! outline case of docs/user/case-bem2d.md, the dynamic cavity example with `[dynamics]`,
+//! `[[probe]]`, `density` and a `time` function). Parsing never panics, and every error names a key.
 
 use crate::error::CaseError;
 use crate::examples::EXAMPLES;
@@ -115,10 +116,24 @@ const BEM_SCHEMA: Schema = &[
     (
         "",
         &[
-            "kind", "title", "plane", "rigid", "regions", "bc", "steps", "contact", "mesh",
+            "kind", "title", "plane", "rigid", "regions", "bc", "steps", "contact", "mesh", "probe",
         ],
     ),
-    ("materials.steel", &["E", "nu", "source"]),
+    ("materials.steel", &["E", "nu", "source", "density"]),
+    (
+        "dynamics",
+        &[
+            "time_step",
+            "steps",
+            "duration",
+            "method",
+            "realisation",
+            "fields_at",
+            "fields_every",
+            "initial_velocity",
+        ],
+    ),
+    ("dynamics.initial_velocity", &["ring"]),
     (
         "clamp_knife_base",
         &[
@@ -212,6 +227,13 @@ fn hostile(k: usize) -> Value {
         "\"rotating-bending\"",
         "\"rolling\"",
         "\"free\"",
+        "\"1 us\"",
+        "\"-1 us\"",
+        "\"7850 kg/m^3\"",
+        "\"bdf2\"",
+        "\"marching\"",
+        "[\"1 us\", \"2 us\"]",
+        "[\"5 m/s\", 0]",
     ];
     let text = texts[k % texts.len()];
     toml::from_str::<Table>(&format!("v = {text}")).expect("a TOML value")["v"].clone()
@@ -280,6 +302,8 @@ const ROOTS: &[&str] = &[
     "rigid",
     "steps",
     "compare",
+    "dynamics",
+    "probe",
 ];
 
 fn names_a_key(e: &CaseError) -> bool {
@@ -320,7 +344,11 @@ fn bem_bases() -> Vec<Table> {
         .iter()
         .find(|e| e.name == "clamp-knife-base")
         .expect("the clamp-knife-base example");
-    [outline, knife.text]
+    let cavity = EXAMPLES
+        .iter()
+        .find(|e| e.name == "cavity")
+        .expect("the cavity example");
+    [outline, knife.text, cavity.text]
         .iter()
         .map(|t| toml::from_str::<Table>(t).expect("a BEM base"))
         .collect()

@@ -107,8 +107,10 @@ fn probe_panels(h: &DynamicHistory, t: &[f64]) -> Vec<Panel> {
             p.stress[k].xy
         }),
     ];
+    let panels = if h.stresses { parts.len() } else { 4 };
     parts
         .into_iter()
+        .take(panels)
         .map(|(title, symbol, (unit, scale), get)| {
             let lines = h
                 .probes

@@ -253,6 +253,11 @@ pub struct DynamicHistory {
     pub snapshots: Vec<FieldSnapshot>,
     /// The damage per assessed region.
     pub damage: Vec<DamageHistory>,
+    /// Whether the solver computes stresses (and strains): at the probes and in the
+    /// snapshots. Without them ([`DynamicHistory::without_stresses`]) the probes' `stress`
+    /// series stay empty, the snapshots' stresses and strains are not results (zero
+    /// placeholders) and the writers leave those columns and arrays out.
+    pub stresses: bool,
 }
 
 fn shape(
@@ -311,7 +316,23 @@ impl DynamicHistory {
             snapshot_mesh: SnapshotMesh::default(),
             snapshots: Vec::new(),
             damage: Vec::new(),
+            stresses: true,
         }
+    }
+
+    /// The history of a solver that computes displacements and velocities only: the
+    /// samples' stresses are ignored and nothing is written for them (see
+    /// [`DynamicHistory::stresses`]). Error: steps already recorded.
+    pub fn without_stresses(mut self) -> Result<Self> {
+        if !self.times.is_empty() {
+            return Err(shape(
+                "history.stresses",
+                self.times.len(),
+                "the stress setting is chosen before the first step",
+            ));
+        }
+        self.stresses = false;
+        Ok(self)
     }
 
     /// The number of sample times.
@@ -391,7 +412,9 @@ impl DynamicHistory {
         for (h, s) in self.probes.iter_mut().zip(&record.probes) {
             h.displacement.push(s.displacement);
             h.velocity.push(s.velocity);
-            h.stress.push(s.stress);
+            if self.stresses {
+                h.stress.push(s.stress);
+            }
         }
         for (h, s) in self.contacts.iter_mut().zip(&record.contacts) {
             h.length.push(s.length);
@@ -483,7 +506,15 @@ impl DynamicHistory {
             let what = format!("history.probes.{}", p.name);
             length(format!("{what}.displacement"), p.displacement.len())?;
             length(format!("{what}.velocity"), p.velocity.len())?;
-            length(format!("{what}.stress"), p.stress.len())?;
+            if self.stresses {
+                length(format!("{what}.stress"), p.stress.len())?;
+            } else if !p.stress.is_empty() {
+                return Err(shape(
+                    format!("{what}.stress"),
+                    format!("{} values", p.stress.len()),
+                    "a history without stresses holds none",
+                ));
+            }
             finite_all(&format!("{what}.point"), p.point)?;
             finite_all(
                 &what,

@@ -384,6 +384,44 @@ impl LaplaceBem {
         &self.known_static
     }
 
+    /// The values of the known DOFs (m or Pa, input order) of other boundary conditions
+    /// `bcs` with the same layout as the model's (the same DOFs known, displacement or
+    /// traction alike): the load pattern of one condition alone, for loads with one time
+    /// function per condition (`sum_b f_b(t) * known_values_of(bcs_b)`).
+    ///
+    /// Errors: a condition naming no segment of the model (as [`BemProblem::solve`]); a layout that differs from the model's
+    /// ([`Error::InvalidParameter`]).
+    pub fn known_values_of(&self, bcs: &BoundaryConditions) -> Result<Vec<f64>> {
+        let (dofs, ncol) = self.problem.dofs(bcs)?;
+        let layout = |d: &Dof| match *d {
+            Dof::U { col, .. } => (0, col, 0),
+            Dof::T { col, .. } => (1, col, 0),
+            Dof::Interface { u_col, t_col, .. } => (2, u_col, t_col),
+        };
+        let same = dofs.len() == self.dofs.len()
+            && dofs.iter().zip(&self.dofs).all(|(a, b)| {
+                a.len() == b.len()
+                    && a.iter()
+                        .flatten()
+                        .zip(b.iter().flatten())
+                        .all(|(x, y)| layout(x) == layout(y))
+            });
+        if ncol != self.ncol || !same {
+            return Err(Error::invalid(
+                "bcs",
+                "(other layout)",
+                "must prescribe the same DOFs (displacement or traction) as the model's \
+                 boundary conditions",
+            ));
+        }
+        let values = known_values(&dofs);
+        Ok(self
+            .known
+            .iter()
+            .map(|k| values[k.region][k.node][k.direction])
+            .collect())
+    }
+
     /// The transformed unknowns at `s` for the transformed known values `known` (length
     /// [`LaplaceBem::inputs`]): the outputs described at [`LaplaceBem::outputs`].
     ///

@@ -3,19 +3,14 @@
 //! times, initial rigid-body velocities), `[[probe]]` points, a `time` function on each
 //! `[[bc]]` and a `density` per material.
 //!
-//! Not yet wired into the root schema. The wiring (the report of the branch
-//! `dyncase`): `RawDynamics` as `dynamics: Option<RawDynamics>` and `RawProbe` as
-//! `probe: Option<Vec<RawProbe>>` of the root raw case, `time: Option<RawTime>` of the raw
-//! `[[bc]]`, `density: Option<Quantity<Density>>` of the raw material; then `validate`
-//! after the static rules, with a `DynamicsContext` built from the validated case and a
-//! locator ([`model_locator`] of the built model, or [`outline_locator`] of the outlines).
+//! Wired into the root schema (`schema.rs`): `dynamics` and `probe` of the root raw case,
+//! `time` of the raw `[[bc]]`, `density` of the raw material; `validate.rs` calls
+//! `validate` after the static rules, with a `DynamicsContext` built from the validated
+//! case and the locator of its outlines ([`outline_locator`]; probes in gmsh regions are
+//! checked against the built model by the pipeline, [`model_locator`]).
 //!
 //! Every rule's error names the item (`dynamics.time_step`, `probe[1].at`,
 //! `bc[2].time.ramp`, `materials.steel.density`, `regions[0]`).
-
-// Not yet wired into the root schema (the dynamic solver of issue 13 is being written): the
-// crate-private parts are used by the tests only until then. Remove with the wiring.
-#![cfg_attr(not(test), allow(dead_code))]
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -83,7 +78,7 @@ impl Choices for Realisation {
 }
 
 /// `[dynamics]` as serde reads it.
-#[derive(Debug, Clone, Default, Deserialize)]
+#[derive(Debug, Clone, Default, Deserialize, serde::Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawDynamics {
     /// `time_step = "1 us"`.
@@ -105,7 +100,7 @@ pub(crate) struct RawDynamics {
 }
 
 /// `[[probe]]` as serde reads it.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, serde::Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawProbe {
     /// `name = "wall"`.
@@ -148,6 +143,17 @@ const TIME_RULE: &str = "must be \"step\" or a table with one of step = \"<time>
     \"<rise time>\", sine = \"<frequency>\", csv = \"<file>\", points = [[t, f], ...] (with \
     start = \"<time>\" for step-free ramp/sine, phase_deg for sine)";
 
+/// Every key a time function's table may hold.
+const TIME_KEYS: [&str; 7] = [
+    "step",
+    "ramp",
+    "sine",
+    "csv",
+    "points",
+    "start",
+    "phase_deg",
+];
+
 fn leaf<T: FromToml>(t: &toml::Table, key: &str) -> Result<Option<T>, Refusal> {
     t.get(key)
         .map(|v| T::from_toml(v).map_err(|r| r.within(format!(".{key}"))))
@@ -161,6 +167,17 @@ impl FromToml for RawTime {
             Value::Table(t) => t,
             _ => return Err(Refusal::new(value, TIME_RULE)),
         };
+        if let Some(k) = t.keys().find(|k| !TIME_KEYS.contains(&k.as_str())) {
+            return Err(Refusal::new(
+                &t[k],
+                format!(
+                    "unknown key ({}): a time function is one kind key, with start for a \
+                     ramp or a sine and phase_deg for a sine",
+                    TIME_KEYS.join(", ")
+                ),
+            )
+            .within(format!(".{k}")));
+        }
         let kinds: Vec<&str> = ["step", "ramp", "sine", "csv", "points"]
             .into_iter()
             .filter(|k| t.contains_key(*k))
@@ -242,6 +259,37 @@ impl FromToml for RawTime {
             }
         };
         Ok(RawTime::Table(table))
+    }
+}
+
+impl serde::Serialize for RawTime {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let RawTime::Table(t) = self else {
+            return serializer.serialize_str("step");
+        };
+        let mut m = serializer.serialize_map(None)?;
+        match t {
+            RawTimeTable::Step(t0) => m.serialize_entry("step", t0)?,
+            RawTimeTable::Ramp(rise, start) => {
+                m.serialize_entry("ramp", rise)?;
+                if let Some(t0) = start {
+                    m.serialize_entry("start", t0)?;
+                }
+            }
+            RawTimeTable::Sine(f, start, phase) => {
+                m.serialize_entry("sine", f)?;
+                if let Some(t0) = start {
+                    m.serialize_entry("start", t0)?;
+                }
+                if let Some(p) = phase {
+                    m.serialize_entry("phase_deg", p)?;
+                }
+            }
+            RawTimeTable::Csv(path) => m.serialize_entry("csv", path)?,
+            RawTimeTable::Points(points) => m.serialize_entry("points", points)?,
+        }
+        m.end()
     }
 }
 

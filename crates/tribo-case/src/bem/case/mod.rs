@@ -177,6 +177,9 @@ pub struct BemCase {
     pub compare: Option<CompareSpec>,
     /// The template that generated the model, if any (its parameters in SI).
     pub template: Option<template::ClampKnifeBase>,
+    /// The dynamic settings (`[dynamics]`, `[[probe]]`, the time functions and densities);
+    /// None for a static case.
+    pub dynamics: Option<dynamics::DynamicsSpec>,
     /// The case as written (JSON), echoed in the summary.
     pub echo: serde_json::Value,
 }

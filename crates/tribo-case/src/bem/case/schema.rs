@@ -5,8 +5,11 @@
 //! `conditions.rs`. [`super::super::template`] and [`super::super::builder`] build these
 //! structs in code; they serialize back to the case as written (the echo of a built case).
 
+use super::dynamics::{RawDynamics, RawProbe, RawTime};
 use crate::schema::{deserialize_leaf, items, Choice, Choices, Count, Flag, FromToml, Refusal};
-use crate::units::{Angle, Dimension, Dimensionless, Length, LineForce, Pressure, Quantity};
+use crate::units::{
+    Angle, Density, Dimension, Dimensionless, Length, LineForce, Pressure, Quantity,
+};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -45,6 +48,8 @@ pub(in crate::bem) struct RawBemCase {
     pub field: Option<RawField>,
     pub damage: Option<RawDamage>,
     pub compare: Option<RawCompare>,
+    pub dynamics: Option<RawDynamics>,
+    pub probe: Option<Vec<RawProbe>>,
 }
 
 #[derive(Debug, Deserialize, Serialize, Clone, PartialEq)]
@@ -54,6 +59,7 @@ pub(in crate::bem) struct RawMaterial {
     pub e: Quantity<Pressure>,
     pub nu: Number,
     pub source: Option<String>,
+    pub density: Option<Quantity<Density>>,
 }
 
 /// `[clamp_knife_base]`: every parameter optional (the template's defaults).
@@ -143,6 +149,7 @@ pub(in crate::bem) struct RawBc {
     pub ty: Option<Profile<Pressure>>,
     pub pressure: Option<Profile<Pressure>>,
     pub group: Option<String>,
+    pub time: Option<RawTime>,
 }
 
 #[derive(Debug, Deserialize, Serialize, Clone, PartialEq)]

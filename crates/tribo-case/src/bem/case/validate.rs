@@ -10,6 +10,7 @@ use tribo::operators::bem2d::SegmentShape;
 use tribo::solvers::bem2d::contact::{ContactOptions, ContactPair};
 use tribo::ElasticMaterial;
 
+use super::dynamics::{self, RawTime};
 use super::schema::{
     Limit, Plane, RawBemCase, RawCompare, RawDamage, RawField, RawMaterial, RawMesh, RawPair,
     RawRegion, RawSolver,
@@ -21,7 +22,7 @@ use super::{
 use crate::bem::pipeline::DamageUnit;
 use crate::bem::template;
 use crate::error::{CaseError, CaseResult};
-use crate::units::show;
+use crate::units::{show, Density, Quantity};
 
 pub(super) fn validate(
     mut raw: RawBemCase,
@@ -41,6 +42,19 @@ pub(super) fn validate(
         Plane::Stress => PlaneCondition::Stress,
     };
     let template_params = apply_template(&mut raw)?;
+    let material_densities: BTreeMap<String, Option<Quantity<Density>>> = raw
+        .materials
+        .iter()
+        .flatten()
+        .map(|(k, m)| (k.clone(), m.density.clone()))
+        .collect();
+    let bc_times: Vec<(String, Option<RawTime>)> = raw
+        .bc
+        .iter()
+        .flatten()
+        .enumerate()
+        .map(|(k, b)| (format!("bc[{k}]"), b.time.clone()))
+        .collect();
     let (materials, material_sources) = materials(raw.materials.take(), template_params.as_ref())?;
     let regions = regions(&raw.regions.take().unwrap_or_default(), &materials)?;
     let meshes = meshes(raw.mesh.take().unwrap_or_default(), &materials, base_dir)?;
@@ -66,6 +80,40 @@ pub(super) fn validate(
         Some(c) => Some(compare(c, &materials)?),
     };
     check_region_names(&regions, &meshes, &field, damage.as_ref(), compare.as_ref())?;
+    let dynamics = {
+        let locate_outlines = dynamics::outline_locator(&regions);
+        let locate = |p: [f64; 2]| {
+            // Probes in gmsh regions are located after the import (the pipeline).
+            locate_outlines(p).or_else(|| (!meshes.is_empty()).then(String::new))
+        };
+        let mut region_materials: Vec<(String, String)> = regions
+            .iter()
+            .map(|r| (r.name.clone(), r.material.clone()))
+            .collect();
+        for m in &meshes {
+            region_materials.extend(m.materials.iter().map(|(s, mat)| (s.clone(), mat.clone())));
+        }
+        let ctx = dynamics::DynamicsContext {
+            densities: material_densities,
+            regions: region_materials,
+            bc_times,
+            has_contact: !pairs.is_empty(),
+            load_steps: steps.len(),
+            base_dir,
+            locate: &locate,
+        };
+        dynamics::validate(raw.dynamics.take(), raw.probe.take(), &ctx)?
+    };
+    if let Some(d) = &dynamics {
+        dynamic_limits(
+            d,
+            &regions,
+            &pairs,
+            &rigid,
+            damage.is_some(),
+            compare.is_some(),
+        )?;
+    }
     let title = raw.title.unwrap_or_else(|| match &template_params {
         Some(_) => "Clamp-knife-base of a harvester cutter bar (paper Sec. 7)".into(),
         None => "2D boundary element model".into(),
@@ -88,8 +136,74 @@ pub(super) fn validate(
         damage,
         compare,
         template: template_params,
+        dynamics,
         echo,
     })
+}
+
+/// What the linear dynamic pipeline does not do yet, refused with `[dynamics]` named: contact
+/// pairs and rigid segments (dynamic contact needs time marching on the condensed
+/// compliance), `[damage]` (psi over time needs the interior stresses in the Laplace
+/// domain), `[compare]`, body forces (not in the Laplace-domain BEM) and initial velocities
+/// (a rigid-body motion enters as a closing gap: contact).
+fn dynamic_limits(
+    d: &dynamics::DynamicsSpec,
+    regions: &[RegionSpec],
+    pairs: &[ContactPair],
+    rigid: &[String],
+    damage: bool,
+    compare: bool,
+) -> CaseResult<()> {
+    let refuse = |field: &str, value: &str, rule: &str| Err(bad(field, value, rule));
+    if !pairs.is_empty() {
+        return refuse(
+            "dynamics",
+            "(with [[contact]])",
+            "a dynamic case with contact pairs needs time marching with contact (not \
+             available yet): remove [dynamics] for the static contact solution, or the \
+             [[contact]] pairs for a linear dynamic run",
+        );
+    }
+    if !rigid.is_empty() {
+        return refuse(
+            "dynamics",
+            "(with rigid)",
+            "rigid (guided) segments are solved with the contact machinery: not available \
+             with [dynamics] yet",
+        );
+    }
+    if damage {
+        return refuse(
+            "dynamics",
+            "(with [damage])",
+            "damage over time needs the interior stresses of the dynamic run (not available \
+             yet): remove [damage] from a dynamic case",
+        );
+    }
+    if compare {
+        return refuse(
+            "dynamics",
+            "(with [compare])",
+            "the material comparison is a static study: remove [compare] from a dynamic case",
+        );
+    }
+    if let Some(k) = regions.iter().position(|r| !r.body_forces.is_empty()) {
+        return refuse(
+            &format!("regions[{k}].body_force"),
+            "(given)",
+            "body forces are not supported by the dynamic (Laplace-domain) solver: remove \
+             the body force or [dynamics]",
+        );
+    }
+    if let Some(name) = d.initial_velocity.keys().next() {
+        return refuse(
+            &format!("dynamics.initial_velocity.{name}"),
+            "(given)",
+            "an initial rigid-body velocity acts through contact (an impact): not available \
+             yet",
+        );
+    }
+    Ok(())
 }
 
 /// `[clamp_knife_base]`: the template generates the regions, conditions, pairs and steps
