@@ -16,9 +16,10 @@
 //! backward difference of the displacement sequence (`delta(zeta)/dt` is the generating
 //! function of the BDF2 difference, u_(-1) = u_(-2) = 0 at rest), for Radau IIA
 //! `A^-1 (U_n - 1 u_(n-1)) / dt` at the stages (the symbol `Delta(zeta)`, Lubich & Ostermann
-//! 1993), the last stage the step's end. Stresses in the Laplace domain are not built yet:
-//! the history is made [`DynamicHistory::without_stresses`] (no stress columns, no zeros
-//! written).
+//! 1993), the last stage the step's end. Stresses (and strains by each region's Hooke's law)
+//! at the probes and the snapshot points come from the Laplace-domain interior stress
+//! kernels ([`LaplaceBem::with_stress_probes`], docs/theory/DYNAMICS.md sec. 5.5), convolved
+//! with the displacements; they cost about as much again per point as the displacements.
 //!
 //! Field snapshot points on the boundary are evaluated 1 % of the way towards the centroid
 //! of their first triangle (the Somigliana identity holds inside; at a corner the static
@@ -276,7 +277,9 @@ pub fn run(
             });
         }
     }
-    let bem = LaplaceBem::new(&built.model, &densities, &all, &points)?;
+    // Stresses at every point (probes and snapshot points): three more outputs each.
+    let bem =
+        LaplaceBem::new(&built.model, &densities, &all, &points)?.with_stress_probes(&points)?;
     let mut patterns = Vec::with_capacity(case.bcs.len());
     for b in 0..case.bcs.len() {
         let only = pipeline::scaled_conditions(case, built, factors, &|k| {
@@ -337,7 +340,29 @@ pub fn run(
 
     // The histories at the step times t_n = n dt.
     let no = series.channels;
-    let first_point = no - 2 * points.len();
+    let first_point = bem.first_stress_output() - 2 * points.len();
+    // The stresses (Pa) and strains of every point at sample k (same order as `points`).
+    let stresses_at = |k: usize| -> CaseResult<Vec<(Stress2d, Strain2d)>> {
+        let values = bem.stress_probe_values(&series.values[k * no..(k + 1) * no])?;
+        values
+            .into_iter()
+            .enumerate()
+            .map(|(i, s)| {
+                let r = bem.stress_probe_region(i).ok_or_else(|| {
+                    CaseError::field("probe", format!("{i}"), "has no stress probe")
+                })?;
+                let kernels = &bem.static_problem().mesh.regions[r].kernels;
+                let e = kernels.strain_from_stress([s.xx, s.yy, s.xy]);
+                let strain = Strain2d {
+                    xx: e[0],
+                    yy: e[1],
+                    xy: e[2],
+                    zz: kernels.eps_zz(s.xx, s.yy),
+                };
+                Ok((s, strain))
+            })
+            .collect()
+    };
     let channel = |c: usize| -> Vec<f64> {
         (0..times.len())
             .map(|k| series.values[k * no + c])
@@ -347,8 +372,7 @@ pub fn run(
         spec.probes.iter().map(|p| (p.name.clone(), p.at)).collect(),
         Vec::new(),
         EnergyTerms::default(),
-    )
-    .without_stresses()?;
+    );
     history.set_snapshot_mesh(snapshot)?;
     let mut probe_series = Vec::with_capacity(spec.probes.len());
     for k in 0..spec.probes.len() {
@@ -371,17 +395,24 @@ pub fn run(
         zz: 0.0,
     };
     let mut next_field = spec.field_steps.iter().peekable();
+    let at_rest = vec![(zero_stress, zero_strain); points.len()];
     for n in 0..=spec.steps {
         let t = n as f64 * spec.time_step;
         let sample = grid.step_sample(n);
+        // Before the first sample (t = 0 of a grid without it) the body is at rest.
+        let point_stresses = match sample {
+            Some(k) => stresses_at(k)?,
+            None => at_rest.clone(),
+        };
         let probes = probe_series
             .iter()
-            .map(|[ux, uy, vx, vy]| {
+            .zip(&point_stresses)
+            .map(|([ux, uy, vx, vy], (stress, _))| {
                 let at = |s: &Vec<f64>| sample.map_or(0.0, |k| s[k]);
                 ProbeSample {
                     displacement: [at(ux), at(uy)],
                     velocity: [at(vx), at(vy)],
-                    stress: zero_stress,
+                    stress: *stress,
                 }
             })
             .collect();
@@ -394,6 +425,7 @@ pub fn run(
         if next_field.peek() == Some(&&n) {
             next_field.next();
             let mut offset = first_point + 2 * spec.probes.len();
+            let mut point = spec.probes.len();
             let mut samples = Vec::new();
             for r in &history.snapshot_mesh.regions {
                 let values = r
@@ -405,14 +437,16 @@ pub fn run(
                         let u = sample.map_or([0.0; 2], |k| {
                             [series.values[k * no + c], series.values[k * no + c + 1]]
                         });
+                        let (stress, strain) = point_stresses[point + j];
                         FieldSample {
                             displacement: u,
-                            stress: zero_stress,
-                            strain: zero_strain,
+                            stress,
+                            strain,
                         }
                     })
                     .collect::<Vec<_>>();
                 offset += 2 * r.nodes.len();
+                point += r.nodes.len();
                 samples.push(values);
             }
             history.push_snapshot(samples)?;

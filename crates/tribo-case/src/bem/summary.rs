@@ -298,7 +298,7 @@ pub struct DynamicsSummary {
     pub points: usize,
     /// Field snapshots written.
     pub snapshots: usize,
-    /// Whether stresses are computed (not yet: no stress columns are written).
+    /// Whether stresses are computed (at the probes and the snapshot points).
     pub stresses: bool,
     /// The probes.
     pub probes: Vec<ProbeSummary>,

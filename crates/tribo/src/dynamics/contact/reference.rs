@@ -106,7 +106,10 @@ pub(crate) fn rod_impact(
 #[derive(Debug, Clone, Copy)]
 #[cfg_attr(
     not(test),
-    allow(dead_code, reason = "the unit tests read every field, the validate rows three")
+    allow(
+        dead_code,
+        reason = "the unit tests read every field, the validate rows three"
+    )
 )]
 pub(crate) struct RodImpact {
     /// Mean contact stress over 0.25 <= t c/L <= 1.25, Pa.

@@ -78,6 +78,12 @@ impl LaplaceBem {
         self.stress_probes.len()
     }
 
+    /// The region (index in the static problem's mesh) holding stress probe `i`, or `None`
+    /// past the last probe: its Hooke's law turns the probe's stresses into strains.
+    pub fn stress_probe_region(&self, i: usize) -> Option<usize> {
+        self.stress_probes.get(i).map(|&(r, _)| r)
+    }
+
     /// Index of the first stress output (sigma_xx of the first stress probe): the system
     /// unknowns plus two per displacement probe.
     pub fn first_stress_output(&self) -> usize {
