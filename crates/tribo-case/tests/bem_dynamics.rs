@@ -103,7 +103,7 @@ fn column_wave_arrival_particle_velocity_and_doubling() {
 /// The cavity example (a = 0.1 m, mu = 80 GPa, c2 = 3125 m/s, p0 = 100 MPa, quarter ring,
 /// 8 quadratic elements per quarter of the wall, BDF2 with dt = a/c2 / 40), without its
 /// snapshots: the radial wall displacement u_r mu / (p0 a) at t c2/a = 1 and 2 against the
-/// reference table (DYNAMICS.md table 3.2: 0.4394646868, 0.5880860586). time_tests.rs
+/// reference table (docs/theory/DYNAMICS.md table 3.2: 0.4394646868, 0.5880860586). time_tests.rs
 /// measures at this time step and wall resolution (16 elements per half circle, dt = 0.025
 /// a/c2) a first-order error of at most 6.4e-3 over t c2/a = 0.25..3, 5e-4 at t = 2.
 /// Measured here: 3.2e-3 at t = 1, 5.6e-4 at t = 2. Asserted: 5e-3 and 1.5e-3 (1.1 % and
