@@ -561,26 +561,7 @@ impl LaplaceBem {
     }
 
     fn solve(&self, s: c64, known: &[c64]) -> Result<(Mat<c64>, LaplaceState)> {
-        if !(s.re.is_finite() && s.im.is_finite() && s.re > 0.0) {
-            return Err(Error::invalid(
-                "s",
-                format!("{s}"),
-                "the Laplace parameter must be finite with Re s > 0",
-            ));
-        }
-        if known.len() != self.known.len() {
-            return Err(Error::invalid(
-                "known",
-                known.len(),
-                format!("must give one value per known DOF ({})", self.known.len()),
-            ));
-        }
-        if known
-            .iter()
-            .any(|v| !(v.re.is_finite() && v.im.is_finite()))
-        {
-            return Err(Error::invalid("known", "a value", "must be finite"));
-        }
+        self.check_input(s, known)?;
         let mesh = &self.problem.mesh;
         let mut values: Vec<Vec<[c64; 2]>> = mesh
             .regions
