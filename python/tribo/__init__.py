@@ -1,0 +1,355 @@
+"""tribo for Python: contact mechanics and tribo-fatigue, numpy in and out.
+
+A thin, typed layer over the compiled module ``tribo._tribo`` (the Rust crates ``tribo`` and
+``tribo-case``): the same solvers and the same case pipeline as the ``tribo`` command line.
+
+Units are SI throughout: lengths in m, pressures, stresses and moduli in Pa, forces in N,
+angles in rad.
+
+Quick start::
+
+    import numpy as np, tribo
+    h = tribo.hertz(load=100.0, radius=0.01, composite_modulus=115e9)
+    h.max_pressure                          # Pa
+
+    x = np.linspace(-0.5e-3, 0.5e-3, 128, endpoint=False) + 0.5e-3 / 128
+    X, Y = np.meshgrid(x, x)                # shape (ny, nx), C order
+    r = tribo.normal_contact((X**2 + Y**2) / (2 * 0.01), size=(1e-3, 1e-3),
+                             composite_modulus=115e9, load=100.0)
+    r.pressure.max(), r.residual
+
+    res = tribo.run(tribo.Case.example("sphere-on-flat"))
+    res.summary["contact"]["max_pressure"]  # the numbers of `tribo run --json`
+    res.write("out")                        # the CLI's files
+
+Errors: :class:`InputError` (a ``ValueError``; ``.field``, ``.value``, ``.rule``) for bad
+input, :class:`ConvergenceError` (``.residual``, ``.iterations``, ``.tolerance``) for a solver
+stopped before its tolerance, :class:`SolverError` for other failures.
+
+Long computations release the GIL: several threads may solve at once.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _tribo
+from ._tribo import ConvergenceError, HertzContact, InputError, SolverError
+
+__version__: str = _tribo.__version__
+
+__all__ = [
+    "Case",
+    "ConvergenceError",
+    "HertzContact",
+    "InputError",
+    "NormalContact",
+    "Results",
+    "SolverError",
+    "composite_modulus",
+    "examples",
+    "hertz",
+    "normal_contact",
+    "run",
+]
+
+_INF = math.inf
+
+
+def composite_modulus(E1: float, nu1: float, E2: float, nu2: float) -> float:
+    """The composite modulus E* of two bodies, Pa.
+
+    ``1/E* = (1 - nu1**2)/E1 + (1 - nu2**2)/E2`` (Johnson 1985, eq. (4.22)), with Young's
+    moduli ``E1``, ``E2`` in Pa and Poisson's ratios ``nu1``, ``nu2`` in (-1, 0.5).
+
+    Raises :class:`InputError` naming ``body1.E``/``body1.nu``/... for a value out of range.
+    """
+    return _tribo.composite_modulus(float(E1), float(nu1), float(E2), float(nu2))
+
+
+def hertz(
+    *,
+    load: Optional[float] = None,
+    approach: Optional[float] = None,
+    radius: Optional[float] = None,
+    radii1: Optional[Sequence[float]] = None,
+    radii2: Sequence[float] = (_INF, _INF),
+    angle_between: float = 0.0,
+    composite_modulus: float,
+) -> HertzContact:
+    """The exact Hertz solution of a point contact (Johnson 1985, ch. 4).
+
+    Give the geometry as ``radius`` (m: a sphere on a flat, or the effective radius
+    ``1/R = 1/R1 + 1/R2`` of two spheres) or as the principal radii of both bodies,
+    ``radii1``, ``radii2`` (m; positive convex, negative concave, ``inf`` flat; body 2's first
+    principal plane at ``angle_between`` rad from body 1's). Give exactly one of ``load``
+    (normal force, N) and ``approach`` (approach of distant points, m). ``composite_modulus``
+    is E* in Pa (:func:`composite_modulus`).
+
+    Elliptical contacts are solved exactly with complete elliptic integrals (not the
+    Hamrock-Brewe curve fits).
+
+    Returns a :class:`HertzContact`: ``semi_major``, ``semi_minor``, ``radius`` (m),
+    ``max_pressure``, ``mean_pressure`` (Pa), ``approach`` (m), ``normal_load`` (N),
+    ``contact_area`` (m^2), ``angle`` (rad), ``composite_modulus`` (Pa) and
+    ``pressure(x, y)`` (Pa at points in m).
+    """
+    if (radius is None) == (radii1 is None):
+        raise _input_error("radius", "give exactly one of radius and radii1 (m)")
+    if radius is not None:
+        r1 = [float(radius), float(radius)]
+        r2 = [_INF, _INF]
+    else:
+        r1 = [float(v) for v in radii1]  # type: ignore[union-attr]
+        r2 = [float(v) for v in radii2]
+    return _tribo.hertz(
+        r1,
+        r2,
+        float(angle_between),
+        float(composite_modulus),
+        None if load is None else float(load),
+        None if approach is None else float(approach),
+    )
+
+
+def _input_error(field: str, rule: str, value: Any = "") -> InputError:
+    """An :class:`InputError` with its ``field``, ``value`` and ``rule`` set."""
+    err = InputError(f"{field}: {rule}")
+    err.field, err.value, err.rule = field, str(value), rule
+    return err
+
+
+def _grid_array(name: str, a: Any) -> np.ndarray:
+    """``a`` as a C-contiguous float64 array of two dimensions, without a copy when it is one.
+
+    Real arrays of another dtype (float32, integers) or layout (Fortran order, strided views)
+    are converted (a copy; float32 and integers up to 2**53 convert exactly); complex,
+    boolean, object and string arrays are refused with a TypeError naming the argument.
+    """
+    arr = np.asarray(a)
+    if arr.dtype.kind not in "fiu":
+        raise TypeError(
+            f"{name}: an array of real numbers is needed (float64 preferred), got dtype {arr.dtype}"
+        )
+    if arr.ndim != 2:
+        raise _input_error(name, f"an array of shape (ny, nx) is needed, got shape {arr.shape}")
+    return np.ascontiguousarray(arr, dtype=np.float64)
+
+
+@dataclass(frozen=True)
+class NormalContact:
+    """The solution of a normal contact problem on a grid, with its convergence record.
+
+    Arrays have the shape (ny, nx) of the input gap, element (iy, ix) at ``(y[iy], x[ix])``.
+    """
+
+    pressure: np.ndarray
+    """Contact pressure at element centres, Pa (>= 0)."""
+    gap: np.ndarray
+    """Deformed gap at element centres, m (0 in contact)."""
+    x: np.ndarray
+    """Element centres along x, m (shape (nx,))."""
+    y: np.ndarray
+    """Element centres along y, m (shape (ny,))."""
+    approach: float
+    """Approach of distant points, m."""
+    normal_load: float
+    """Normal force, N."""
+    contact_area: float
+    """Area of the elements in contact, m^2."""
+    contact_elements: int
+    """Number of elements in contact."""
+    iterations: int
+    """Iterations done (CG iterations or active-set sweeps)."""
+    residual: float
+    """Final complementarity residual, relative to the maximum pressure (dimensionless)."""
+
+    @property
+    def max_pressure(self) -> float:
+        """The maximum contact pressure, Pa."""
+        return float(self.pressure.max())
+
+    @property
+    def contact(self) -> np.ndarray:
+        """The contact mask (pressure > 0), bool, shape (ny, nx)."""
+        return self.pressure > 0.0
+
+
+def normal_contact(
+    gap: Any,
+    *,
+    size: Tuple[float, float],
+    composite_modulus: float,
+    load: Optional[float] = None,
+    approach: Optional[float] = None,
+    tolerance: float = 1e-10,
+    max_iterations: int = 10_000,
+    method: str = "cg",
+) -> NormalContact:
+    """Normal contact of two elastic half-spaces with unknown contact area on a grid.
+
+    The linear complementarity problem of the paper's (16): ``p >= 0``,
+    ``g = K p + h - delta >= 0``, ``p g = 0``, with Love's influence functions for
+    piecewise-constant pressure (non-periodic: the window is a part of an infinite surface),
+    solved by Polonsky & Keer's constrained conjugate gradients on an FFT operator
+    (``method="cg"``, any grid) or by the dense active set (``method="active_set"``, small
+    grids).
+
+    ``gap``: the initial separation h (m) of the undeformed surfaces at the element centres,
+    shape (ny, nx), element (iy, ix) at x = -Lx/2 + (ix + 1/2) Lx/nx and likewise in y. For
+    rough surfaces give ``h = -(height1 + height2)`` shifted so that ``h.min() == 0``. A
+    C-contiguous float64 array is read in place (no copy; do not write to it from another
+    thread during the solve); float32, integer or Fortran-ordered arrays are converted (a
+    copy); complex, boolean or object arrays raise TypeError.
+
+    ``size = (Lx, Ly)``: the window, m, centred on the origin. ``composite_modulus``: E*,
+    Pa. Exactly one of ``load`` (N, force control) and ``approach`` (m, displacement
+    control). ``tolerance``: on the complementarity residual relative to the maximum
+    pressure, in (0, 1). ``max_iterations`` >= 1.
+
+    Raises :class:`InputError` for bad input (also when the contact reaches the window's
+    border or there is no contact), :class:`ConvergenceError` (with ``.residual``) at the
+    iteration limit. The GIL is released during the solve.
+    """
+    g = _grid_array("gap", gap)
+    d = _tribo.normal_contact(
+        g,
+        (float(size[0]), float(size[1])),
+        float(composite_modulus),
+        None if load is None else float(load),
+        None if approach is None else float(approach),
+        float(tolerance),
+        int(max_iterations),
+        str(method),
+    )
+    return NormalContact(**d)
+
+
+class Case:
+    """A validated case of either kind: a half-space case or a 2D boundary element case
+    (``kind = "bem2d"``), with the keys of a case file (docs/user/case-halfspace.md,
+    docs/user/case-bem2d.md).
+
+    Build one with :meth:`from_toml`, :meth:`from_dict` or :meth:`example`; run it with
+    :func:`run`.
+    """
+
+    __slots__ = ("_inner",)
+
+    def __init__(self, inner: "_tribo.Case") -> None:
+        self._inner = inner
+
+    @classmethod
+    def from_toml(cls, source: Union[str, "os.PathLike[str]"]) -> "Case":
+        """A case from a TOML file (a path, ``str`` or ``os.PathLike``) or a TOML text.
+
+        A ``str`` is taken as a path when it has no newline and names an existing file (or
+        ends in ``.toml``); otherwise as the case text. Relative paths inside a file (height
+        maps, meshes) resolve against its folder; inside a text against the working
+        directory. Raises :class:`InputError` naming the field and the rule (the parser's
+        message with line and column for a bad file), or FileNotFoundError.
+        """
+        if isinstance(source, os.PathLike) or (
+            isinstance(source, str)
+            and "\n" not in source
+            and (source.endswith(".toml") or os.path.isfile(source))
+        ):
+            path = Path(source)
+            text = path.read_text(encoding="utf-8")
+            return cls(_tribo.Case.from_toml_text(text, str(path), str(path.parent)))
+        return cls(_tribo.Case.from_toml_text(source, "<string>", None))
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any], base_dir: Optional[str] = None) -> "Case":
+        """A case from nested dicts with the keys of a case file.
+
+        Values are numbers in SI units, strings (also with units: ``"201 GPa"``), booleans,
+        lists and dicts; ``None`` values are left out (the key's default). ``base_dir``
+        resolves relative paths. Validated by the rules of a case file: :class:`InputError`
+        names the field.
+        """
+        return cls(_tribo.Case.from_dict(dict(data), "<dict>", base_dir))
+
+    @classmethod
+    def example(cls, name: str) -> "Case":
+        """An embedded example case (:func:`examples` lists the names)."""
+        return cls(_tribo.Case.example(name))
+
+    @property
+    def kind(self) -> str:
+        """``"halfspace"`` or ``"bem2d"``."""
+        return self._inner.kind
+
+    @property
+    def title(self) -> str:
+        """The case's title."""
+        return self._inner.title
+
+    @property
+    def toml(self) -> str:
+        """The case's TOML text."""
+        return self._inner.toml
+
+    def __repr__(self) -> str:
+        return f"Case(kind={self.kind!r}, title={self.title!r})"
+
+
+class Results:
+    """The results of :func:`run`: the summary (the numbers of ``tribo run --json``), the
+    contact fields of a half-space run as numpy arrays, and :meth:`write` for the CLI's files.
+    """
+
+    __slots__ = ("_inner", "_summary", "case")
+
+    def __init__(self, inner: "_tribo.Results", case: Case) -> None:
+        self._inner = inner
+        self._summary: Optional[Dict[str, Any]] = None
+        self.case: Case = case
+        """The case that was run."""
+
+    @property
+    def summary(self) -> Dict[str, Any]:
+        """The summary as nested dicts: the keys and units of ``summary.json``
+        (docs/user/outputs.md), the same numbers as ``tribo run --json`` (timings aside)."""
+        if self._summary is None:
+            self._summary = json.loads(self._inner.summary_json())
+        return self._summary
+
+    def fields(self) -> Optional[Dict[str, np.ndarray]]:
+        """The contact fields of a half-space run: ``pressure`` (Pa), ``gap`` (m) of shape
+        (ny, nx), ``x``, ``y`` (m), and with friction ``traction_x``, ``traction_y`` (Pa) and
+        the ``stick`` mask; the scalars of the normal solution as well. None for a 2D case."""
+        return self._inner.fields()
+
+    def write(self, directory: Union[str, "os.PathLike[str]"]) -> List[str]:
+        """Writes the files ``tribo run -o directory`` writes (CSV, VTK, PNG, summary.json)
+        and returns their names (the ``outputs`` of the summary). The directory is created if needed;
+        an earlier run's files in it are removed."""
+        return self._inner.write(os.fspath(directory))
+
+    def __repr__(self) -> str:
+        return f"Results(case={self.case!r})"
+
+
+def run(case: Case) -> Results:
+    """Runs a case through the pipeline of ``tribo run`` (the GIL released).
+
+    Raises :class:`InputError` for a case the solver refuses (the contact reaching the
+    window, no contact), :class:`ConvergenceError` (``.residual``) for a solver stopped
+    before its tolerance.
+    """
+    if not isinstance(case, Case):
+        raise TypeError(f"run() takes a tribo.Case, got {type(case).__name__}")
+    return Results(_tribo.run(case._inner), case)
+
+
+def examples() -> List[str]:
+    """The names of the embedded example cases (``tribo example``)."""
+    return list(_tribo.example_names())

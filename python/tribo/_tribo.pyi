@@ -1,0 +1,95 @@
+"""Type stubs of the compiled core ``tribo._tribo`` (crates/tribo-py). Use the documented
+API of the package ``tribo``; these names may change."""
+
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class InputError(ValueError):
+    """Bad input: a field breaking a rule."""
+
+    field: str
+    value: str
+    rule: str
+
+class ConvergenceError(RuntimeError):
+    """A solver stopped before reaching its tolerance."""
+
+    solver: str
+    iterations: int
+    residual: float
+    tolerance: float
+
+class SolverError(RuntimeError):
+    """A failure of the computation other than non-convergence."""
+
+class HertzContact:
+    """The exact Hertz solution of an elliptical (or circular) contact."""
+
+    @property
+    def semi_major(self) -> float: ...
+    @property
+    def semi_minor(self) -> float: ...
+    @property
+    def radius(self) -> float: ...
+    @property
+    def max_pressure(self) -> float: ...
+    @property
+    def mean_pressure(self) -> float: ...
+    @property
+    def approach(self) -> float: ...
+    @property
+    def normal_load(self) -> float: ...
+    @property
+    def contact_area(self) -> float: ...
+    @property
+    def angle(self) -> float: ...
+    @property
+    def composite_modulus(self) -> float: ...
+    def pressure(
+        self, x: npt.NDArray[np.float64], y: npt.NDArray[np.float64]
+    ) -> npt.NDArray[np.float64]: ...
+
+class Case:
+    @staticmethod
+    def from_toml_text(text: str, source: str = ..., base_dir: Optional[str] = ...) -> "Case": ...
+    @staticmethod
+    def from_dict(data: Dict[str, Any], source: str = ..., base_dir: Optional[str] = ...) -> "Case": ...
+    @staticmethod
+    def example(name: str) -> "Case": ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def title(self) -> str: ...
+    @property
+    def toml(self) -> str: ...
+
+class Results:
+    def summary_json(self) -> str: ...
+    def write(self, directory: str) -> List[str]: ...
+    def fields(self) -> Optional[Dict[str, Any]]: ...
+
+def hertz(
+    radii1: Sequence[float],
+    radii2: Sequence[float],
+    angle_between: float,
+    composite_modulus: float,
+    load: Optional[float] = ...,
+    approach: Optional[float] = ...,
+) -> HertzContact: ...
+def composite_modulus(e1: float, nu1: float, e2: float, nu2: float) -> float: ...
+def normal_contact(
+    gap: npt.NDArray[np.float64],
+    size: Tuple[float, float],
+    composite_modulus: float,
+    load: Optional[float] = ...,
+    approach: Optional[float] = ...,
+    tolerance: float = ...,
+    max_iterations: int = ...,
+    method: str = ...,
+) -> Dict[str, Any]: ...
+def run(case: Case) -> Results: ...
+def example_names() -> List[str]: ...

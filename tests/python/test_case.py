@@ -1,0 +1,125 @@
+"""tribo.Case / tribo.run: parity with `tribo run --json`, case construction, errors, files."""
+
+import json
+import subprocess
+from pathlib import Path
+
+import pytest
+
+import tribo
+
+# Keys of wall times (they differ from run to run; bench/compare_outputs.sh drops the same).
+TIMING_KEYS = {"time_s", "timings", "solve_s", "setup_s", "steps_s", "fields_s", "damage_s",
+               "comparison_s", "total_s", "seconds"}
+
+RUN_EXAMPLES = [n for n in tribo.examples() if n != "fatigue-diagram"]
+
+
+def strip(o):
+    if isinstance(o, dict):
+        return {k: strip(v) for k, v in o.items()
+                if not (k in TIMING_KEYS or k.endswith("time_s") or "timing" in k)}
+    if isinstance(o, list):
+        return [strip(v) for v in o]
+    return o
+
+
+@pytest.mark.parametrize("name", RUN_EXAMPLES)
+def test_parity_with_the_cli(name, tribo_bin, tmp_path):
+    # The same pipeline: every number of the summary is the same bit for bit (the JSON text
+    # of both is parsed by Python's json, so equal floats compare equal).
+    case_file = tmp_path / f"{name}.toml"
+    case_file.write_text(
+        subprocess.run([tribo_bin, "example", name], check=True, capture_output=True,
+                       text=True).stdout)
+    cli = subprocess.run([tribo_bin, "run", str(case_file), "--json", "-q", "-o",
+                          str(tmp_path / "cli")], check=True, capture_output=True, text=True)
+    expected = strip(json.loads(cli.stdout))
+    res = tribo.run(tribo.Case.from_toml(case_file))
+    assert strip(res.summary) == expected
+    # And the files: the same names as the CLI's.
+    written = res.write(tmp_path / "py")
+    assert written == json.loads(cli.stdout)["outputs"]
+    assert sorted(p.name for p in (tmp_path / "py").iterdir()) == sorted(
+        p.name for p in (tmp_path / "cli").iterdir())
+
+
+SPHERE = """
+title = "sphere on flat"
+[body1]
+E = "210 GPa"
+nu = 0.3
+radii = [0.01, 0.01]
+[body2]
+E = 210e9
+nu = 0.3
+radii = ["inf", "inf"]
+[load]
+normal_force = 100.0
+[grid]
+n = 32
+"""
+
+
+def test_from_toml_text_path_and_dict_are_the_same_case(tmp_path):
+    ex = tribo.Case.example("sphere-on-flat")
+    p = tmp_path / "s.toml"
+    p.write_text(ex.toml)
+    by_path = tribo.Case.from_toml(p)
+    by_str_path = tribo.Case.from_toml(str(p))
+    by_text = tribo.Case.from_toml(ex.toml)
+    import tomllib  # Python >= 3.11; the package itself needs 3.9
+
+    by_dict = tribo.Case.from_dict(tomllib.loads(ex.toml))
+    sums = [strip(tribo.run(c).summary) for c in (by_path, by_str_path, by_text, by_dict)]
+    for s in sums[1:]:
+        s["case_source"] = sums[0]["case_source"]
+        assert s == sums[0]
+    assert by_path.kind == "halfspace" and by_path.title == ex.title
+
+
+def test_bem_case_kind():
+    c = tribo.Case.example("clamp-knife-base")
+    assert c.kind == "bem2d"
+    assert "Case(kind='bem2d'" in repr(c)
+
+
+def test_field_errors_name_the_field():
+    ex = tribo.Case.example("sphere-on-flat")
+    import tomllib
+
+    d = tomllib.loads(ex.toml)
+    d["body1"]["nu"] = 0.7
+    with pytest.raises(tribo.InputError) as err:
+        tribo.Case.from_dict(d)
+    assert err.value.field == "body1.nu"
+    assert "0.7" in err.value.value
+    assert isinstance(err.value, ValueError)
+    with pytest.raises(tribo.InputError, match="line"):
+        tribo.Case.from_toml("title = \n[oops")
+    with pytest.raises(tribo.InputError):
+        tribo.Case.from_dict({"title": "x", "body1": {"E": object()}})
+    with pytest.raises(tribo.InputError):
+        tribo.Case.example("no-such-example")
+    with pytest.raises(FileNotFoundError):
+        tribo.Case.from_toml("missing.toml")
+
+
+def test_non_convergence_is_a_convergence_error():
+    import tomllib
+
+    d = tomllib.loads(tribo.Case.example("sphere-on-flat").toml)
+    d.setdefault("solver", {})["max_iterations"] = 2
+    with pytest.raises(tribo.ConvergenceError) as err:
+        tribo.run(tribo.Case.from_dict(d))
+    assert err.value.residual > err.value.tolerance
+
+
+def test_fields_of_a_half_space_run():
+    res = tribo.run(tribo.Case.example("sphere-on-flat"))
+    f = res.fields()
+    s = res.summary["contact"]
+    assert f["pressure"].shape == (len(f["y"]), len(f["x"]))
+    assert f["pressure"].max() == s["max_pressure"]
+    assert f["normal_load"] == s["normal_load"]
+    assert tribo.run(tribo.Case.example("clamp-knife-base")).fields() is None
