@@ -1,6 +1,7 @@
 """tribo.Case / tribo.run: parity with `tribo run --json`, case construction, errors, files."""
 
 import json
+import os
 import subprocess
 from pathlib import Path
 
@@ -12,7 +13,22 @@ import tribo
 TIMING_KEYS = {"time_s", "timings", "solve_s", "setup_s", "steps_s", "fields_s", "damage_s",
                "comparison_s", "total_s", "seconds"}
 
-RUN_EXAMPLES = [n for n in tribo.examples() if n != "fatigue-diagram"]
+ROOT = Path(__file__).resolve().parents[2]
+GMSH_CASE = ROOT / "crates" / "tribo-cli" / "examples" / "gmsh" / "hertz-cylinder.toml"
+
+# The embedded examples by cost (measured with the CLI on a shared 2-core machine): the cheap
+# ones (under ~3 s each) always; the slow ones (the Sec. 6 damage study 200 s, the Sec. 7
+# clamp 28 s, the dynamic cavity and column minutes) with TRIBO_PY_SLOW=1.
+CHEAP = ["roller-shaft", "roller-shaft-normal", "roller-shaft-approach", "roller-shaft-bending",
+         "sphere-on-flat", "steel-on-cast-iron", "crowned-roller", "height-map"]
+SLOW = ["roller-shaft-sec6", "clamp-knife-base", "cavity", "column"]
+NOT_RUN = ["fatigue-diagram"]  # the input of `tribo fatigue diagram`, not of `tribo run`
+RUN_EXAMPLES = CHEAP + (SLOW if os.environ.get("TRIBO_PY_SLOW") == "1" else [])
+
+
+def test_every_example_is_classified():
+    # A new example must be put in CHEAP or SLOW (or NOT_RUN) by whoever adds it.
+    assert sorted(CHEAP + SLOW + NOT_RUN) == sorted(tribo.examples())
 
 
 def strip(o):
@@ -24,14 +40,18 @@ def strip(o):
     return o
 
 
-@pytest.mark.parametrize("name", RUN_EXAMPLES)
+@pytest.mark.parametrize("name", RUN_EXAMPLES + ["gmsh:hertz-cylinder"])
 def test_parity_with_the_cli(name, tribo_bin, tmp_path):
     # The same pipeline: every number of the summary is the same bit for bit (the JSON text
-    # of both is parsed by Python's json, so equal floats compare equal).
-    case_file = tmp_path / f"{name}.toml"
-    case_file.write_text(
-        subprocess.run([tribo_bin, "example", name], check=True, capture_output=True,
-                       text=True).stdout)
+    # of both is parsed by Python's json, so equal floats compare equal). The gmsh case is a
+    # 2D case with a mesh file beside it (relative paths resolve against the case's folder).
+    if name.startswith("gmsh:"):
+        case_file = GMSH_CASE
+    else:
+        case_file = tmp_path / f"{name}.toml"
+        case_file.write_text(
+            subprocess.run([tribo_bin, "example", name], check=True, capture_output=True,
+                           text=True).stdout)
     cli = subprocess.run([tribo_bin, "run", str(case_file), "--json", "-q", "-o",
                           str(tmp_path / "cli")], check=True, capture_output=True, text=True)
     expected = strip(json.loads(cli.stdout))
@@ -122,4 +142,4 @@ def test_fields_of_a_half_space_run():
     assert f["pressure"].shape == (len(f["y"]), len(f["x"]))
     assert f["pressure"].max() == s["max_pressure"]
     assert f["normal_load"] == s["normal_load"]
-    assert tribo.run(tribo.Case.example("clamp-knife-base")).fields() is None
+    assert tribo.run(tribo.Case.from_toml(GMSH_CASE)).fields() is None
