@@ -1,4 +1,4 @@
-"""tribo from Python in five steps: Hertz, a grid contact, a case with partial slip, files.
+"""tribo from Python in five steps: Hertz, grid contact with friction, a case, files, errors.
 
 Run it with `python examples/python/quickstart.py [OUT_DIR]` after `pip install .`; the tests
 (tests/python/test_examples.py) run it too. Units: SI (m, Pa, N).
@@ -29,6 +29,12 @@ r = tribo.normal_contact((X**2 + Y**2) / (2 * 0.01), size=(L, L), composite_modu
 print(f"grid:  p_max = {r.max_pressure / 1e9:.4f} GPa, area = {r.contact_area * 1e6:.5f} mm^2 "
       f"(Hertz {h.contact_area * 1e6:.5f}), {r.iterations} iterations, residual {r.residual:.1e}")
 assert abs(r.max_pressure / h.max_pressure - 1) < 0.01
+
+#    Friction on that pressure: partial slip under Q = 15 N with f = 0.3 (Cattaneo-Mindlin).
+t = tribo.tangential_contact(r.pressure, size=(L, L), friction=0.3, tangential_load=15.0,
+                             E1=210e9, nu1=0.3, E2=210e9, nu2=0.3)
+print(f"grid partial slip: stick radius {math.sqrt(t.stick_area / math.pi) * 1e3:.4f} mm, "
+      f"Q = {t.tangential_force[0]:.3f} N, {t.iterations} iterations")
 
 # 3. A case with friction and partial slip (Cattaneo-Mindlin): a dict with a case file's keys.
 case = tribo.Case.from_dict({

@@ -53,11 +53,13 @@ __all__ = [
     "NormalContact",
     "Results",
     "SolverError",
+    "TangentialContact",
     "composite_modulus",
     "examples",
     "hertz",
     "normal_contact",
     "run",
+    "tangential_contact",
 ]
 
 _INF = math.inf
@@ -170,6 +172,8 @@ class NormalContact:
     """Iterations done (CG iterations or active-set sweeps)."""
     residual: float
     """Final complementarity residual, relative to the maximum pressure (dimensionless)."""
+    solve_time_s: float
+    """Wall time of the solve inside the library, s (the rest of the call is Python's)."""
 
     @property
     def max_pressure(self) -> float:
@@ -230,6 +234,84 @@ def normal_contact(
         str(method),
     )
     return NormalContact(**d)
+
+
+@dataclass(frozen=True)
+class TangentialContact:
+    """The solution of a tangential contact problem on a grid, with its convergence record.
+
+    Arrays have the shape (ny, nx) of the pressure given; tractions act on body 1.
+    """
+
+    traction_x: np.ndarray
+    """Tangential traction q_x at element centres, Pa."""
+    traction_y: np.ndarray
+    """Tangential traction q_y at element centres, Pa."""
+    slip: np.ndarray
+    """Slip along the load direction, m (0 in the stick zone and outside the contact)."""
+    stick: np.ndarray
+    """Stick mask (in contact with |q| < f p), bool."""
+    shift: float
+    """Rigid tangential shift of body 2 relative to body 1 along the load, m (0 sliding)."""
+    tangential_force: Tuple[float, float]
+    """(Q_x, Q_y) = sum q dA, N."""
+    stick_area: float
+    """Area of the stick zone, m^2."""
+    slip_area: float
+    """Area of the slip zone (in contact, not sticking), m^2."""
+    max_traction: float
+    """Largest |q|, Pa."""
+    iterations: int
+    """Iterations done."""
+    residual: float
+    """Final residual (optimality conditions in units of the largest displacement)."""
+    solve_time_s: float
+    """Wall time of the solve inside the library, s."""
+
+
+def tangential_contact(
+    pressure: Any,
+    *,
+    size: Tuple[float, float],
+    friction: float,
+    E1: float,
+    nu1: float,
+    E2: float,
+    nu2: float,
+    tangential_load: Optional[float] = None,
+    sliding: bool = False,
+    angle: float = 0.0,
+    tolerance: float = 1e-10,
+    max_iterations: int = 10_000,
+) -> TangentialContact:
+    """Tangential contact with Coulomb friction (the paper's (8)) under a given pressure.
+
+    Partial slip under the tangential force ``tangential_load`` (N, below ``friction`` times
+    the normal force) along ``angle`` (rad from x), with the traction parallel to the load
+    (Cattaneo-Mindlin's assumption, solved by constrained conjugate gradients on Love's
+    tangential influence functions), or full sliding (``sliding=True``: q = f p along
+    ``angle``). ``pressure`` (Pa, shape (ny, nx)) usually comes from :func:`normal_contact`
+    on the same ``size = (Lx, Ly)`` (m); it is read in place when C-contiguous float64 and
+    converted otherwise, as in :func:`normal_contact`. ``E1``, ``nu1``, ``E2``, ``nu2``:
+    Young's moduli (Pa) and Poisson's ratios of both bodies. The normal-tangential coupling
+    of dissimilar materials is left out here (a case with ``[contact] friction`` includes it).
+
+    Raises :class:`InputError` (e.g. ``tangential_load`` at or above f F_N) and
+    :class:`ConvergenceError` as :func:`normal_contact` does. The GIL is released.
+    """
+    p = _grid_array("pressure", pressure)
+    d = _tribo.tangential_contact(
+        p,
+        (float(size[0]), float(size[1])),
+        float(friction),
+        (float(E1), float(nu1), float(E2), float(nu2)),
+        None if tangential_load is None else float(tangential_load),
+        bool(sliding),
+        float(angle),
+        float(tolerance),
+        int(max_iterations),
+    )
+    return TangentialContact(**d)
 
 
 class Case:

@@ -91,5 +91,16 @@ def normal_contact(
     max_iterations: int = ...,
     method: str = ...,
 ) -> Dict[str, Any]: ...
+def tangential_contact(
+    pressure: npt.NDArray[np.float64],
+    size: Tuple[float, float],
+    friction: float,
+    materials: Tuple[float, float, float, float],
+    tangential_load: Optional[float] = ...,
+    sliding: bool = ...,
+    angle: float = ...,
+    tolerance: float = ...,
+    max_iterations: int = ...,
+) -> Dict[str, Any]: ...
 def run(case: Case) -> Results: ...
 def example_names() -> List[str]: ...

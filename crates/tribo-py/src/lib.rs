@@ -27,6 +27,9 @@ use tribo::solvers::normal::{
     solve_normal, NormalContactParams, NormalContactProblem, NormalContactSolution, NormalLoading,
     NormalMethod,
 };
+use tribo::solvers::tangential::{
+    solve_tangential, TangentialLoading, TangentialParams, TangentialProblem, TangentialSolution,
+};
 use tribo::SurfaceGrid;
 use tribo_case::{CaseError, Silent};
 
@@ -388,9 +391,121 @@ fn normal_contact<'py>(
     };
     // The solve reads the gap in place with the interpreter released: the caller must not
     // write to the array from another thread meanwhile (documented in the Python layer).
-    let solved = py.detach(|| solve_normal(&problem, &params, None, None));
+    let (solved, seconds) = py.detach(|| {
+        let start = std::time::Instant::now();
+        let solved = solve_normal(&problem, &params, None, None);
+        (solved, start.elapsed().as_secs_f64())
+    });
     match solved {
-        Ok(s) => normal_dict(py, s, &grid),
+        Ok(s) => {
+            let d = normal_dict(py, s, &grid)?;
+            d.set_item("solve_time_s", seconds)?;
+            Ok(d)
+        }
+        Err(e) => Err(lib(&e.kind)),
+    }
+}
+
+/// The solution of a tangential problem as a dict of numpy arrays and floats.
+fn tangential_dict<'py>(
+    py: Python<'py>,
+    s: TangentialSolution,
+    grid: &SurfaceGrid,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("traction_x", grid_array(py, s.traction_x, grid)?)?;
+    d.set_item("traction_y", grid_array(py, s.traction_y, grid)?)?;
+    d.set_item("slip", grid_array(py, s.slip, grid)?)?;
+    let stick = PyArray1::from_vec(py, s.stick).reshape([grid.ny(), grid.nx()])?;
+    d.set_item("stick", stick)?;
+    d.set_item("shift", s.shift)?;
+    d.set_item("tangential_force", s.tangential_force)?;
+    d.set_item("stick_area", s.stick_area)?;
+    d.set_item("slip_area", s.slip_area)?;
+    d.set_item("max_traction", s.max_traction)?;
+    d.set_item("iterations", s.iterations)?;
+    d.set_item("residual", s.residual)?;
+    Ok(d)
+}
+
+/// Tangential contact with Coulomb friction (the paper's (8)) on a grid under a given contact
+/// `pressure` (Pa, shape (ny, nx), C-contiguous float64, read in place), the tractions
+/// parallel to the load (Cattaneo-Mindlin's assumption; the normal-tangential coupling of
+/// dissimilar materials left out): partial slip under the tangential force `tangential_load`
+/// (N) along `angle` (rad from x), or full sliding (q = f p along `angle`) with `sliding`.
+/// Materials: Young's moduli (Pa) and Poisson's ratios of both bodies.
+#[pyfunction]
+#[pyo3(signature = (pressure, size, friction, materials, tangential_load=None, sliding=false, angle=0.0, tolerance=1e-10, max_iterations=10_000))]
+#[allow(clippy::too_many_arguments)]
+fn tangential_contact<'py>(
+    py: Python<'py>,
+    pressure: PyReadonlyArray2<'py, f64>,
+    size: (f64, f64),
+    friction: f64,
+    materials: (f64, f64, f64, f64),
+    tangential_load: Option<f64>,
+    sliding: bool,
+    angle: f64,
+    tolerance: f64,
+    max_iterations: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let lib = |e: &tribo::Error| library_error(py, e);
+    let shape = pressure.shape().to_vec();
+    let grid = SurfaceGrid::centred(shape[1], shape[0], 0.5 * size.0, 0.5 * size.1)
+        .map_err(|e| lib(&e))?;
+    let p = pressure.as_slice().map_err(|_| {
+        input_error(
+            py,
+            "pressure: the array must be C-contiguous (np.ascontiguousarray)".into(),
+            "pressure",
+            "non-contiguous array",
+            "C-contiguous float64 of shape (ny, nx)",
+        )
+    })?;
+    let body1 =
+        tribo::ElasticMaterial::named("body1", materials.0, materials.1).map_err(|e| lib(&e))?;
+    let body2 =
+        tribo::ElasticMaterial::named("body2", materials.2, materials.3).map_err(|e| lib(&e))?;
+    let loading = match (tangential_load, sliding) {
+        (Some(q), false) => TangentialLoading::Force {
+            magnitude: q,
+            angle,
+        },
+        (None, true) => TangentialLoading::Sliding { angle },
+        _ => {
+            return Err(input_error(
+                py,
+                "give exactly one of tangential_load (N) and sliding=True".into(),
+                "tangential_load",
+                &format!("{tangential_load:?}"),
+                "exactly one of tangential_load and sliding",
+            ))
+        }
+    };
+    let problem = TangentialProblem {
+        grid: &grid,
+        pressure: p,
+        friction,
+        body1,
+        body2,
+        loading,
+        offset: None,
+    };
+    let params = TangentialParams {
+        tolerance,
+        max_iterations,
+    };
+    let (solved, seconds) = py.detach(|| {
+        let start = std::time::Instant::now();
+        let solved = solve_tangential(&problem, &params, None, None);
+        (solved, start.elapsed().as_secs_f64())
+    });
+    match solved {
+        Ok(s) => {
+            let d = tangential_dict(py, s, &grid)?;
+            d.set_item("solve_time_s", seconds)?;
+            Ok(d)
+        }
         Err(e) => Err(lib(&e.kind)),
     }
 }
@@ -659,6 +774,7 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(hertz, m)?)?;
     m.add_function(wrap_pyfunction!(composite_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(normal_contact, m)?)?;
+    m.add_function(wrap_pyfunction!(tangential_contact, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(example_names, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
