@@ -412,8 +412,8 @@ class Results:
 
     def write(self, directory: Union[str, "os.PathLike[str]"]) -> List[str]:
         """Writes the files ``tribo run -o directory`` writes (CSV, VTK, PNG, summary.json)
-        and returns their names (the ``outputs`` of the summary). The directory is created if needed;
-        an earlier run's files in it are removed."""
+        and returns their names (the ``outputs`` of the summary). The directory is created if
+        needed; an earlier run's files in it are removed."""
         return self._inner.write(os.fspath(directory))
 
     def __repr__(self) -> str:
