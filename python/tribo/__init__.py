@@ -36,7 +36,7 @@ import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -51,6 +51,7 @@ __all__ = [
     "HertzContact",
     "InputError",
     "NormalContact",
+    "NormalSolver",
     "Results",
     "SolverError",
     "TangentialContact",
@@ -234,6 +235,73 @@ def normal_contact(
         str(method),
     )
     return NormalContact(**d)
+
+
+class NormalSolver:
+    """Normal contact solves on one grid and one composite modulus, the FFT compliance
+    operator built once and reused (a load sweep, many surfaces of one size).
+
+    ``shape = (ny, nx)`` elements over ``size = (Lx, Ly)`` (m), ``composite_modulus`` E*
+    (Pa); ``tolerance``, ``max_iterations`` and ``method`` as in :func:`normal_contact`.
+    """
+
+    __slots__ = ("_inner", "shape", "size")
+
+    def __init__(
+        self,
+        shape: Tuple[int, int],
+        *,
+        size: Tuple[float, float],
+        composite_modulus: float,
+        tolerance: float = 1e-10,
+        max_iterations: int = 10_000,
+        method: str = "cg",
+    ) -> None:
+        self.shape: Tuple[int, int] = (int(shape[0]), int(shape[1]))
+        """The grid's shape (ny, nx)."""
+        self.size: Tuple[float, float] = (float(size[0]), float(size[1]))
+        """The window (Lx, Ly), m."""
+        self._inner = _tribo.NormalSolver(
+            self.shape,
+            self.size,
+            float(composite_modulus),
+            float(tolerance),
+            int(max_iterations),
+            str(method),
+        )
+
+    def solve(
+        self, gap: Any, *, load: Optional[float] = None, approach: Optional[float] = None
+    ) -> NormalContact:
+        """One solve: the gap (m, shape (ny, nx); converted as in :func:`normal_contact`)
+        under exactly one of ``load`` (N) and ``approach`` (m)."""
+        g = _grid_array("gap", gap)
+        d = self._inner.solve(
+            g, None if load is None else float(load), None if approach is None else float(approach)
+        )
+        return NormalContact(**d)
+
+    def load_path(
+        self,
+        gap: Any,
+        *,
+        loads: Optional[Sequence[float]] = None,
+        approaches: Optional[Sequence[float]] = None,
+    ) -> Iterator[NormalContact]:
+        """The solutions along a load sequence, one at a time (a generator): exactly one of
+        ``loads`` (N) and ``approaches`` (m). The gap is converted once."""
+        if (loads is None) == (approaches is None):
+            raise _input_error("loads", "give exactly one of loads (N) and approaches (m)")
+        g = _grid_array("gap", gap)
+        if loads is not None:
+            for f in loads:
+                yield NormalContact(**self._inner.solve(g, float(f), None))
+        else:
+            for d in approaches:  # type: ignore[union-attr]
+                yield NormalContact(**self._inner.solve(g, None, float(d)))
+
+    def __repr__(self) -> str:
+        return f"NormalSolver(shape={self.shape}, size={self.size})"
 
 
 @dataclass(frozen=True)

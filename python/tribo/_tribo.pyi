@@ -69,6 +69,23 @@ class Case:
     @property
     def toml(self) -> str: ...
 
+class NormalSolver:
+    def __init__(
+        self,
+        shape: Tuple[int, int],
+        size: Tuple[float, float],
+        composite_modulus: float,
+        tolerance: float = ...,
+        max_iterations: int = ...,
+        method: str = ...,
+    ) -> None: ...
+    def solve(
+        self,
+        gap: npt.NDArray[np.float64],
+        load: Optional[float] = ...,
+        approach: Optional[float] = ...,
+    ) -> Dict[str, Any]: ...
+
 class Results:
     def summary_json(self) -> str: ...
     def write(self, directory: str) -> List[str]: ...

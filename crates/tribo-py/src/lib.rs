@@ -23,9 +23,10 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::path::PathBuf;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
+use tribo::operators::ConvolutionOperator;
 use tribo::solvers::normal::{
-    solve_normal, NormalContactParams, NormalContactProblem, NormalContactSolution, NormalLoading,
-    NormalMethod,
+    normal_compliance_operator, solve_normal, NormalContactParams, NormalContactProblem,
+    NormalContactSolution, NormalLoading, NormalMethod,
 };
 use tribo::solvers::tangential::{
     solve_tangential, TangentialLoading, TangentialParams, TangentialProblem, TangentialSolution,
@@ -320,6 +321,112 @@ fn normal_dict<'py>(
     Ok(d)
 }
 
+/// The loading of a normal solve from its two optional arguments.
+fn normal_loading(
+    py: Python<'_>,
+    load: Option<f64>,
+    approach: Option<f64>,
+) -> PyResult<NormalLoading> {
+    match (load, approach) {
+        (Some(f), None) => Ok(NormalLoading::Force(f)),
+        (None, Some(d)) => Ok(NormalLoading::Approach(d)),
+        _ => Err(input_error(
+            py,
+            "give exactly one of load (N) and approach (m)".into(),
+            "load",
+            &format!("{load:?}"),
+            "exactly one of load and approach",
+        )),
+    }
+}
+
+/// The solver's parameters from the arguments of a call.
+fn normal_params(
+    py: Python<'_>,
+    tolerance: f64,
+    max_iterations: usize,
+    method: &str,
+) -> PyResult<NormalContactParams> {
+    let method = match method {
+        "cg" | "conjugate_gradient" => NormalMethod::ConjugateGradient,
+        "active_set" => NormalMethod::ActiveSet,
+        other => {
+            return Err(input_error(
+                py,
+                format!("method = {other:?}: one of \"cg\", \"active_set\""),
+                "method",
+                other,
+                "one of \"cg\", \"active_set\"",
+            ))
+        }
+    };
+    let params = NormalContactParams {
+        tolerance,
+        max_iterations,
+        method,
+    };
+    params.validate().map_err(|e| library_error(py, &e))?;
+    Ok(params)
+}
+
+/// One normal solve on `grid` with the gap read in place and the interpreter released; the
+/// result dict carries `solve_time_s`, the solve's own wall time.
+#[allow(clippy::too_many_arguments)]
+fn normal_solve<'py>(
+    py: Python<'py>,
+    grid: &SurfaceGrid,
+    gap: &PyReadonlyArray2<'py, f64>,
+    composite_modulus: f64,
+    loading: NormalLoading,
+    params: &NormalContactParams,
+    operator: Option<&ConvolutionOperator>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let shape = gap.shape();
+    if shape != [grid.ny(), grid.nx()] {
+        return Err(input_error(
+            py,
+            format!(
+                "gap: shape {shape:?}, the solver's grid is ({}, {})",
+                grid.ny(),
+                grid.nx()
+            ),
+            "gap",
+            &format!("{shape:?}"),
+            "the shape (ny, nx) of the solver's grid",
+        ));
+    }
+    let initial_gap = gap.as_slice().map_err(|_| {
+        input_error(
+            py,
+            "gap: the array must be C-contiguous (np.ascontiguousarray)".into(),
+            "gap",
+            "non-contiguous array",
+            "C-contiguous float64 of shape (ny, nx)",
+        )
+    })?;
+    let problem = NormalContactProblem {
+        grid,
+        initial_gap,
+        composite_modulus,
+        loading,
+    };
+    // The solve reads the gap in place with the interpreter released: the caller must not
+    // write to the array from another thread meanwhile (documented in the Python layer).
+    let (solved, seconds) = py.detach(|| {
+        let start = std::time::Instant::now();
+        let solved = solve_normal(&problem, params, operator, None);
+        (solved, start.elapsed().as_secs_f64())
+    });
+    match solved {
+        Ok(s) => {
+            let d = normal_dict(py, s, grid)?;
+            d.set_item("solve_time_s", seconds)?;
+            Ok(d)
+        }
+        Err(e) => Err(library_error(py, &e.kind)),
+    }
+}
+
 /// Normal contact of two elastic half-spaces on a grid (the paper's (16); Polonsky & Keer
 /// 1999 or the dense active set): `gap` the initial separation (m) at element centres,
 /// shape (ny, nx), C-contiguous float64 (read in place, not copied); the window
@@ -339,70 +446,81 @@ fn normal_contact<'py>(
     max_iterations: usize,
     method: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let lib = |e: &tribo::Error| library_error(py, e);
     let shape = gap.shape().to_vec();
-    let (ny, nx) = (shape[0], shape[1]);
-    let grid = SurfaceGrid::centred(nx, ny, 0.5 * size.0, 0.5 * size.1).map_err(|e| lib(&e))?;
-    let initial_gap = gap.as_slice().map_err(|_| {
-        input_error(
+    let grid = SurfaceGrid::centred(shape[1], shape[0], 0.5 * size.0, 0.5 * size.1)
+        .map_err(|e| library_error(py, &e))?;
+    let loading = normal_loading(py, load, approach)?;
+    let params = normal_params(py, tolerance, max_iterations, method)?;
+    normal_solve(py, &grid, &gap, composite_modulus, loading, &params, None)
+}
+
+/// A normal contact solver for many solves on one grid and one composite modulus: the FFT
+/// compliance operator is built once (the costly part of a small solve) and reused.
+#[pyclass(module = "tribo._tribo", name = "NormalSolver", frozen)]
+struct PyNormalSolver {
+    grid: SurfaceGrid,
+    composite_modulus: f64,
+    params: NormalContactParams,
+    operator: ConvolutionOperator,
+}
+
+#[pymethods]
+impl PyNormalSolver {
+    /// A solver on the grid of `shape = (ny, nx)` elements over `size = (Lx, Ly)` (m) for
+    /// the composite modulus (Pa), with the tolerance, iteration limit and method of every
+    /// solve.
+    #[new]
+    #[pyo3(signature = (shape, size, composite_modulus, tolerance=1e-10, max_iterations=10_000, method="cg"))]
+    fn new(
+        py: Python<'_>,
+        shape: (usize, usize),
+        size: (f64, f64),
+        composite_modulus: f64,
+        tolerance: f64,
+        max_iterations: usize,
+        method: &str,
+    ) -> PyResult<Self> {
+        let grid = SurfaceGrid::centred(shape.1, shape.0, 0.5 * size.0, 0.5 * size.1)
+            .map_err(|e| library_error(py, &e))?;
+        if !(composite_modulus.is_finite() && composite_modulus > 0.0) {
+            return Err(input_error(
+                py,
+                format!("composite_modulus = {composite_modulus}: must be finite and > 0 (Pa)"),
+                "composite_modulus",
+                &composite_modulus.to_string(),
+                "finite and > 0 (Pa)",
+            ));
+        }
+        let params = normal_params(py, tolerance, max_iterations, method)?;
+        let operator = py.detach(|| normal_compliance_operator(&grid, composite_modulus));
+        Ok(PyNormalSolver {
+            grid,
+            composite_modulus,
+            params,
+            operator,
+        })
+    }
+
+    /// One solve of the gap (m, shape (ny, nx), C-contiguous float64) under exactly one of
+    /// `load` (N) and `approach` (m); a dict as `normal_contact` returns.
+    #[pyo3(signature = (gap, load=None, approach=None))]
+    fn solve<'py>(
+        &self,
+        py: Python<'py>,
+        gap: PyReadonlyArray2<'py, f64>,
+        load: Option<f64>,
+        approach: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let loading = normal_loading(py, load, approach)?;
+        normal_solve(
             py,
-            "gap: the array must be C-contiguous (np.ascontiguousarray)".into(),
-            "gap",
-            "non-contiguous array",
-            "C-contiguous float64 of shape (ny, nx)",
+            &self.grid,
+            &gap,
+            self.composite_modulus,
+            loading,
+            &self.params,
+            Some(&self.operator),
         )
-    })?;
-    let loading = match (load, approach) {
-        (Some(f), None) => NormalLoading::Force(f),
-        (None, Some(d)) => NormalLoading::Approach(d),
-        _ => {
-            return Err(input_error(
-                py,
-                "give exactly one of load (N) and approach (m)".into(),
-                "load",
-                &format!("{load:?}"),
-                "exactly one of load and approach",
-            ))
-        }
-    };
-    let method = match method {
-        "cg" | "conjugate_gradient" => NormalMethod::ConjugateGradient,
-        "active_set" => NormalMethod::ActiveSet,
-        other => {
-            return Err(input_error(
-                py,
-                format!("method = {other:?}: one of \"cg\", \"active_set\""),
-                "method",
-                other,
-                "one of \"cg\", \"active_set\"",
-            ))
-        }
-    };
-    let params = NormalContactParams {
-        tolerance,
-        max_iterations,
-        method,
-    };
-    let problem = NormalContactProblem {
-        grid: &grid,
-        initial_gap,
-        composite_modulus,
-        loading,
-    };
-    // The solve reads the gap in place with the interpreter released: the caller must not
-    // write to the array from another thread meanwhile (documented in the Python layer).
-    let (solved, seconds) = py.detach(|| {
-        let start = std::time::Instant::now();
-        let solved = solve_normal(&problem, &params, None, None);
-        (solved, start.elapsed().as_secs_f64())
-    });
-    match solved {
-        Ok(s) => {
-            let d = normal_dict(py, s, &grid)?;
-            d.set_item("solve_time_s", seconds)?;
-            Ok(d)
-        }
-        Err(e) => Err(lib(&e.kind)),
     }
 }
 
@@ -771,6 +889,7 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyHertz>()?;
     m.add_class::<PyCase>()?;
     m.add_class::<PyResults>()?;
+    m.add_class::<PyNormalSolver>()?;
     m.add_function(wrap_pyfunction!(hertz, m)?)?;
     m.add_function(wrap_pyfunction!(composite_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(normal_contact, m)?)?;
