@@ -382,6 +382,18 @@ def tangential_contact(
     return TangentialContact(**d)
 
 
+def _plain(obj: Any) -> Any:
+    """Nested mappings and sequences with numpy arrays and scalars turned into lists and
+    Python numbers (what the case reader takes)."""
+    if isinstance(obj, Mapping):
+        return {k: _plain(v) for k, v in obj.items()}
+    if isinstance(obj, (np.ndarray, np.generic)):
+        return obj.tolist()
+    if isinstance(obj, (list, tuple)):
+        return [_plain(v) for v in obj]
+    return obj
+
+
 class Case:
     """A validated case of either kind: a half-space case or a 2D boundary element case
     (``kind = "bem2d"``), with the keys of a case file (docs/user/case-halfspace.md,
@@ -421,11 +433,12 @@ class Case:
         """A case from nested dicts with the keys of a case file.
 
         Values are numbers in SI units, strings (also with units: ``"201 GPa"``), booleans,
-        lists and dicts; ``None`` values are left out (the key's default). ``base_dir``
+        lists and dicts, numpy arrays and scalars (e.g. ``body1.surface.heights`` as a
+        (ny, nx) array); ``None`` values are left out (the key's default). ``base_dir``
         resolves relative paths. Validated by the rules of a case file: :class:`InputError`
         names the field.
         """
-        return cls(_tribo.Case.from_dict(dict(data), "<dict>", base_dir))
+        return cls(_tribo.Case.from_dict(_plain(data), "<dict>", base_dir))
 
     @classmethod
     def example(cls, name: str) -> "Case":

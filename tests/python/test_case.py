@@ -6,6 +6,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import tribo
@@ -146,3 +147,18 @@ def test_fields_of_a_half_space_run():
     assert f["pressure"].max() == s["max_pressure"]
     assert f["normal_load"] == s["normal_load"]
     assert tribo.run(tribo.Case.from_toml(GMSH_CASE)).fields() is None
+
+
+@needs_tomllib
+def test_from_dict_takes_numpy_arrays(tribo_bin, tmp_path):
+    # The height-map example with its heights as a numpy array (and a numpy scalar): the
+    # same case, so the same summary as the TOML text.
+    ex = tribo.Case.example("height-map")
+    d = tomllib.loads(ex.toml)
+    d["body1"]["surface"]["heights"] = np.array(d["body1"]["surface"]["heights"])
+    d["body1"]["nu"] = np.float64(d["body1"]["nu"])
+    a = strip(tribo.run(tribo.Case.from_dict(d)).summary)
+    b = strip(tribo.run(ex).summary)
+    a.pop("case_source")
+    b.pop("case_source")
+    assert a == b
