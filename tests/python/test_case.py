@@ -16,9 +16,10 @@ import tribo
 tomllib = pytest.importorskip("tomllib") if sys.version_info >= (3, 11) else None
 needs_tomllib = pytest.mark.skipif(tomllib is None, reason="tomllib needs Python >= 3.11")
 
-# Keys of wall times (they differ from run to run; bench/compare_outputs.sh drops the same).
+# Keys of wall times (they differ from run to run; bench/compare_outputs.sh drops the same, and
+# the dynamic cases' dynamics.convolution_s).
 TIMING_KEYS = {"time_s", "timings", "solve_s", "setup_s", "steps_s", "fields_s", "damage_s",
-               "comparison_s", "total_s", "seconds"}
+               "comparison_s", "total_s", "seconds", "convolution_s"}
 
 ROOT = Path(__file__).resolve().parents[2]
 GMSH_CASE = ROOT / "crates" / "tribo-cli" / "examples" / "gmsh" / "hertz-cylinder.toml"
