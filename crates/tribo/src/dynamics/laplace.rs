@@ -658,12 +658,11 @@ impl LaplaceBem {
             let xj = Mat::<c64>::from_fn(self.ncol, 1, |i, _| x[(i, j)]);
             let (displacement, traction) = self.problem.unpack(&self.dofs, &xj, &values);
             values[k.region][k.node][k.direction] = c64::ZERO;
-            let mut row = self.ncol;
             let probes = self.probe_displacements(&tables, &displacement, &traction)?;
             let stresses = self.probe_stresses_with(&stress_tables, &displacement, &traction)?;
-            for v in probes.iter().flatten().chain(stresses.iter().flatten()) {
+            let column = probes.iter().flatten().chain(stresses.iter().flatten());
+            for (row, v) in (self.ncol..).zip(column) {
                 out[row * ni + j] = *v;
-                row += 1;
             }
         }
         Ok(out)

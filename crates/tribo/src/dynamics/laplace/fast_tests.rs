@@ -506,7 +506,9 @@ fn independent_bodies_are_solved_block_by_block() {
             .collect();
         for s in [c64::new(0.4, 2.0), c64::new(9.0, -4.0)] {
             let whole = bem.respond(s, &known).unwrap();
-            let split = &bem.respond_columns(s, &[known.clone()]).unwrap()[0];
+            let split = &bem
+                .respond_columns(s, std::slice::from_ref(&known))
+                .unwrap()[0];
             let mut size = [0.0_f64; 2];
             for (c, v) in split.iter().enumerate() {
                 let k = usize::from(bem.output_is_traction(c));
