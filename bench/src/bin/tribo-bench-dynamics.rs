@@ -1,5 +1,5 @@
 //! `tribo-bench-dynamics [--dof N,N,...] [--steps M,M,...] [--cfl B] [--repeat R]
-//! [--history NC,M] [--one N,M] [--frequencies N,M]`
+//! [--history NC,M] [--one N,M] [--frequencies N,M] [--impact NB,NC,M]`
 //!
 //! Cost of the linear dynamic BEM (crates/tribo/src/dynamics): the cylindrical cavity of
 //! docs/theory/DYNAMICS.md 3.2 (ring a = 1 m, R = 4 m, mu = rho = 1, nu = 0.25, plane
@@ -14,7 +14,8 @@
 //! static solve of the same model (mesh, assembly, LU) is timed in the same process, and
 //! the ratio of the two is printed (no external peer exists for a 2D CQ-BEM).
 //!
-//! `--frequencies N,M` times single Laplace-domain solves at five points of the BDF2
+//! `--impact NB,NC,M` times the two-body impact (NB boundary unknowns, NC contact unknowns,
+//! M steps; `DynamicContact::march`: weights and marching). `--frequencies N,M` times single Laplace-domain solves at five points of the BDF2
 //! contour (the cost profile along the contour); `--history NC,M` times the contact
 //! history machinery: the CQ weights of an NC x NC transfer function (the BEM's condensed
 //! contact compliance is such a matrix; here a synthetic dense one, so that only the CQ part
@@ -36,13 +37,25 @@ use tribo::solvers::bem2d::{BoundaryConditions, Profile, SegmentBc};
 use tribo::ElasticMaterial;
 
 const USAGE: &str = "usage: tribo-bench-dynamics [--dof N,N,...] [--steps M,M,...] [--cfl B] \
-                     [--repeat R] [--history NC,M] [--one N,M] [--frequencies N,M]";
+                     [--repeat R] [--history NC,M] [--one N,M] [--frequencies N,M] \
+                     [--impact NB,NC,M]";
 
 fn peak_rss_bytes() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024)
+}
+
+/// CPU seconds (user + system) of this process so far (/proc/self/stat, clock ticks of
+/// 1/100 s).
+fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // The fields after the command name (which may hold spaces) start after its ')'.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let (u, s): (f64, f64) = (f.get(11)?.parse().ok()?, f.get(12)?.parse().ok()?);
+    Some((u + s) / 100.0)
 }
 
 fn load_average() -> String {
@@ -123,8 +136,10 @@ fn one(dof: usize, steps: usize, cfl: f64) -> Result<Value, String> {
         .flat_map(|_| pattern.iter().copied())
         .collect();
     let t2 = Instant::now();
+    let c2_cpu = cpu_seconds();
     let series = convolve(&bem, &grid, &data, &CqParams::default()).map_err(|e| e.to_string())?;
     let cq = t2.elapsed().as_secs_f64();
+    let cq_cpu = cpu_seconds().zip(c2_cpu).map(|(b, a)| b - a);
     // The wall's radial displacement at the last step (a sanity value: the clamped ring's
     // static u_r(a) is the limit the damped response oscillates about).
     let last = series.at_step(steps).ok_or("no last step")?;
@@ -141,6 +156,8 @@ fn one(dof: usize, steps: usize, cfl: f64) -> Result<Value, String> {
         "setup_seconds": setup,
         "static_solve_seconds": static_solve,
         "cq_seconds": cq,
+        "cq_cpu_seconds": cq_cpu,
+        "load": load_average(),
         "per_frequency_seconds": cq / (steps / 2 + 1) as f64,
         "finite": finite,
         "static_max_displacement": u_static,
@@ -248,6 +265,100 @@ fn history(nc: usize, steps: usize) -> Result<(), String> {
     Ok(())
 }
 
+/// The two-body impact of issue 13's benchmark: two equal elastic strips (E = 1, nu = 0,
+/// rho = 1, plane strain; h = 0.01 m elements, `ny` across the width and `nx` along each
+/// strip, so that the two bodies have about `dof` boundary unknowns and the contact face
+/// about `contact` contact unknowns), the striker at 1 m/s against the target at rest
+/// (`DynamicContact::march`, BDF2, dt = h / c1, `steps` steps): the set-up, the CQ
+/// weights of the condensed contact map (M/2 + 1 Laplace-domain solves with all its
+/// columns) and the marching (history convolution and active set per step), wall and CPU
+/// seconds, peak memory. One JSON line.
+fn impact(dof: usize, contact: usize, steps: usize) -> Result<Value, String> {
+    use tribo::dynamics::contact::{DynamicContact, DynamicContactParams};
+    use tribo::solvers::bem2d::contact::ContactPair;
+    let h = 0.01;
+    let ny = (contact / 4).max(1);
+    let nx = ((dof / 8).saturating_sub(2 * ny) / 2).max(1);
+    let (l, w) = (nx as f64 * h, ny as f64 * h);
+    let m = ElasticMaterial::new(1.0, 0.0).map_err(|e| e.to_string())?;
+    let striker = Region::new(
+        "striker",
+        m,
+        vec![
+            Segment::line("s_bottom", [-l, 0.0], [0.0, 0.0], nx),
+            Segment::line("s_end", [0.0, 0.0], [0.0, w], ny),
+            Segment::line("s_top", [0.0, w], [-l, w], nx),
+            Segment::line("s_back", [-l, w], [-l, 0.0], ny),
+        ],
+    );
+    let target = Region::new(
+        "target",
+        m,
+        vec![
+            Segment::line("t_bottom", [0.0, 0.0], [l, 0.0], nx),
+            Segment::line("t_back", [l, 0.0], [l, w], ny),
+            Segment::line("t_top", [l, w], [0.0, w], nx),
+            Segment::line("t_end", [0.0, w], [0.0, 0.0], ny),
+        ],
+    );
+    let model = BemModel::new(PlaneCondition::Strain, vec![striker, target]);
+    let (t0, c0) = (Instant::now(), cpu_seconds());
+    let problem = DynamicContact::new(
+        &model,
+        &[1.0, 1.0],
+        &BoundaryConditions::new(),
+        &[ContactPair::new("s_end", "t_end", 0.0)],
+        &[],
+        &[[1.0, 0.0], [0.0, 0.0]],
+    )
+    .map_err(|e| e.to_string())?;
+    let setup = t0.elapsed().as_secs_f64();
+    let c1 = problem.bem().kernels()[0].p_wave_speed();
+    let params = DynamicContactParams::new(h / c1, steps);
+    let (t1, cpu1) = (Instant::now(), cpu_seconds());
+    // The first step is observed right after the weights are built.
+    let mut first: Option<(f64, Option<f64>)> = None;
+    let mut peak_pressure = 0.0_f64;
+    let res = problem
+        .march(&params, &mut |s| {
+            if first.is_none() {
+                first = Some((t1.elapsed().as_secs_f64(), cpu_seconds()));
+            }
+            for p in &s.pairs {
+                peak_pressure = p
+                    .nodes
+                    .iter()
+                    .map(|n| n.pressure)
+                    .fold(peak_pressure, f64::max);
+            }
+        })
+        .map_err(|e| e.to_string())?;
+    let total = t1.elapsed().as_secs_f64();
+    let cpu_end = cpu_seconds();
+    let (weights, cpu_w) = first.ok_or("no step")?;
+    let sub = |a: Option<f64>, b: Option<f64>| a.zip(b).map(|(a, b)| a - b);
+    let (rows, cols) = problem.weight_shape();
+    Ok(json!({
+        "dof": problem.bem().static_problem().dof(),
+        "contact_unknowns": problem.contact_unknowns(),
+        "weight_shape": [rows, cols],
+        "steps": steps,
+        "frequencies": steps / 2 + 1,
+        "setup_seconds": setup,
+        "weights_seconds": weights,
+        "weights_cpu_seconds": sub(cpu_w, cpu1),
+        "march_seconds": total - weights,
+        "march_cpu_seconds": sub(cpu_end, cpu_w),
+        "total_seconds": setup + total,
+        "total_cpu_seconds": sub(cpu_end, c0),
+        "max_iterations": res.max_iterations,
+        "peak_pressure": peak_pressure,
+        "peak_rss_bytes": peak_rss_bytes(),
+        "load": load_average(),
+        "threads": rayon::current_num_threads(),
+    }))
+}
+
 fn run() -> Result<(), String> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let (mut dofs, mut steps) = (vec![250, 500, 1000], vec![250, 500, 1000]);
@@ -279,6 +390,14 @@ fn run() -> Result<(), String> {
             "--frequencies" => {
                 let (n, m) = parse_pair(value(i)?)?;
                 return frequencies(n, m, cfl);
+            }
+            "--impact" => {
+                let v = parse_list(value(i)?)?;
+                let [nb, nc, m] = v[..] else {
+                    return Err(format!("--impact: expected NB,NC,M, got '{}'", args[i + 1]));
+                };
+                println!("{}", impact(nb, nc, m)?);
+                return Ok(());
             }
             "--history" => {
                 let (nc, m) = parse_pair(value(i)?)?;
@@ -318,6 +437,7 @@ fn run() -> Result<(), String> {
                 .fold(0.0_f64, f64::max);
             let mut row = runs[runs.len() / 2].clone();
             row["peak_rss_bytes"] = json!(peak);
+            row["n"] = json!(n);
             rows.push(row);
         }
     }
@@ -327,20 +447,48 @@ fn run() -> Result<(), String> {
          of {repeat} run(s))"
     );
     println!();
-    println!("| BEM DOF | steps M | frequencies | static solve s | CQ s | per frequency s | per frequency / static | peak MiB |");
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("| BEM DOF N | steps M | frequencies | static solve s | CQ wall s | CQ CPU-s | CPU-s per frequency | peak MiB | load at end |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---|");
     for r in &rows {
         println!(
-            "| {} | {} | {} | {:.3} | {:.2} | {:.3} | {:.1} | {:.0} |",
+            "| {} | {} | {} | {:.3} | {:.2} | {:.1} | {:.3} | {:.0} | {} |",
             r["dof"],
             r["steps"],
             r["frequencies"],
             f(r, "static_solve_seconds"),
             f(r, "cq_seconds"),
-            f(r, "per_frequency_seconds"),
-            f(r, "per_frequency_seconds") / f(r, "static_solve_seconds"),
-            f(r, "peak_rss_bytes") / 1048576.0
+            f(r, "cq_cpu_seconds"),
+            f(r, "cq_cpu_seconds") / f(r, "frequencies"),
+            f(r, "peak_rss_bytes") / 1048576.0,
+            r["load"].as_str().unwrap_or("?")
         );
+    }
+    // Growth exponents of the CPU seconds: in N at the largest M, in M at the largest N.
+    let exponent = |a: &Value, b: &Value, key: &str| {
+        (f(b, "cq_cpu_seconds") / f(a, "cq_cpu_seconds")).ln() / (f(b, key) / f(a, key)).ln()
+    };
+    let at = |n: usize, m: usize| {
+        rows.iter()
+            .find(|r| r["steps"].as_u64() == Some(m as u64) && r["n"].as_u64() == Some(n as u64))
+    };
+    let (n0, n1) = (dofs[0], dofs[dofs.len() - 1]);
+    let (m0, m1) = (steps[0], steps[steps.len() - 1]);
+    if let (Some(a), Some(b)) = (at(n0, m1), at(n1, m1)) {
+        if n0 != n1 {
+            println!();
+            println!(
+                "Growth of the CQ CPU seconds: N^{:.2} (N = {n0} -> {n1}, M = {m1})",
+                exponent(a, b, "dof")
+            );
+        }
+    }
+    if let (Some(a), Some(b)) = (at(n1, m0), at(n1, m1)) {
+        if m0 != m1 {
+            println!(
+                "Growth of the CQ CPU seconds: M^{:.2} (M = {m0} -> {m1}, N = {n1})",
+                exponent(a, b, "steps")
+            );
+        }
     }
     println!();
     println!(

@@ -462,17 +462,45 @@ impl LaplaceBem {
     ///
     /// Errors: as [`LaplaceBem::respond_state`] for each vector.
     pub fn respond_columns(&self, s: c64, known: &[Vec<c64>]) -> Result<Vec<Vec<c64>>> {
-        for k in known {
-            self.check_input(s, k)?;
-        }
-        let mesh = &self.problem.mesh;
-        let ops = mesh
+        let x = self.solve_columns(s, known)?;
+        let scale = self.problem.traction_scale();
+        Ok((0..known.len())
+            .map(|j| {
+                (0..self.ncol)
+                    .map(|c| {
+                        let v = x[(c, j)];
+                        if self.traction_col[c] {
+                            v * scale
+                        } else {
+                            v
+                        }
+                    })
+                    .collect()
+            })
+            .collect())
+    }
+
+    /// The region operators `(H(s), G(s))` of every region ([`region_operators`]).
+    fn operators(&self, s: c64) -> Result<Vec<(Mat<c64>, Mat<c64>)>> {
+        self.problem
+            .mesh
             .regions
             .iter()
             .zip(&self.problem.operators)
             .zip(&self.kernels)
             .map(|((region, statics), kernel)| region_operators(region, statics, kernel, s))
-            .collect::<Result<Vec<_>>>()?;
+            .collect()
+    }
+
+    /// The raw solutions (`ncol x known.len()`, the traction unknowns divided by the
+    /// traction scale, as [`BemProblem::solve_assembled`]'s) for several vectors of known
+    /// values: one assembly and one LU factorization at `s` for all of them.
+    fn solve_columns(&self, s: c64, known: &[Vec<c64>]) -> Result<Mat<c64>> {
+        for k in known {
+            self.check_input(s, k)?;
+        }
+        let mesh = &self.problem.mesh;
+        let ops = self.operators(s)?;
         let refs: Vec<(&Mat<c64>, &Mat<c64>)> = ops.iter().map(|(h, g)| (h, g)).collect();
         let zero: Vec<Vec<[c64; 2]>> = mesh
             .regions
@@ -508,22 +536,136 @@ impl LaplaceBem {
                 }
             }
         }
-        let (x, _) = self.problem.solve_assembled(a, b)?;
-        let scale = self.problem.traction_scale();
-        Ok((0..known.len())
-            .map(|j| {
-                (0..self.ncol)
-                    .map(|c| {
-                        let v = x[(c, j)];
-                        if self.traction_col[c] {
-                            v * scale
-                        } else {
-                            v
+        let blocks = self.independent_blocks(&offsets);
+        if blocks.len() < 2 {
+            return Ok(self.problem.solve_assembled(a, b)?.0);
+        }
+        // Bodies that share no interface: A is block diagonal (region rows x the columns of
+        // the region's DOFs), so each body's block is factored alone (the same solution,
+        // a fraction of the dense LU's cost: two equal bodies take a quarter).
+        let mut x = Mat::<c64>::zeros(self.ncol, known.len());
+        for (rows, cols) in blocks {
+            let ab = Mat::<c64>::from_fn(rows.len(), cols.len(), |i, j| a[(rows[i], cols[j])]);
+            let bb = Mat::<c64>::from_fn(rows.len(), known.len(), |i, j| b[(rows[i], j)]);
+            let (xb, _) = self.problem.solve_assembled(ab, bb)?;
+            for (i, &c) in cols.iter().enumerate() {
+                for j in 0..known.len() {
+                    x[(c, j)] = xb[(i, j)];
+                }
+            }
+        }
+        Ok(x)
+    }
+
+    /// The independent diagonal blocks of the system matrix (rows, columns), one per set of
+    /// regions joined by bonded interfaces, with the first row of each region at
+    /// `offsets[r]`; empty where a block would not be square (then the whole system is
+    /// solved at once).
+    fn independent_blocks(&self, offsets: &[usize]) -> Vec<(Vec<usize>, Vec<usize>)> {
+        let nr = self.dofs.len();
+        // Union-find over the regions: an interface column joins the regions that use it.
+        let mut parent: Vec<usize> = (0..nr).collect();
+        fn root(parent: &mut [usize], mut r: usize) -> usize {
+            while parent[r] != r {
+                parent[r] = parent[parent[r]];
+                r = parent[r];
+            }
+            r
+        }
+        let mut owner: Vec<Option<usize>> = vec![None; self.ncol];
+        for (r, nodes) in self.dofs.iter().enumerate() {
+            for dof in nodes.iter().flatten() {
+                let cols = match *dof {
+                    Dof::U { col, .. } | Dof::T { col, .. } => [col, col],
+                    Dof::Interface { u_col, t_col, .. } => [u_col, t_col],
+                };
+                for c in cols {
+                    match owner[c] {
+                        None => owner[c] = Some(r),
+                        Some(o) => {
+                            let (a, b) = (root(&mut parent, o), root(&mut parent, r));
+                            parent[a] = b;
                         }
-                    })
-                    .collect()
+                    }
+                }
+            }
+        }
+        let mut blocks: Vec<(usize, Vec<usize>, Vec<usize>)> = Vec::new();
+        for r in 0..nr {
+            let id = root(&mut parent, r);
+            let k = match blocks.iter().position(|b| b.0 == id) {
+                Some(k) => k,
+                None => {
+                    blocks.push((id, Vec::new(), Vec::new()));
+                    blocks.len() - 1
+                }
+            };
+            blocks[k]
+                .1
+                .extend(offsets[r]..offsets[r] + 2 * self.dofs[r].len());
+        }
+        for (c, o) in owner.iter().enumerate() {
+            let Some(o) = o else { return Vec::new() };
+            let id = root(&mut parent, *o);
+            if let Some(b) = blocks.iter_mut().find(|b| b.0 == id) {
+                b.2.push(c);
+            }
+        }
+        if blocks.iter().any(|b| b.1.len() != b.2.len()) {
+            return Vec::new();
+        }
+        blocks.into_iter().map(|b| (b.1, b.2)).collect()
+    }
+
+    /// The transfer matrix `R(s)` (`outputs x inputs`, row-major: the outputs of
+    /// [`LaplaceBem::respond`] for each unit input): one assembly and one LU factorization
+    /// for all inputs and the probe tables built once (issue 13 "Speed"; the trait's
+    /// default assembles and factors once per input).
+    ///
+    /// Errors: as [`LaplaceBem::respond_state`].
+    pub fn transfer_matrix(&self, s: c64) -> Result<Vec<c64>> {
+        let (ni, no) = (self.inputs(), self.outputs());
+        let units: Vec<Vec<c64>> = (0..ni)
+            .map(|j| {
+                let mut v = vec![c64::ZERO; ni];
+                v[j] = c64::ONE;
+                v
             })
-            .collect())
+            .collect();
+        let x = self.solve_columns(s, &units)?;
+        let scale = self.problem.traction_scale();
+        let mut out = vec![c64::ZERO; no * ni];
+        for c in 0..self.ncol {
+            let f = if self.traction_col[c] { scale } else { 1.0 };
+            for j in 0..ni {
+                out[c * ni + j] = x[(c, j)] * f;
+            }
+        }
+        if self.probes.is_empty() && self.stress_probes.is_empty() {
+            return Ok(out);
+        }
+        let tables = self.probe_tables(s)?;
+        let stress_tables = self.stress_tables(s)?;
+        let mut values: Vec<Vec<[c64; 2]>> = self
+            .problem
+            .mesh
+            .regions
+            .iter()
+            .map(|r| vec![[c64::ZERO; 2]; r.nodes.len()])
+            .collect();
+        for (j, k) in self.known.iter().enumerate() {
+            values[k.region][k.node][k.direction] = c64::ONE;
+            let xj = Mat::<c64>::from_fn(self.ncol, 1, |i, _| x[(i, j)]);
+            let (displacement, traction) = self.problem.unpack(&self.dofs, &xj, &values);
+            values[k.region][k.node][k.direction] = c64::ZERO;
+            let probes = self.probe_displacements(&tables, &displacement, &traction)?;
+            let stresses = self.probe_stresses_with(&stress_tables, &displacement, &traction)?;
+            let column = probes.iter().flatten().chain(stresses.iter().flatten());
+            for (row, v) in (self.ncol..).zip(column) {
+                out[row * ni + j] = *v;
+            }
+        }
+        Ok(out)
     }
 
     /// Checks `s` and one vector of known values (see [`LaplaceBem::respond_state`]).
@@ -571,21 +713,30 @@ impl LaplaceBem {
         for (k, v) in self.known.iter().zip(known) {
             values[k.region][k.node][k.direction] = *v;
         }
-        let ops = mesh
-            .regions
-            .iter()
-            .zip(&self.problem.operators)
-            .zip(&self.kernels)
-            .map(|((region, statics), kernel)| region_operators(region, statics, kernel, s))
-            .collect::<Result<Vec<_>>>()?;
+        let ops = self.operators(s)?;
         let refs: Vec<(&Mat<c64>, &Mat<c64>)> = ops.iter().map(|(h, g)| (h, g)).collect();
         let (x, residual) =
             self.problem
                 .solve_system(&self.dofs, self.ncol, &refs, &values, &[])?;
         let (displacement, traction) = self.problem.unpack(&self.dofs, &x, &values);
-        let mut probes = Vec::with_capacity(self.probes.len());
-        // One radial table per region that holds a probe.
-        let tables = mesh
+        let tables = self.probe_tables(s)?;
+        let probes = self.probe_displacements(&tables, &displacement, &traction)?;
+        Ok((
+            x,
+            LaplaceState {
+                displacement,
+                traction,
+                probes,
+                residual,
+            },
+        ))
+    }
+
+    /// One radial table at `s` per region that holds a displacement probe (None for the
+    /// others).
+    fn probe_tables(&self, s: c64) -> Result<Vec<Option<RadialTable<'_>>>> {
+        self.problem
+            .mesh
             .regions
             .iter()
             .zip(&self.kernels)
@@ -597,16 +748,26 @@ impl LaplaceBem {
                     .then(|| kernel.radial_table(s, region_extent(region)))
                     .transpose()
             })
-            .collect::<Result<Vec<_>>>()?;
+            .collect()
+    }
+
+    /// The transformed displacements at the probes (the Somigliana identity, module docs)
+    /// of the boundary state `displacement`, `traction` (per region and node), with the
+    /// tables of [`LaplaceBem::probe_tables`].
+    fn probe_displacements(
+        &self,
+        tables: &[Option<RadialTable<'_>>],
+        displacement: &[Vec<[c64; 2]>],
+        traction: &[Vec<[c64; 2]>],
+    ) -> Result<Vec<[c64; 2]>> {
+        let mut probes = Vec::with_capacity(self.probes.len());
         for &(r, p) in &self.probes {
-            let region = &mesh.regions[r];
-            let built;
-            let table = match &tables[r] {
-                Some(t) => t,
-                None => {
-                    built = self.kernels[r].radial_table(s, region_extent(region))?;
-                    &built
-                }
+            let region = &self.problem.mesh.regions[r];
+            let Some(table) = &tables[r] else {
+                return Err(Error::Numerical {
+                    context: "LaplaceBem probes",
+                    detail: format!("no radial table for region {r}"),
+                });
             };
             let mut u = [c64::ZERO; 2];
             for e in &region.local_elements {
@@ -622,15 +783,7 @@ impl LaplaceBem {
             }
             probes.push(u);
         }
-        Ok((
-            x,
-            LaplaceState {
-                displacement,
-                traction,
-                probes,
-                residual,
-            },
-        ))
+        Ok(probes)
     }
 }
 
@@ -649,6 +802,10 @@ impl LaplaceResponse for LaplaceBem {
 
     fn respond(&self, s: c64, inputs: &[c64]) -> Result<Vec<c64>> {
         LaplaceBem::respond(self, s, inputs)
+    }
+
+    fn transfer_matrix(&self, s: c64) -> Result<Vec<c64>> {
+        LaplaceBem::transfer_matrix(self, s)
     }
 }
 

@@ -56,6 +56,15 @@
 //! r^2 ln r gives dD ~ r ln r and dS ~ ln r, so an interior point's stress integrates the
 //! static kernels with the static rules and adds the differences (as the operators of
 //! [`crate::dynamics::laplace`] do).
+//!
+//! **Tables** (issue 13 "Speed"). At a fixed s the five radial functions depend on r alone:
+//! [`StressTable`] interpolates them as [`super::RadialTable`] does U's and T's four
+//! (Chebyshev polynomials of degree 16 on intervals of c2/|s| above
+//! the series switch, the series below it and the direct form beyond the table's end), so
+//! that a stress probe costs one table per region and frequency instead of two complex
+//! Bessel pairs per quadrature point. The functions are analytic in r away from r = 0 like
+//! U's and T's, so the same interpolation bound holds (test
+//! `stress_table_matches_the_direct_radial_functions`).
 
 // Index loops read like the tensor formulas they implement.
 #![allow(clippy::needless_range_loop)]
@@ -64,6 +73,7 @@ use std::f64::consts::PI;
 
 use faer::c64;
 
+use super::table::Chebyshev;
 use super::{bessel_k01, LaplaceKelvin2d, SERIES_SWITCH, SERIES_TERMS};
 use crate::error::Result;
 
@@ -142,6 +152,83 @@ fn contract(
         }
     }
     (dk, sk)
+}
+
+/// The radial functions of the stress-kernel differences of one kernel at one s,
+/// tabulated in r (module docs, "Tables"): [`LaplaceKelvin2d::stress_differences`] at the
+/// table's s to the interpolation error.
+#[derive(Debug, Clone)]
+pub struct StressTable<'a> {
+    kernel: &'a LaplaceKelvin2d,
+    s: c64,
+    /// The interpolants of [P1, P2, F0, F1, F2] (differences from Kelvin's).
+    cheb: Chebyshev<5>,
+}
+
+impl StressTable<'_> {
+    /// The s of the table.
+    pub fn s(&self) -> c64 {
+        self.s
+    }
+
+    /// The kernel of the table.
+    pub fn kernel(&self) -> &LaplaceKelvin2d {
+        self.kernel
+    }
+
+    /// The number of intervals (the table holds `intervals() * (DEGREE + 1)` sets of five
+    /// complex coefficients).
+    pub fn intervals(&self) -> usize {
+        self.cheb.intervals()
+    }
+
+    /// The radial functions at distance `rr` (m): interpolated inside the table, direct
+    /// (series or Bessel form) outside it.
+    fn radial(&self, rr: f64) -> Result<StressRadial> {
+        match self.cheb.eval(rr) {
+            Some(v) => Ok(v),
+            None => self.kernel.stress_radial(rr, self.s),
+        }
+    }
+
+    /// The differences `(dD, dS)` at r = field point minus source point (m) with the
+    /// outward normal `n` at the field point: [`LaplaceKelvin2d::stress_differences`] at
+    /// the table's s.
+    ///
+    /// Errors: as [`LaplaceKelvin2d::stress_differences`].
+    pub fn differences(&self, r: [f64; 2], n: [f64; 2]) -> Result<(Tensor3, Tensor3)> {
+        let rr = r[0].hypot(r[1]);
+        let rad = self.radial(rr)?;
+        let k = self.kernel;
+        Ok(contract(
+            &rad,
+            k.statics.shear_modulus(),
+            k.lame_ratio(),
+            rr,
+            [r[0] / rr, r[1] / rr],
+            n,
+        ))
+    }
+}
+
+impl LaplaceKelvin2d {
+    /// The table of the stress kernels' radial functions at `s` for distances up to
+    /// `r_max` (m; beyond it the direct evaluation is used), module docs "Tables".
+    ///
+    /// Errors: s not finite or on the closed negative real axis
+    /// ([`crate::error::Error::InvalidParameter`]); a Bessel evaluation failure
+    /// ([`crate::error::Error::Numerical`]).
+    pub fn stress_table(&self, s: c64, r_max: f64) -> Result<StressTable<'_>> {
+        Self::check(1.0, s)?;
+        let cheb = Chebyshev::build(self.c1, self.c2, s, r_max, |r| {
+            self.stress_radial_bessel(r, s)
+        })?;
+        Ok(StressTable {
+            kernel: self,
+            s,
+            cheb,
+        })
+    }
 }
 
 impl LaplaceKelvin2d {

@@ -39,34 +39,38 @@ pub const MAX_INTERVALS: usize = 8192;
 /// exactly minus Kelvin's.
 const UNDERFLOW: f64 = 700.0;
 
-/// The radial functions of one kernel at one s, tabulated in r (module docs).
+/// Chebyshev interpolants of `F` complex functions of r on the intervals of the module
+/// docs (`[r0, 1.5 r0]`, `[1.5 r0, 2 r0]`, then uniform ones of length h up to the end):
+/// the radial functions of U and T ([`RadialTable`], F = 4) and of the interior stress
+/// kernels ([`super::stress::StressTable`], F = 5) share it.
 #[derive(Debug, Clone)]
-pub struct RadialTable<'a> {
-    kernel: &'a LaplaceKelvin2d,
-    s: c64,
+pub(super) struct Chebyshev<const F: usize> {
     /// Start of the table: the series switch r0 (m).
-    r0: f64,
+    pub(super) r0: f64,
     /// Length of the uniform intervals c2/|s| (m).
     h: f64,
     /// End of the table (m).
-    end: f64,
-    /// Chebyshev coefficients per interval: `[k][f]` for degree k and function f
-    /// (dpsi, dchi, dpsi', dchi').
-    coef: Vec<[[c64; 4]; NODES]>,
+    pub(super) end: f64,
+    /// Chebyshev coefficients per interval: `[k][f]` for degree k and function f.
+    coef: Vec<[[c64; F]; NODES]>,
 }
 
-impl LaplaceKelvin2d {
-    /// The table of the radial functions at `s` for distances up to `r_max` (m; beyond it
-    /// the direct evaluation is used).
+impl<const F: usize> Chebyshev<F> {
+    /// The interpolants of `func` for the kernel of wave speeds `c1`, `c2` (m/s) at `s`, for
+    /// distances up to `r_max` (m; the table also ends where Re z1 reaches [`UNDERFLOW`] and
+    /// after [`MAX_INTERVALS`] intervals).
     ///
-    /// Errors: s not finite or on the closed negative real axis
-    /// ([`crate::Error::InvalidParameter`]); a Bessel evaluation failure
-    /// ([`crate::Error::Numerical`]).
-    pub fn radial_table(&self, s: c64, r_max: f64) -> Result<RadialTable<'_>> {
-        Self::check(1.0, s)?;
-        let h = self.c2 / s.norm();
+    /// Errors: those of `f`.
+    pub(super) fn build(
+        c1: f64,
+        c2: f64,
+        s: c64,
+        r_max: f64,
+        mut func: impl FnMut(f64) -> Result<[c64; F]>,
+    ) -> Result<Self> {
+        let h = c2 / s.norm();
         let r0 = SERIES_SWITCH * h;
-        let mut end = r_max.min(UNDERFLOW * self.c1 / s.re.max(f64::MIN_POSITIVE));
+        let mut end = r_max.min(UNDERFLOW * c1 / s.re.max(f64::MIN_POSITIVE));
         if !(end.is_finite() && h.is_finite() && h > 0.0) || end <= r0 {
             end = r0;
         }
@@ -79,9 +83,7 @@ impl LaplaceKelvin2d {
             0
         };
         let count = if end > r0 { 2 + uniform } else { 0 };
-        let mut table = RadialTable {
-            kernel: self,
-            s,
+        let mut table = Chebyshev {
             r0,
             h,
             end: r0,
@@ -92,19 +94,18 @@ impl LaplaceKelvin2d {
         for k in 0..count {
             let (a, b) = table.interval(k);
             let (c, half) = (0.5 * (a + b), 0.5 * (b - a));
-            let mut values = [[c64::ZERO; 4]; NODES];
+            let mut values = [[c64::ZERO; F]; NODES];
             for (v, x) in values.iter_mut().zip(&nodes) {
-                let rad = self.radial_bessel(c + half * x, s)?;
-                *v = [rad.dpsi, rad.dchi, rad.dpsi_r, rad.dchi_r];
+                *v = func(c + half * x)?;
             }
-            let mut coef = [[c64::ZERO; 4]; NODES];
+            let mut coef = [[c64::ZERO; F]; NODES];
             for (m, cm) in coef.iter_mut().enumerate() {
                 let scale = if m == 0 { 1.0 } else { 2.0 } / NODES as f64;
                 for (j, v) in values.iter().enumerate() {
                     let t = (std::f64::consts::PI * m as f64 * (j as f64 + 0.5) / NODES as f64)
                         .cos()
                         * scale;
-                    for f in 0..4 {
+                    for f in 0..F {
                         cm[f] += v[f] * t;
                     }
                 }
@@ -114,9 +115,7 @@ impl LaplaceKelvin2d {
         }
         Ok(table)
     }
-}
 
-impl RadialTable<'_> {
     /// The interval k (m).
     fn interval(&self, k: usize) -> (f64, f64) {
         match k {
@@ -129,6 +128,72 @@ impl RadialTable<'_> {
         }
     }
 
+    /// The number of intervals.
+    pub(super) fn intervals(&self) -> usize {
+        self.coef.len()
+    }
+
+    /// The interpolated values at r (m), None outside `[r0, end)` (the caller evaluates
+    /// directly there).
+    pub(super) fn eval(&self, r: f64) -> Option<[c64; F]> {
+        if !(r >= self.r0 && r < self.end) {
+            return None;
+        }
+        let k = if r < 1.5 * self.r0 {
+            0
+        } else if r < 2.0 * self.r0 {
+            1
+        } else {
+            (2 + ((r - 2.0 * self.r0) / self.h) as usize).min(self.coef.len() - 1)
+        };
+        let (a, b) = self.interval(k);
+        let x = ((2.0 * r - a - b) / (b - a)).clamp(-1.0, 1.0);
+        // Clenshaw's recurrence for the F functions at once.
+        let c = &self.coef[k];
+        let (mut b1, mut b2) = ([c64::ZERO; F], [c64::ZERO; F]);
+        for cm in c[1..].iter().rev() {
+            let mut b0 = [c64::ZERO; F];
+            for f in 0..F {
+                b0[f] = cm[f] + b1[f] * (2.0 * x) - b2[f];
+            }
+            b2 = b1;
+            b1 = b0;
+        }
+        Some(std::array::from_fn(|f| c[0][f] + b1[f] * x - b2[f]))
+    }
+}
+
+/// The radial functions of one kernel at one s, tabulated in r (module docs).
+#[derive(Debug, Clone)]
+pub struct RadialTable<'a> {
+    kernel: &'a LaplaceKelvin2d,
+    s: c64,
+    /// The interpolants of (dpsi, dchi, dpsi', dchi').
+    cheb: Chebyshev<4>,
+}
+
+impl LaplaceKelvin2d {
+    /// The table of the radial functions at `s` for distances up to `r_max` (m; beyond it
+    /// the direct evaluation is used).
+    ///
+    /// Errors: s not finite or on the closed negative real axis
+    /// ([`crate::Error::InvalidParameter`]); a Bessel evaluation failure
+    /// ([`crate::Error::Numerical`]).
+    pub fn radial_table(&self, s: c64, r_max: f64) -> Result<RadialTable<'_>> {
+        Self::check(1.0, s)?;
+        let cheb = Chebyshev::build(self.c1, self.c2, s, r_max, |r| {
+            let rad = self.radial_bessel(r, s)?;
+            Ok([rad.dpsi, rad.dchi, rad.dpsi_r, rad.dchi_r])
+        })?;
+        Ok(RadialTable {
+            kernel: self,
+            s,
+            cheb,
+        })
+    }
+}
+
+impl RadialTable<'_> {
     /// The s of the table.
     pub fn s(&self) -> c64 {
         self.s
@@ -142,40 +207,19 @@ impl RadialTable<'_> {
     /// The number of intervals (the table holds `intervals() * (DEGREE + 1)` sets of four
     /// complex coefficients).
     pub fn intervals(&self) -> usize {
-        self.coef.len()
+        self.cheb.intervals()
     }
 
     fn radial(&self, r: f64) -> Result<Radial> {
-        if !(r >= self.r0 && r < self.end) {
-            return self.kernel.radial(r, self.s);
+        match self.cheb.eval(r) {
+            Some(v) => Ok(Radial {
+                dpsi: v[0],
+                dchi: v[1],
+                dpsi_r: v[2],
+                dchi_r: v[3],
+            }),
+            None => self.kernel.radial(r, self.s),
         }
-        let k = if r < 1.5 * self.r0 {
-            0
-        } else if r < 2.0 * self.r0 {
-            1
-        } else {
-            (2 + ((r - 2.0 * self.r0) / self.h) as usize).min(self.coef.len() - 1)
-        };
-        let (a, b) = self.interval(k);
-        let x = ((2.0 * r - a - b) / (b - a)).clamp(-1.0, 1.0);
-        // Clenshaw's recurrence for the four functions at once.
-        let c = &self.coef[k];
-        let (mut b1, mut b2) = ([c64::ZERO; 4], [c64::ZERO; 4]);
-        for cm in c[1..].iter().rev() {
-            let mut b0 = [c64::ZERO; 4];
-            for f in 0..4 {
-                b0[f] = cm[f] + b1[f] * (2.0 * x) - b2[f];
-            }
-            b2 = b1;
-            b1 = b0;
-        }
-        let v: [c64; 4] = std::array::from_fn(|f| c[0][f] + b1[f] * x - b2[f]);
-        Ok(Radial {
-            dpsi: v[0],
-            dchi: v[1],
-            dpsi_r: v[2],
-            dchi_r: v[3],
-        })
     }
 
     /// Both differences `(dT, dU)` at `r` (field minus load point, m) on a surface of
@@ -251,7 +295,7 @@ mod tests {
                     for i in 0..n {
                         for f in 0..4 {
                             let (a, b) = (get(&direct[i], f), get(&tab[i], f));
-                            if rs[i] < table.r0 || rs[i] >= table.end {
+                            if rs[i] < table.cheb.r0 || rs[i] >= table.cheb.end {
                                 assert_eq!((a.re, a.im), (b.re, b.im), "r = {}", rs[i]);
                                 continue;
                             }

@@ -7,9 +7,12 @@
 //! [`crate::dynamics::kernel::stress`]) is split as the operators are: the static kernels'
 //! integrals with the static interior rule (`element_interior`, applied to the real and
 //! the imaginary part of the boundary data) plus the bounded differences dD, dS integrated
-//! with the adaptive rule over every element cut into `ceil(|s| l/c2)` pieces. Outputs in
-//! Pa s (the transform of Pa), after the displacement probes
-//! ([`LaplaceBem::first_stress_output`]).
+//! with the adaptive rule over every element cut into `ceil(|s| l/c2)` pieces, their radial
+//! functions from one [`crate::dynamics::kernel::stress::StressTable`] per region and
+//! frequency (issue 13 "Speed"; equal to the direct kernels to 1e-12). An element far from
+//! the probe (Re(s) d/c1 > [`FAR_DECAY`], as in the operators) adds nothing: the full kernels
+//! are 0 to rounding there. Outputs in Pa s (the transform of Pa), after the displacement
+//! probes ([`LaplaceBem::first_stress_output`]).
 //!
 //! **Boundary.** Hooke's law is instantaneous, so the boundary stress at a time follows
 //! from that time's nodal traction and the tangential derivative of that time's nodal
@@ -25,8 +28,9 @@
 
 use faer::c64;
 
-use super::{LaplaceBem, LaplaceState, MAX_PIECES};
+use super::{far, region_extent, LaplaceBem, LaplaceState, FAR_DECAY, MAX_PIECES};
 use crate::dynamics::cq::CqSeries;
+use crate::dynamics::kernel::stress::StressTable;
 use crate::dynamics::kernel::LaplaceKelvin2d;
 use crate::error::{Error, Result};
 use crate::operators::bem2d::integrate::{adaptive, element_interior};
@@ -110,14 +114,59 @@ impl LaplaceBem {
                 "must be a state of this model (one value per region and node)",
             ));
         }
+        let tables = self.stress_tables(s)?;
+        self.probe_stresses_with(&tables, &state.displacement, &state.traction)
+    }
+
+    /// One stress table at `s` per region that holds a stress probe (None for the others).
+    pub(super) fn stress_tables(&self, s: c64) -> Result<Vec<Option<StressTable<'_>>>> {
+        self.problem
+            .mesh
+            .regions
+            .iter()
+            .zip(&self.kernels)
+            .enumerate()
+            .map(|(r, (region, kernel))| {
+                self.stress_probes
+                    .iter()
+                    .any(|q| q.0 == r)
+                    .then(|| kernel.stress_table(s, region_extent(region)))
+                    .transpose()
+            })
+            .collect()
+    }
+
+    /// [`LaplaceBem::probe_stresses`] of the boundary state `displacement`, `traction` (per
+    /// region and node, of the right shape) with the tables of
+    /// [`LaplaceBem::stress_tables`].
+    pub(super) fn probe_stresses_with(
+        &self,
+        tables: &[Option<StressTable<'_>>],
+        displacement: &[Vec<[c64; 2]>],
+        traction: &[Vec<[c64; 2]>],
+    ) -> Result<Vec<[c64; 3]>> {
+        let regions = &self.problem.mesh.regions;
         let mut out = Vec::with_capacity(self.stress_probes.len());
         for &(r, p) in &self.stress_probes {
             let region = &regions[r];
             let kernel = &self.kernels[r];
-            let (u, t) = (&state.displacement[r], &state.traction[r]);
+            let Some(table) = &tables[r] else {
+                return Err(Error::Numerical {
+                    context: "LaplaceBem::probe_stresses",
+                    detail: format!("no stress table for region {r}"),
+                });
+            };
+            let s = table.s();
+            let (u, t) = (&displacement[r], &traction[r]);
             let mut sigma = [c64::ZERO; 3];
             let mut err: Option<Error> = None;
             for e in &region.local_elements {
+                // A far element ([`FAR_DECAY`]): the full kernels D(s), S(s) are 0 to
+                // rounding there, so the element adds nothing (its static integrals and
+                // their differences cancel).
+                if far(e, p, kernel, s, FAR_DECAY) {
+                    continue;
+                }
                 // Static kernels: the static interior rule on the real and imaginary parts.
                 let ue = e.nodes.map(|m| u[m]);
                 let te = e.nodes.map(|m| t[m]);
@@ -146,7 +195,7 @@ impl LaplaceBem {
                         }
                         let (n, jac) = e.normal_jacobian(xi);
                         let r = e.offset_from(xi, p);
-                        let (dd, ds) = match kernel.stress_differences(r, n, s) {
+                        let (dd, ds) = match table.differences(r, n) {
                             Ok(v) => v,
                             Err(x) => {
                                 err = Some(x);
