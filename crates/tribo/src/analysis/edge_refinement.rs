@@ -423,7 +423,7 @@ fn least_squares6(rows: &[[f64; 6]], values: &[f64]) -> Option<[f64; 6]> {
             }
         }
         let norm = dot(&q[c], &q[c]).sqrt();
-        if !(norm > 1e-10 * original) {
+        if norm.is_nan() || norm <= 1e-10 * original {
             return None;
         }
         r[c][c] = norm;
@@ -546,6 +546,10 @@ pub const LEVEL2_RATIO: usize = 4;
 /// change the tractions by at most that much; the surplus is large only within a few
 /// first-level sub-cells of the contact edge).
 pub const LEVEL2_TOLERANCE: f64 = 1e-4;
+
+/// A band cell's second level: the kept surpluses and their projection onto the corner
+/// element tents ([`BandCell`]).
+type Level2 = (Vec<(u32, [f64; 3])>, [[f64; 3]; 4]);
 
 /// One cell of the edge band: the square between the element centres (i, j) and
 /// (i + 1, j + 1).
@@ -719,7 +723,7 @@ impl EdgeBand {
             }
         };
         let tolerance = LEVEL2_TOLERANCE * p.iter().fold(0.0f64, |m, &v| m.max(v));
-        let mut level2: Vec<(Vec<(u32, [f64; 3])>, [[f64; 3]; 4])> = Vec::new();
+        let mut level2: Vec<Level2> = Vec::new();
         for cell in &cells {
             let (i, j) = (cell.i, cell.j);
             let corners = [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)];
@@ -777,8 +781,8 @@ impl EdgeBand {
                 (cell.i + 1, cell.j + 1),
             ];
             for (k, &(a, b)) in corners.iter().enumerate() {
-                for c in 0..3 {
-                    cell.increments[k][c] += increments[k][c];
+                for (dst, src) in cell.increments[k].iter_mut().zip(&increments[k]) {
+                    *dst += src;
                 }
                 for (c, values) in projected.iter_mut().enumerate() {
                     if let Some(v) = values {
