@@ -27,7 +27,13 @@
 //!   directions d in which the neighbour is loaded: 2 g(+d) - g(+2d) where the next node is
 //!   loaded too, -g(+d) (edge half-way) where it is not; then min(., 0), so that the node stays
 //!   unloaded; other unloaded nodes take -max g (no load in their cells);
-//! - p(x, y) = sqrt(max(0, G(x, y))), G the bilinear interpolant of g;
+//! - near the edge (nodes within [`FIT_RINGS`] of a node of the other state) each node
+//!   carries a local quadratic Q_k of p^2, fitted by least squares to p^2 at the loaded
+//!   nodes within [`FIT_RADIUS`] that are at least [`FIT_INNER`] nodes from an unloaded one
+//!   ("The edge" below); elsewhere Q_k = g_k;
+//! - p(x, y) = sqrt(max(0, G(x, y))), G = sum_k w_k Q_k the blend of the four corner
+//!   nodes' Q_k with the bilinear weights w_k (the bilinear interpolant of g away from the
+//!   edge; exact for a quadratic p^2 where all four corners have fits);
 //! - a shear component q is written as p times the ratio q / p: the ratio at loaded nodes,
 //!   at unloaded nodes next to loaded ones the mean of the loaded neighbours' ratios (0 at
 //!   the others), interpolated bilinearly; q(x, y) = p(x, y) R(x, y). This keeps |q| <= f p
@@ -35,8 +41,19 @@
 //!   boundary is followed at the element scale, like the bilinear interpolant.
 //!
 //! For the Hertz pressure p^2 = p0^2 (1 - r^2 / a^2) is quadratic, so the reconstruction from
-//! exact centre values is within O(p0 (h / a)) of it at every point (g within
-//! p0^2 h^2 / (2 a^2) of p^2; the extrapolation off by 2 p0^2 h^2 / a^2; tested).
+//! exact centre values is exact (to round-off) within 1.5 elements of the edge, and within
+//! p0^2 h^2 / (4 a^2) in p^2 farther in (bilinear g; tested).
+//!
+//! # The edge
+//!
+//! The nodal values next to the edge do not locate it: a linear extrapolation of p^2 from
+//! the edge-most loaded nodes overestimates a concave p^2 by g'' h^2 and, from a solved
+//! contact, reads edge cells that are themselves off the square root (0.02 p0 within one
+//! element of the edge, against 8e-4 p0 two or more elements in: sliding sphere 64 x 64,
+//! measured). The local quadratics read the interior instead and extrapolate it to the
+//! edge: from that solved contact the zero of G lies within 0.0066 h of the Hertz radius
+//! at every angle (0.075 h by the linear extrapolation; tested). The edge cells' own values
+//! enter only through the ratio q / p and where a contact is too small for a fit.
 //!
 //! [`refine_tractions`] samples the reconstruction at the centres of a grid `factor` times
 //! finer over the same window; the stress field of those tractions (by
@@ -58,7 +75,11 @@
 //! loaded/unloaded boundary (8-neighbourhood) and 0 elsewhere: T is continuous (no jump, so
 //! no logarithmic surface stress), E in the cells an edge crosses, B away from the edges. Only
 //! the band cells (a corner with w > 0) carry w D; it is sampled at the centres of
-//! `factor` x `factor` sub-cells of each (fine tents). Its stress field is split:
+//! `factor` x `factor` sub-cells of each (fine tents), and on a second level
+//! [`LEVEL2_RATIO`] times finer where the first level's tents miss w D by more than
+//! [`LEVEL2_TOLERANCE`] of the largest pressure (the surplus; in practice the sub-cells
+//! along the square-root edge, which linear interpolation between samples s apart rounds
+//! by up to 0.385 p0 sqrt(2 s / a)). Its stress field is split:
 //! - far: the projection of each band cell's w D onto the element tents of its four corners
 //!   (nodal increments with the same force and first moments, the tents reproducing linear
 //!   functions) is added to the element tractions ([`EdgeBand::projected`]), whose field
@@ -90,6 +111,10 @@ pub struct EdgeReconstruction {
     /// Nodal g (p^2 or its extrapolation), Pa^2, on the nodes extended by one ring:
     /// (nx + 2) x (ny + 2), node (i, j) of the grid at (i + 1, j + 1).
     g: Vec<f64>,
+    /// Per extended node, the local quadratic of g about it (module docs, "The edge"), Pa^2:
+    /// [c0, c_u, c_v, c_uu, c_uv, c_vv] in the offsets (u, v) from the node in element
+    /// sizes; None where the node takes its nodal g (bilinear interpolation).
+    fits: Vec<Option<[f64; 6]>>,
     /// Nodal ratios q_x / p and q_y / p on the same nodes (None where the shear is absent).
     ratio_x: Option<Vec<f64>>,
     ratio_y: Option<Vec<f64>>,
@@ -100,6 +125,13 @@ impl EdgeReconstruction {
     /// field): a negative pressure, or a shear traction on an element without pressure (the
     /// ratio q / p, and so the reconstruction, is then undefined).
     pub fn new(tractions: &SurfaceTractions<'_>) -> Result<Self> {
+        Self::build(tractions, true)
+    }
+
+    /// [`EdgeReconstruction::new`], with the local fits at the edge (`fit`) or without (the
+    /// nodal values alone: p^2 extrapolated linearly to the unloaded nodes; the tests'
+    /// comparison).
+    fn build(tractions: &SurfaceTractions<'_>, fit: bool) -> Result<Self> {
         tractions.validate()?;
         let grid = *tractions.grid;
         let p = tractions.pressure;
@@ -193,12 +225,46 @@ impl EdgeReconstruction {
                 }
             }
         }
+        let fits = if fit {
+            edge_fits(&grid, p)
+        } else {
+            vec![None; ex * ey]
+        };
         Ok(Self {
             grid,
             g,
+            fits,
             ratio_x,
             ratio_y,
         })
+    }
+
+    /// The reconstructed p^2 (Pa^2, negative beyond the edge) at extended node coordinates
+    /// (u, v) in cell (i, j) with in-cell offsets (t, s): the bilinear blend of the corner
+    /// nodes' local quadratics (their nodal g where they have none).
+    fn g_at(&self, i: usize, j: usize, t: f64, s: f64) -> f64 {
+        let ex = self.grid.nx() + 2;
+        let corners = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)];
+        let weights = [(1.0 - t) * (1.0 - s), t * (1.0 - s), (1.0 - t) * s, t * s];
+        corners
+            .iter()
+            .zip(&weights)
+            .map(|(&(ci, cj), &w)| {
+                let k = (j + cj as usize) * ex + i + ci as usize;
+                let value = match &self.fits[k] {
+                    Some(c) => {
+                        let (du, dv) = (t - ci, s - cj);
+                        c[0] + c[1] * du
+                            + c[2] * dv
+                            + c[3] * du * du
+                            + c[4] * du * dv
+                            + c[5] * dv * dv
+                    }
+                    None => self.g[k],
+                };
+                w * value
+            })
+            .sum()
     }
 
     /// The reconstructed tractions [p, q_x, q_y] (Pa) at surface point (x, y) (m); zero
@@ -225,10 +291,158 @@ impl EdgeReconstruction {
                 .map(|(&c, &w)| values[c] * w)
                 .sum()
         };
-        let p = interpolate(&self.g).max(0.0).sqrt();
+        let p = self.g_at(i, j, t, s).max(0.0).sqrt();
         let shear = |ratio: &Option<Vec<f64>>| ratio.as_deref().map_or(0.0, |r| p * interpolate(r));
         [p, shear(&self.ratio_x), shear(&self.ratio_y)]
     }
+}
+
+/// Nodes within this many nodes (Chebyshev) of a node of the other state (loaded /
+/// unloaded) take a local quadratic of p^2 ([`EdgeReconstruction`], module docs "The edge").
+pub const FIT_RINGS: usize = 5;
+
+/// The local quadratic of a node is fitted to the loaded nodes within this many nodes
+/// (Chebyshev) of it ...
+pub const FIT_RADIUS: usize = 12;
+
+/// ... that are at least this many nodes (Chebyshev) from an unloaded node (fewer, down to
+/// 2, where that leaves too few nodes: a small contact): the loaded nodes near the edge are
+/// left out. A solved contact's edge cells are off the square root by up to 0.02 p0 within
+/// one element of the edge, 0.006 p0 within two, 8e-4 p0 farther in (sliding sphere 64 x
+/// 64, measured), and a quadratic extrapolated over the last rings amplifies that: the
+/// edge's worst distance from the Hertz radius over 720 angles was 0.075 h with the nodes
+/// from 2 on (radius 5), 0.012 h from 3 on, 0.0066 h from 5 on (radius 12; measured).
+pub const FIT_INNER: usize = 5;
+
+/// Fewest loaded nodes for a local fit (6 coefficients); with fewer the node keeps its nodal
+/// value.
+const FIT_MIN_NODES: usize = 12;
+
+/// The local quadratics of p^2 of the extended nodes ((nx + 2) x (ny + 2), node (i, j) of
+/// `grid` at (i + 1, j + 1)) within [`FIT_RINGS`] of a node of the other state: the
+/// least-squares quadratic a + b u + c v + d u^2 + e u v + f v^2 (u, v the offsets from the
+/// node in element sizes) through g = p^2 at the loaded nodes within [`FIT_RADIUS`] that are
+/// at least [`FIT_INNER`] from an unloaded node. Exact for a quadratic p^2 (the Hertz
+/// pressure, Johnson 1985 eq. (4.22)): the zero of the blend of these quadratics locates the
+/// contact edge between the nodes from the interior pressures alone. None where there are
+/// too few nodes or the normal equations are singular (collinear nodes).
+fn edge_fits(grid: &SurfaceGrid, p: &[f64]) -> Vec<Option<[f64; 6]>> {
+    edge_fits_with(grid, p, FIT_RADIUS, FIT_INNER, FIT_RINGS)
+}
+
+/// [`edge_fits`] with the radius, inner distance and rings given.
+fn edge_fits_with(
+    grid: &SurfaceGrid,
+    p: &[f64],
+    fit_radius: usize,
+    fit_inner: usize,
+    fit_rings: usize,
+) -> Vec<Option<[f64; 6]>> {
+    let (nx, ny) = (grid.nx() as isize, grid.ny() as isize);
+    let (ex, ey) = (nx + 2, ny + 2);
+    let loaded = |i: isize, j: isize| {
+        i >= 0 && j >= 0 && i < nx && j < ny && p[grid.index(i as usize, j as usize)] > 0.0
+    };
+    let reach = (fit_rings.max(fit_inner)) as isize;
+    // Chebyshev distance (capped at reach + 1) from extended node (i, j) to the other state.
+    let distance = |i: isize, j: isize| -> usize {
+        let here = loaded(i, j);
+        for r in 1..=reach {
+            for dj in -r..=r {
+                for di in -r..=r {
+                    if (di.abs() == r || dj.abs() == r) && loaded(i + di, j + dj) != here {
+                        return r as usize;
+                    }
+                }
+            }
+        }
+        reach as usize + 1
+    };
+    let mut dist = vec![0usize; (ex * ey) as usize];
+    for j in -1..=ny {
+        for i in -1..=nx {
+            dist[((j + 1) * ex + i + 1) as usize] = distance(i, j);
+        }
+    }
+    let d = |i: isize, j: isize| dist[((j + 1) * ex + i + 1) as usize];
+    let radius = fit_radius as isize;
+    let scale = fit_radius.max(1) as f64;
+    let mut fits = vec![None; (ex * ey) as usize];
+    for j in -1..=ny {
+        for i in -1..=nx {
+            if d(i, j) > fit_rings {
+                continue;
+            }
+            for inner in (2.min(fit_inner)..=fit_inner).rev() {
+                let mut rows: Vec<[f64; 6]> = Vec::new();
+                let mut values: Vec<f64> = Vec::new();
+                for b in (j - radius).max(0)..=(j + radius).min(ny - 1) {
+                    for a in (i - radius).max(0)..=(i + radius).min(nx - 1) {
+                        if !loaded(a, b) || d(a, b) < inner {
+                            continue;
+                        }
+                        // Offsets scaled by the radius: normal equations of order 1.
+                        let (u, v) = ((a - i) as f64 / scale, (b - j) as f64 / scale);
+                        let value = p[grid.index(a as usize, b as usize)].powi(2);
+                        rows.push([1.0, u, v, u * u, u * v, v * v]);
+                        values.push(value);
+                    }
+                }
+                if rows.len() >= FIT_MIN_NODES {
+                    fits[((j + 1) * ex + i + 1) as usize] =
+                        least_squares6(&rows, &values).map(|c| {
+                            let (s1, s2) = (1.0 / scale, 1.0 / (scale * scale));
+                            [c[0], c[1] * s1, c[2] * s1, c[3] * s2, c[4] * s2, c[5] * s2]
+                        });
+                    break;
+                }
+            }
+        }
+    }
+    fits
+}
+
+/// The least-squares solution of rows . c = values (6 unknowns) by modified Gram-Schmidt
+/// on the columns (the condition of the design matrix, not its square as by the normal
+/// equations); None when a column is dependent on the others to 1e-10 of its norm
+/// (collinear nodes).
+fn least_squares6(rows: &[[f64; 6]], values: &[f64]) -> Option<[f64; 6]> {
+    let mut q: Vec<Vec<f64>> = (0..6)
+        .map(|c| rows.iter().map(|r| r[c]).collect())
+        .collect();
+    let mut r = [[0.0f64; 6]; 6];
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    for c in 0..6 {
+        let original = dot(&q[c], &q[c]).sqrt();
+        for prev in 0..c {
+            let (done, rest) = q.split_at_mut(c);
+            let k = dot(&done[prev], &rest[0]);
+            r[prev][c] = k;
+            for (x, y) in rest[0].iter_mut().zip(&done[prev]) {
+                *x -= k * y;
+            }
+        }
+        let norm = dot(&q[c], &q[c]).sqrt();
+        if norm.is_nan() || norm <= 1e-10 * original {
+            return None;
+        }
+        r[c][c] = norm;
+        q[c].iter_mut().for_each(|x| *x /= norm);
+    }
+    let mut b = values.to_vec();
+    let mut y = [0.0; 6];
+    for c in 0..6 {
+        y[c] = dot(&q[c], &b);
+        for (x, qq) in b.iter_mut().zip(&q[c]) {
+            *x -= y[c] * qq;
+        }
+    }
+    let mut x = [0.0; 6];
+    for row in (0..6).rev() {
+        let tail: f64 = (row + 1..6).map(|c| r[row][c] * x[c]).sum();
+        x[row] = (y[row] - tail) / r[row][row];
+    }
+    x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
 /// Tractions on a refined grid ([`refine_tractions`]).
@@ -322,6 +536,21 @@ const NEAR_SUBCELLS: f64 = 4.0;
 /// 6 of the contribution, below 1e-3 beyond 12 sub-cells).
 const FAR_SUBCELLS: f64 = 12.0;
 
+/// The second level of the band's samples is this many times finer than the first
+/// (`factor`): sub-cells of h / (8 x 4) = h / 32 for the default factor 8 along the contact
+/// edge, where linear interpolation between samples s apart rounds the square-root edge by
+/// up to 0.385 p0 sqrt(2 s / a) (0.019 p0 at s = h / 32 for the 64 x 64 sliding sphere).
+pub const LEVEL2_RATIO: usize = 4;
+
+/// Second-level surpluses below this fraction of the largest pressure are dropped (they
+/// change the tractions by at most that much; the surplus is large only within a few
+/// first-level sub-cells of the contact edge).
+pub const LEVEL2_TOLERANCE: f64 = 1e-4;
+
+/// A band cell's second level: the kept surpluses and their projection onto the corner
+/// element tents ([`BandCell`]).
+type Level2 = (Vec<(u32, [f64; 3])>, [[f64; 3]; 4]);
+
 /// One cell of the edge band: the square between the element centres (i, j) and
 /// (i + 1, j + 1).
 #[derive(Debug, Clone)]
@@ -331,6 +560,10 @@ struct BandCell {
     /// w (E - B) [p, q_x, q_y] (Pa) at the factor x factor sub-cell centres, row-major
     /// (x fastest).
     samples: Vec<[f64; 3]>,
+    /// The second level (module docs, "The band"): the surplus of w (E - B) over the
+    /// first level's tents at the centres of the `factor * LEVEL2_RATIO` squared sub-cells,
+    /// kept where above [`LEVEL2_TOLERANCE`]: (row-major index, [p, q_x, q_y] in Pa).
+    refined: Vec<(u32, [f64; 3])>,
     /// The projection of the samples onto the element tents of the four corners
     /// (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1): nodal increments [p, q_x, q_y], Pa.
     increments: [[f64; 3]; 4],
@@ -465,9 +698,99 @@ impl EdgeBand {
                     i,
                     j,
                     samples,
+                    refined: Vec::new(),
                     increments,
                 });
             }
+        }
+        // The second level: the surplus of w D over the first level's tents at the nodes of
+        // a lattice LEVEL2_RATIO times finer, kept where it exceeds the tolerance (the
+        // square-root edge: the first level's tents round it over h / factor).
+        let n2 = n * LEVEL2_RATIO;
+        let (fx, fy) = (grid.dx() / n as f64, grid.dy() / n as f64);
+        let (x0, y0) = (grid.x(0), grid.y(0));
+        let first_level = |m: isize, l: isize| -> [f64; 3] {
+            if m < 0 || l < 0 {
+                return [0.0; 3];
+            }
+            let (ci, cj) = (m as usize / n, l as usize / n);
+            if ci >= nx - 1 || cj >= ny - 1 {
+                return [0.0; 3];
+            }
+            match lookup[cj * (nx - 1) + ci] {
+                u32::MAX => [0.0; 3],
+                k => cells[k as usize].samples[(l as usize % n) * n + m as usize % n],
+            }
+        };
+        let tolerance = LEVEL2_TOLERANCE * p.iter().fold(0.0f64, |m, &v| m.max(v));
+        let mut level2: Vec<Level2> = Vec::new();
+        for cell in &cells {
+            let (i, j) = (cell.i, cell.j);
+            let corners = [(i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1)];
+            let wc = corners.map(|(a, b)| w[grid.index(a, b)]);
+            let values: Vec<[f64; 4]> = components
+                .iter()
+                .map(|c| corners.map(|(a, b)| node(*c, a, b)))
+                .collect();
+            let mut kept = Vec::new();
+            let mut increments = [[0.0; 3]; 4];
+            for sj in 0..n2 {
+                for si in 0..n2 {
+                    let (t, s) = ((si as f64 + 0.5) / n2 as f64, (sj as f64 + 0.5) / n2 as f64);
+                    let weights = [(1.0 - t) * (1.0 - s), t * (1.0 - s), (1.0 - t) * s, t * s];
+                    let bilinear =
+                        |v: &[f64; 4]| -> f64 { v.iter().zip(&weights).map(|(a, b)| a * b).sum() };
+                    let (x, y) = (grid.x(i) + t * grid.dx(), grid.y(j) + s * grid.dy());
+                    // The first level's tents at (x, y): bilinear between its lattice nodes.
+                    let u = (x - x0) / fx - 0.5;
+                    let v = (y - y0) / fy - 0.5;
+                    let (m, l) = (u.floor(), v.floor());
+                    let (a, b) = (u - m, v - l);
+                    let (m, l) = (m as isize, l as isize);
+                    let lattice = [
+                        (first_level(m, l), (1.0 - a) * (1.0 - b)),
+                        (first_level(m + 1, l), a * (1.0 - b)),
+                        (first_level(m, l + 1), (1.0 - a) * b),
+                        (first_level(m + 1, l + 1), a * b),
+                    ];
+                    let blend = bilinear(&wc);
+                    let exact = reconstruction.at(x, y);
+                    let mut surplus = [0.0; 3];
+                    for c in 0..3 {
+                        let first: f64 = lattice.iter().map(|(v, wt)| v[c] * wt).sum();
+                        surplus[c] = blend * (exact[c] - bilinear(&values[c])) - first;
+                    }
+                    if surplus.iter().all(|v| v.abs() <= tolerance) {
+                        continue;
+                    }
+                    for (k, inc) in increments.iter_mut().enumerate() {
+                        for c in 0..3 {
+                            inc[c] += surplus[c] * weights[k] / (n2 * n2) as f64;
+                        }
+                    }
+                    kept.push(((sj * n2 + si) as u32, surplus));
+                }
+            }
+            level2.push((kept, increments));
+        }
+        for (cell, (kept, increments)) in cells.iter_mut().zip(level2) {
+            let corners = [
+                (cell.i, cell.j),
+                (cell.i + 1, cell.j),
+                (cell.i, cell.j + 1),
+                (cell.i + 1, cell.j + 1),
+            ];
+            for (k, &(a, b)) in corners.iter().enumerate() {
+                for (dst, src) in cell.increments[k].iter_mut().zip(&increments[k]) {
+                    *dst += src;
+                }
+                for (c, values) in projected.iter_mut().enumerate() {
+                    if let Some(v) = values {
+                        v[grid.index(a, b)] += increments[k][c];
+                    }
+                }
+            }
+            cell.refined = kept;
         }
         let mut projected = projected.into_iter();
         let pressure = projected.next().flatten().unwrap_or_default();
@@ -556,7 +879,6 @@ impl EdgeBand {
         let n = self.factor;
         let (dx, dy) = (g.dx(), g.dy());
         let (fx, fy) = (dx / n as f64, dy / n as f64);
-        let area = fx * fy;
         let directions = [
             TractionDirection::Pressure,
             TractionDirection::ShearX,
@@ -564,13 +886,25 @@ impl EdgeBand {
         ];
         let mut total = StressTensor::ZERO;
         let mut nodes: Vec<((usize, usize), [f64; 3])> = Vec::new();
+        let n2 = n * LEVEL2_RATIO;
+        let (gx, gy) = (dx / n2 as f64, dy / n2 as f64);
         for (k, adjacent) in near {
             let cell = &self.cells[k];
             let (x0, y0) = (g.x(cell.i), g.y(cell.j));
-            for (idx, sample) in cell.samples.iter().enumerate() {
+            let first = cell
+                .samples
+                .iter()
+                .enumerate()
+                .map(|(idx, s)| (idx, s, n, fx, fy));
+            let second = cell
+                .refined
+                .iter()
+                .map(|(idx, s)| (*idx as usize, s, n2, gx, gy));
+            for (idx, sample, n, fx, fy) in first.chain(second) {
                 if sample.iter().all(|&v| v == 0.0) {
                     continue;
                 }
+                let area = fx * fy;
                 let (si, sj) = (idx % n, idx / n);
                 let ox = x - (x0 + (si as f64 + 0.5) * fx);
                 let oy = y - (y0 + (sj as f64 + 0.5) * fy);
@@ -693,6 +1027,85 @@ mod tests {
         eprintln!("reconstruction {worst:.4} p0, bilinear {worst_bilinear:.4} p0");
         assert!(worst < 0.065, "{worst}");
         assert!(worst_bilinear > 0.09, "{worst_bilinear}");
+    }
+
+    /// Exact Hertz centre values: p^2 is quadratic, so the local fits reproduce it and the
+    /// reconstruction is exact where the four corners of a cell have fits (every point within
+    /// 1.5 elements of the edge): max(0, G) against p_Hertz^2 to 1e-12 p0^2 (round-off of
+    /// p0^2-sized sums; measured 2.8e-15), and p itself to 1e-12 p0 where p_Hertz >= 0.05 p0
+    /// (nearer the root sqrt amplifies the round-off of G; measured 1.3e-14).
+    #[test]
+    fn reconstruction_is_exact_for_hertz_at_the_edge() {
+        let (hertz, grid) = sphere();
+        let (a, p0) = (hertz.semi_major, hertz.max_pressure);
+        let h = grid.dx();
+        let p = grid.sample(|x, y| hertz.pressure(x, y));
+        let r = EdgeReconstruction::new(&pressure_only(&grid, &p)).unwrap();
+        let (mut worst_g, mut worst_p, mut count) = (0.0f64, 0.0f64, 0);
+        for i in 0..400 {
+            for j in 0..400 {
+                let x = -1.1 * a + 2.2 * a * (i as f64 + 0.37) / 400.0;
+                let y = -1.1 * a + 2.2 * a * (j as f64 + 0.61) / 400.0;
+                if (x.hypot(y) - a).abs() > 1.5 * h {
+                    continue;
+                }
+                count += 1;
+                let (got, exact) = (r.at(x, y)[0], hertz.pressure(x, y));
+                worst_g = worst_g.max((got * got - exact * exact).abs() / (p0 * p0));
+                if exact >= 0.05 * p0 {
+                    worst_p = worst_p.max((got - exact).abs() / p0);
+                }
+            }
+        }
+        eprintln!("{count} points: |p^2 - Hertz| {worst_g:.2e} p0^2, |p - Hertz| {worst_p:.2e} p0");
+        assert!(count > 5000, "{count}");
+        assert!(worst_g < 1e-12 && worst_p < 1e-12, "{worst_g} {worst_p}");
+    }
+
+    /// The contact edge of the reconstruction, r_e(theta) = the radius where p turns 0 along
+    /// the ray at angle theta (bisection over a -+ 3 elements).
+    fn edge_radius(r: &EdgeReconstruction, a: f64, h: f64, theta: f64) -> f64 {
+        let (c, s) = (theta.cos(), theta.sin());
+        let (mut inside, mut outside) = (a - 3.0 * h, a + 3.0 * h);
+        assert!(r.at(inside * c, inside * s)[0] > 0.0 && r.at(outside * c, outside * s)[0] == 0.0);
+        for _ in 0..60 {
+            let mid = 0.5 * (inside + outside);
+            if r.at(mid * c, mid * s)[0] > 0.0 {
+                inside = mid;
+            } else {
+                outside = mid;
+            }
+        }
+        0.5 * (inside + outside)
+    }
+
+    /// From the solved contact (the validation's sliding sphere, 64 x 64 over 2.4a), the
+    /// reconstruction's edge lies within h / 10 of the Hertz radius at every angle (720
+    /// angles; the brief's bound), measured 0.0066 h, asserted 0.015 h (what keeps the
+    /// represented pressure within about 0.03 p0 of Hertz on the edge itself, where
+    /// p0 sqrt(2 d / a) turns an edge offset d into pressure): the edge cells are off the
+    /// square root (0.02 p0), the interior within 8e-4 p0, and the fits read the interior.
+    /// The linear extrapolation of the edge-most values (the nodal values alone) puts it up
+    /// to 0.075 h off (measured; asserted > 0.05 h, so that the contrast is real).
+    #[test]
+    fn solved_contact_edge_is_located() {
+        let (hertz, grid, _, solved) = sphere_pressures();
+        let (a, h) = (hertz.semi_major, grid.dx());
+        let worst = |fit: bool| {
+            let r = EdgeReconstruction::build(&pressure_only(&grid, &solved), fit).unwrap();
+            (0..720)
+                .map(|k| {
+                    let theta = 2.0 * std::f64::consts::PI * (k as f64 + 0.5) / 720.0;
+                    (edge_radius(&r, a, h, theta) - a).abs() / h
+                })
+                .fold(0.0f64, f64::max)
+        };
+        let (fitted, linear) = (worst(true), worst(false));
+        eprintln!(
+            "solved contact: edge within {fitted:.4} h of the Hertz radius (linear {linear:.4} h)"
+        );
+        assert!(fitted < 0.015, "{fitted}");
+        assert!(linear > 0.05, "{linear}");
     }
 
     /// Full sliding q = f p: the reconstructed shear is f times the reconstructed pressure
@@ -825,12 +1238,17 @@ mod tests {
     /// 0.3 element off, which puts a point 0.033 element from the edge), against Hamilton
     /// (1983), from the element-averaged Hertz pressure and from the solved contact, by the
     /// FFT path. Measured (along x / along y, p0):
-    /// - bilinear (factor 1): 0.119 / 0.071 averaged, 0.109 / 0.065 solved (the square-root
-    ///   edge rounded over one element: asserted > 0.1 along x, so that the contrast is real);
-    /// - refined x4: 0.029 / 0.012 averaged, 0.017 / 0.011 solved; asserted < 0.035;
-    /// - refined x8: 0.0092 / 0.0092 averaged, 0.0125 / 0.0101 solved; asserted < 0.02
-    ///   (the issue's bound; the error at the edge falls like sqrt(h / factor) for a point on
-    ///   the cusp, see `refined_trailing_edge_converges`).
+    /// - factor 1 (the reconstruction at the centres): 0.124 / 0.080 averaged, 0.126 / 0.084
+    ///   solved (the square-root edge rounded over one element: asserted > 0.1 along x, so
+    ///   that the contrast is real);
+    /// - refined x4: 0.036 / 0.029 averaged, 0.039 / 0.038 solved; asserted < 0.045 (the
+    ///   square root interpolated linearly between samples h / 4 apart: up to
+    ///   0.385 p0 sqrt(2 h / (4 a)) = 0.053);
+    /// - refined x8: 0.017 / 0.013 averaged, 0.015 / 0.012 solved; asserted < 0.02 (the
+    ///   issue's bound; the error at the edge falls like sqrt(h / factor) for a point on the
+    ///   cusp, see `refined_trailing_edge_converges`). Before the edge fits (linear
+    ///   extrapolation of the nodal p^2): x4 0.029 / 0.017, x8 0.0092 / 0.0125, where the
+    ///   misplaced edge partly offset the sampling's rounding.
     #[test]
     fn refined_tractions_meet_the_surface_line_bound() {
         let (hertz, grid, averaged, solved) = sphere_pressures();
@@ -842,7 +1260,7 @@ mod tests {
                 .collect()
         };
         for (name, p) in [("averaged", &averaged), ("solved", &solved)] {
-            for (factor, bound) in [(1, f64::INFINITY), (4, 0.035), (8, 0.02)] {
+            for (factor, bound) in [(1, f64::INFINITY), (4, 0.045), (8, 0.02)] {
                 let mut worst = [0.0f64; 2];
                 for shift in [0.0, 1e-12, 0.3 * dx] {
                     let along_x = FieldGrid {
@@ -1301,7 +1719,7 @@ mod tests {
     #[test]
     #[ignore = "measurement"]
     fn off_line_measure() {
-        let (hertz, grid, averaged, solved) = sphere_pressures();
+        let (hertz, grid, _averaged, solved) = sphere_pressures();
         let (a, p0) = (hertz.semi_major, hertz.max_pressure);
         let sampled = grid.sample(|x, y| hertz.pressure(x, y));
         // A fixed LCG: reproducible points.
@@ -1341,13 +1759,7 @@ mod tests {
                  {worst_quad:.2e} p0"
             );
         }
-        for (name, p, factor) in [
-            ("sampled", &sampled, 8),
-            ("sampled", &sampled, 16),
-            ("averaged", &averaged, 8),
-            ("solved", &solved, 8),
-            ("solved", &solved, 16),
-        ] {
+        for (name, p, factor) in [("sampled", &sampled, 8), ("solved", &solved, 8)] {
             for f in [0.0, 0.5] {
                 let q: Vec<f64> = p.iter().map(|v| f * v).collect();
                 let t = SurfaceTractions {
