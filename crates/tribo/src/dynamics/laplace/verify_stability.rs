@@ -115,7 +115,7 @@ fn ten_thousand_steps() {
 /// same run at c1 dt/h = 0.25, 2000 steps, with 1, 2 and 4 elements per side. Measured:
 /// growth +2.7e-2 and +1.6e-2 per transit (late/early 9.7e2, 2.6e1) at 1 and 2, and
 /// +2.3e-6 (late/early 0.99: bounded) at 4. Ignored: 4 min on the loaded two cores.
-/// The threshold is [`super::verify_limits::MIN_ELEMENTS_RUNGE_KUTTA`].
+/// The threshold is [`super::verify_limits::MIN_ELEMENTS`].
 #[test]
 #[ignore]
 fn radau_iia_2_growth_vanishes_with_refinement() {
