@@ -292,6 +292,11 @@ pub fn run(
         patterns.push(bem.known_values_of(&only)?);
     }
     let grid = CqGrid::new(cq_method(spec.method), spec.time_step, spec.steps)?;
+    for coarse in
+        tribo::dynamics::laplace::verify_limits::coarse_regions(&bem, grid.method(), spec.time_step)
+    {
+        progress.note(&coarse.to_string());
+    }
     let times = grid.sample_times();
     let ni = bem.inputs();
     let mut data = vec![0.0; times.len() * ni];

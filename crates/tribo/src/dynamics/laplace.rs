@@ -810,6 +810,7 @@ impl LaplaceResponse for LaplaceBem {
 }
 
 pub mod stress;
+pub mod verify_limits;
 
 #[cfg(test)]
 mod tests;

@@ -1,13 +1,16 @@
 //! Rows of the linear dynamic chain (the Laplace-domain BEM convolved by CQ,
-//! [`crate::dynamics::laplace`], [`crate::dynamics::cq`]): Lamb's problem (arrival times),
-//! long-run stability and "slow ramp = static", on small models that run in about a second
-//! each. The models and measures are also those of the library tests
-//! `dynamics/laplace/verify_*.rs`, which run them finer and longer (docs/theory/DYNAMICS.md
-//! sec. 5, verification).
+//! [`crate::dynamics::laplace`], [`crate::dynamics::cq`]): Lamb's problem (arrival times and
+//! the surface displacement against the exact solution), long-run stability and "slow ramp
+//! = static", on small models that run in about a second each; and the oblique frictional
+//! rod impact of dynamic contact ([`crate::dynamics::contact`]). The models and measures are
+//! also those of the library tests `dynamics/laplace/verify_*.rs` and
+//! `dynamics/contact/verify_impact.rs`, which run them finer and longer
+//! (docs/theory/DYNAMICS.md sec. 5.6).
 
 use faer::c64;
 
 use super::{ErrorMeasure, ValidationRow};
+use crate::dynamics::contact::{DynamicContact, DynamicContactParams};
 use crate::dynamics::cq::{convolve, CqGrid, CqMethod, CqParams, LaplaceResponse};
 use crate::dynamics::laplace::LaplaceBem;
 use crate::dynamics::time_function::TimeFunction;
@@ -15,6 +18,7 @@ use crate::error::{Error, Result};
 use crate::kernels::kelvin2d::PlaneCondition;
 use crate::material::ElasticMaterial;
 use crate::operators::bem2d::{BemModel, Region, Segment};
+use crate::solvers::bem2d::contact::{ContactPair, ContactState};
 use crate::solvers::bem2d::{BoundaryConditions, Profile, SegmentBc};
 
 /// mu = 1 Pa, nu = 0.25 (with rho = 1 kg/m^3: c2 = 1 m/s, c1 = sqrt 3 m/s, cR = 0.9194 m/s).
@@ -295,6 +299,313 @@ pub fn lamb_arrivals(h: f64, h_axis: f64, dt: f64) -> Result<LambArrivals> {
     })
 }
 
+/// Lamb's problem in the transform domain (Lamb 1904): the surface displacement of the
+/// half-plane y < 0 ([`unit_material`]: mu = rho = 1, nu = 0.25, plane strain) under the
+/// uniform pressure P(s) on |x| < b of its surface, at the surface points `points` (m), two
+/// outputs (u_x, u_y) per point; one input, P(s). With z = -y the depth,
+/// s1 = s^2/c1^2, s2 = s^2/c2^2, alpha = sqrt(k^2 + s1), beta = sqrt(k^2 + s2)
+/// (Re > 0: decaying with depth) and the Rayleigh function
+/// `R(k, s) = (2 k^2 + s2)^2 - 4 k^2 alpha beta`, the potentials' solution with
+/// sigma_zz = -p, sigma_xz = 0 on z = 0 gives (Achenbach 1973 ch. 7; derived in
+/// docs/theory/DYNAMICS.md sec. 5.6)
+///
+/// ```text
+/// u_z(k, s) = p(k) s2 alpha / (mu R),   u_x(k, s) = -i k p(k) (2 k^2 + s2 - 2 alpha beta) / (mu R)
+/// ```
+///
+/// with p(k) = 2 sin(k b)/k, inverted by the cosine and sine integrals over k in [0, K]
+/// (Gauss-Legendre, 8 points on panels narrower than Re(s)/(4 c1): the branch points and the
+/// Rayleigh pole lie at least Re(s)/c1 off the real axis) plus the static (Flamant) tail
+/// beyond K in closed form. R and 2 k^2 + s2 - 2 alpha beta are evaluated in rationalised
+/// form (no cancellation at k >> |s|). At s -> 0 the transforms are Flamant's,
+/// u_z = p (1 - nu)/(mu |k|), u_x = -i sign(k) p (1 - 2 nu)/(2 mu |k|).
+pub struct LambHalfPlane {
+    /// Half width b of the loaded patch (m).
+    pub patch: f64,
+    /// The surface points' x (m); none equal to +-b.
+    pub points: Vec<f64>,
+}
+
+impl LambHalfPlane {
+    /// For p(k) = 1 and mu = 1: `(u_z(k), U_x(k))`, u_z = s2 alpha / R and
+    /// U_x = (2 k^2 + s2 - 2 alpha beta) / R (u_x(k) = -i k U_x(k) p(k)).
+    pub(crate) fn kernels(k: f64, s1: c64, s2: c64) -> (c64, c64) {
+        let k2 = k * k;
+        let alpha = (s1 + k2).sqrt();
+        let beta = (s2 + k2).sqrt();
+        let q = s2 + 2.0 * k2;
+        // R = [q^4 - 16 k^4 alpha^2 beta^2] / [q^2 + 4 k^2 alpha beta], the numerator
+        // expanded: 16 k^6 (s2 - s1) + k^4 (24 s2^2 - 16 s1 s2) + 8 k^2 s2^3 + s2^4.
+        let num = (s2 - s1) * (16.0 * k2 * k2 * k2)
+            + (s2 * s2 * 24.0 - s1 * s2 * 16.0) * (k2 * k2)
+            + s2 * s2 * s2 * (8.0 * k2)
+            + s2 * s2 * s2 * s2;
+        let den = q * q + alpha * beta * (4.0 * k2);
+        // mu = 1.
+        let uz = s2 * alpha * den / num;
+        // q - 2 alpha beta = [q^2 - 4 alpha^2 beta^2] / (q + 2 alpha beta)
+        //                  = (s2^2 - 4 s1 s2 - 4 k^2 s1) / (q + 2 alpha beta).
+        let qx = (s2 * s2 - s1 * s2 * 4.0 - s1 * (4.0 * k2)) / (q + alpha * beta * 2.0);
+        (uz, qx * den / num)
+    }
+}
+
+/// `int_K^inf sin(a k)/k^2 dk` and `int_K^inf cos(a k)/k^2 dk` for a K >= 100 (two terms
+/// of the asymptotic expansion by parts; the next is O(1/(a^3 K^4))).
+fn tails(a: f64, big_k: f64) -> (f64, f64) {
+    let (sn, cs) = (a * big_k).sin_cos();
+    let k2 = big_k * big_k;
+    (
+        cs / (a * k2) + 2.0 * sn / (a * a * k2 * big_k),
+        -sn / (a * k2) + 2.0 * cs / (a * a * k2 * big_k),
+    )
+}
+
+impl LaplaceResponse for LambHalfPlane {
+    fn inputs(&self) -> usize {
+        1
+    }
+
+    fn outputs(&self) -> usize {
+        2 * self.points.len()
+    }
+
+    fn respond(&self, s: c64, inputs: &[c64]) -> Result<Vec<c64>> {
+        let (mu, nu) = (1.0, 0.25);
+        let c1 = 3.0_f64.sqrt();
+        let (s1, s2) = (s * s / (c1 * c1), s * s);
+        let b = self.patch;
+        let width = (s.re / (4.0 * c1)).min(0.5);
+        let big_k = 2000.0 + 20.0 * s.norm();
+        let panels = (big_k / width).ceil() as usize;
+        let h = big_k / panels as f64;
+        let (xg, wg) = crate::kernels::quadrature::gauss_legendre(8);
+        let mut acc = vec![c64::ZERO; self.outputs()];
+        for p in 0..panels {
+            for (xi, wi) in xg.iter().zip(&wg) {
+                let k = h * (p as f64 + 0.5 * (xi + 1.0));
+                let w = 0.5 * h * wi;
+                let load = if k * b < 1e-8 {
+                    2.0 * b
+                } else {
+                    2.0 * (k * b).sin() / k
+                };
+                let (uz, ux) = Self::kernels(k, s1, s2);
+                for (j, &x) in self.points.iter().enumerate() {
+                    let (sn, cs) = (k * x).sin_cos();
+                    // u_x(x) = (1/pi) int_0^inf k U_x p sin(k x) dk (u_x(k) odd in k).
+                    acc[2 * j] += ux * (w * load * k * sn);
+                    acc[2 * j + 1] += uz * (w * load * cs);
+                }
+            }
+        }
+        // Static tails beyond K: u_z ~ (1 - nu)/(mu k), k U_x ~ -(1 - 2 nu)/(2 mu k).
+        let (az, ax) = ((1.0 - nu) / mu, (1.0 - 2.0 * nu) / (2.0 * mu));
+        let mut out = Vec::with_capacity(self.outputs());
+        for (j, &x) in self.points.iter().enumerate() {
+            let (sp, cp) = tails(x + b, big_k);
+            let (sm, cm) = tails((x - b).abs(), big_k);
+            let sign = (x - b).signum();
+            // 2 sin(kb) cos(kx) = sin(k(x+b)) - sin(k(x-b)); 2 sin(kb) sin(kx) =
+            // cos(k(x-b)) - cos(k(x+b)).
+            let tail_z = az * (sp - sign * sm);
+            let tail_x = -ax * (cm - cp);
+            let ux = (acc[2 * j] + tail_x) / std::f64::consts::PI;
+            let uz = (acc[2 * j + 1] + tail_z) / std::f64::consts::PI;
+            // The model's u_y points up: u_y = -u_z.
+            out.push(ux * inputs[0]);
+            out.push(-uz * inputs[0]);
+        }
+        Ok(out)
+    }
+}
+
+/// The comparison of [`lamb_surface_error`].
+#[derive(Debug, Clone, Copy)]
+pub struct LambSurfaceError {
+    /// Largest |u_bem - u_exact| over the points, both components and the steps, m.
+    pub error: f64,
+    /// Largest |u_exact| there, m.
+    pub scale: f64,
+    /// Time (s) and point x (m) of the largest difference.
+    pub at: (f64, f64),
+    /// Boundary DOFs of the block.
+    pub dofs: usize,
+}
+
+/// The BEM half block of [`LambBlock`] (W = 6, D = 4, patch b = 0.1, the top surface meshed
+/// with `h` up to x = 3.1, the axis with 1.25 h) against [`LambHalfPlane`], both convolved
+/// by BDF2 with the step `dt` for the pulse sin^2(pi t/0.4) (CQ is linear, so the
+/// difference is the CQ of the difference of the transfer functions: the spatial error and
+/// the block's finiteness, not the time discretisation). Surface points x = 0.5, 1, 2, steps
+/// up to `t_end` (s). The first echoes: the P wave reflected where the surface mesh
+/// coarsens (x = 3.1) reaches x = 2 at (3 + 1.1)/c1 = 2.37, the bottom's P echo x = 1 at
+/// 2 sqrt(4^2 + 0.5^2)/c1 = 4.65; BDF2 smears a wave delayed by T over ~sqrt(T dt) ahead
+/// of its arrival.
+pub fn lamb_surface_error(h: f64, dt: f64, t_end: f64) -> Result<LambSurfaceError> {
+    let block = LambBlock {
+        width: 6.0,
+        depth: 4.0,
+        patch: 0.1,
+        near: 3.1,
+        h,
+        h_axis: 1.25 * h,
+    };
+    let (model, bcs) = block.model()?;
+    let xs = [0.5, 1.0, 2.0];
+    let surface: Vec<[f64; 2]> = xs.iter().map(|&x| [x, 0.0]).collect();
+    let response = PointDisplacements::new(&model, &bcs, &surface, &[])?;
+    let steps = (t_end / dt).round() as usize;
+    let tau = 0.4;
+    let bem = lamb_series(&response, dt, steps, tau)?;
+    let exact_model = LambHalfPlane {
+        patch: 0.1,
+        points: xs.to_vec(),
+    };
+    let grid = CqGrid::new(CqMethod::Bdf2, dt, steps)?;
+    let data: Vec<f64> = grid
+        .sample_times()
+        .iter()
+        .map(|&t| {
+            if t < tau {
+                (std::f64::consts::PI * t / tau).sin().powi(2)
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let exact = convolve(&exact_model, &grid, &data, &CqParams::default())?;
+    let mut out = LambSurfaceError {
+        error: 0.0,
+        scale: 0.0,
+        at: (0.0, 0.0),
+        dofs: response.bem.static_problem().dof(),
+    };
+    for n in 0..=steps {
+        let e = exact.at_step(n).unwrap_or(&[]);
+        for (j, v) in e.iter().enumerate() {
+            out.scale = out.scale.max(v.abs());
+            let computed = bem.get(j).and_then(|x| x.get(n)).copied();
+            let d = computed.map_or(f64::INFINITY, |c| (c - v).abs());
+            if d > out.error {
+                out.error = d;
+                out.at = (n as f64 * dt, xs[j / 2]);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The rods of the frictionless impact (docs/theory/DYNAMICS.md sec. 4: two strips
+/// 1 x 0.25 m, E = 1 Pa, nu = 0, rho = 1 kg/m^3: c1 = 1 m/s, c2 = 1/sqrt 2 m/s; `nx` x `ny`
+/// quadratic elements each) meeting obliquely: the pair striker end / target end with
+/// friction `f`, the striker's initial velocity `v` (m/s), the target at rest.
+pub fn oblique_rods(nx: usize, ny: usize, f: f64, v: [f64; 2]) -> Result<DynamicContact> {
+    let m = ElasticMaterial::new(1.0, 0.0)?;
+    let (l, w) = (1.0, 0.25);
+    let striker = Region::new(
+        "striker",
+        m,
+        vec![
+            Segment::line("s_bottom", [-l, 0.0], [0.0, 0.0], nx),
+            Segment::line("s_end", [0.0, 0.0], [0.0, w], ny),
+            Segment::line("s_top", [0.0, w], [-l, w], nx),
+            Segment::line("s_back", [-l, w], [-l, 0.0], ny),
+        ],
+    );
+    let target = Region::new(
+        "target",
+        m,
+        vec![
+            Segment::line("t_bottom", [0.0, 0.0], [l, 0.0], nx),
+            Segment::line("t_back", [l, 0.0], [l, w], ny),
+            Segment::line("t_top", [l, w], [0.0, w], nx),
+            Segment::line("t_end", [0.0, w], [0.0, 0.0], ny),
+        ],
+    );
+    let model = BemModel::new(PlaneCondition::Strain, vec![striker, target]);
+    DynamicContact::new(
+        &model,
+        &[1.0, 1.0],
+        &BoundaryConditions::new(),
+        &[ContactPair::new("s_end", "t_end", f)],
+        &[],
+        &[v, [0.0, 0.0]],
+    )
+}
+
+/// What the oblique impact of [`oblique_rods`] gives (BDF2).
+#[derive(Debug, Clone, Copy)]
+pub struct ObliqueImpact {
+    /// Momentum of the striker after separation, N s/m.
+    pub striker: [f64; 2],
+    /// Momentum of the target after separation, N s/m.
+    pub target: [f64; 2],
+    /// Largest | |q| - f p | over the slipping nodes and the steps, relative to max p.
+    pub coulomb: f64,
+    /// Node-steps in stick.
+    pub sticking: usize,
+    /// Contact duration, s.
+    pub duration: f64,
+    /// Frictional dissipation at the end, J/m.
+    pub dissipation: f64,
+    /// Mechanical energy at the end, J/m.
+    pub mechanical: f64,
+    /// Initial kinetic energy, J/m.
+    pub initial: f64,
+}
+
+/// The oblique impact ([`oblique_rods`]) marched by BDF2 with the step `dt` (s) to t = 3 s.
+pub fn oblique_impact(nx: usize, ny: usize, dt: f64, f: f64, v: [f64; 2]) -> Result<ObliqueImpact> {
+    let problem = oblique_rods(nx, ny, f, v)?;
+    let steps = (3.0 / dt).round() as usize;
+    let res = problem.march(&DynamicContactParams::new(dt, steps), &mut |_| {})?;
+    let (mut coulomb, mut pmax, mut sticking) = (0.0_f64, 0.0_f64, 0);
+    let (mut start, mut end) = (None, None);
+    for s in &res.steps {
+        let Some(pair) = s.pairs.first() else {
+            continue;
+        };
+        let touching = pair.sample.length > 0.0;
+        if touching && start.is_none() {
+            start = Some(s.time);
+        }
+        if !touching && start.is_some() && end.is_none() {
+            end = Some(s.time);
+        }
+        for n in &pair.nodes {
+            pmax = pmax.max(n.pressure);
+            match n.state {
+                ContactState::Stick => sticking += 1,
+                ContactState::SlipPositive | ContactState::SlipNegative => {
+                    coulomb = coulomb.max((n.shear.abs() - f * n.pressure).abs());
+                }
+                _ => {}
+            }
+        }
+    }
+    let nan = [f64::NAN; 2];
+    let last = res
+        .steps
+        .last()
+        .ok_or_else(|| Error::invalid("dt", dt, "must give at least one step to t = 3 s"))?;
+    let e = &last.energy;
+    let momentum = |k: usize| e.bodies.get(k).and_then(|b| b.momentum).unwrap_or(nan);
+    Ok(ObliqueImpact {
+        striker: momentum(0),
+        target: momentum(1),
+        coulomb: if pmax > 0.0 { coulomb / pmax } else { f64::NAN },
+        sticking,
+        duration: match (start, end) {
+            (Some(a), Some(b)) => b - a,
+            _ => f64::NAN,
+        },
+        dissipation: e.dissipation,
+        mechanical: e.mechanical,
+        initial: e.initial_kinetic,
+    })
+}
+
 /// The outcome of one long run.
 #[derive(Debug)]
 pub struct StabilityRun {
@@ -538,6 +849,30 @@ pub fn dyn_verify_rows() -> Result<Vec<ValidationRow>> {
         ErrorMeasure::Bound,
         1e-3,
         "bounded response (no growth): docs/theory/DYNAMICS.md sec. 5",
+    ));
+    // Lamb's exact solution (transform domain, inverted on the same BDF2 grid): measured
+    // 1.74e-2 at h = 0.2 (2.0e-3 at h = 0.1, 3.1e-4 at 0.05: ~h^3); tolerance 2.5e-2.
+    let lamb = lamb_surface_error(0.2, 0.05, 2.2)?;
+    rows.push(ValidationRow::new(
+        "Lamb's problem, half-plane surface (block 6 x 4 m, h = 0.2 m), pulse 0.4 s, BDF2 dt = 0.05 s, x = 0.5, 1, 2 m, t <= 2.2 s",
+        "max |u_bem - u_exact| / max |u_exact| (u_x, u_y)",
+        0.0,
+        lamb.error / lamb.scale,
+        ErrorMeasure::Bound,
+        2.5e-2,
+        "Lamb 1904 exact transform (Achenbach 1973 ch. 7), same CQ grid: docs/theory/DYNAMICS.md sec. 5.6",
+    ));
+    // Sliding throughout (no node sticks): q = f p at every node and step, so the target's
+    // tangential momentum is f times its normal one (measured to 1e-16).
+    let o = oblique_impact(4, 1, 0.05, 0.2, [1.0, 2.0])?;
+    rows.push(ValidationRow::new(
+        "Oblique rod impact, f = 0.2, v = (1, 2) m/s, rods 1 x 0.25 m, nu = 0, 4 x 1 elements, BDF2 dt = 0.05 s",
+        "target's tangential / normal momentum after separation",
+        0.2,
+        o.target[1] / o.target[0],
+        ErrorMeasure::Relative,
+        1e-10,
+        "rigid-body impulses, sliding throughout: P_t = f P_n (docs/theory/DYNAMICS.md sec. 5.6)",
     ));
     let err = block_slow_ramp_error(20.0, 0.2)?;
     rows.push(ValidationRow::new(

@@ -86,6 +86,8 @@ mod step;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod verify_impact;
 
 use std::collections::HashMap;
 
