@@ -5,6 +5,7 @@
 use std::fmt::Write;
 use std::path::Path;
 use tribo::validation::ValidationRow;
+use tribo_case::bem::case::dynamics::Method;
 use tribo_case::bem::summary::BemSummary;
 use tribo_case::fatigue::{DiagramReport, FitReport, DIAGRAM_FILES, FIT_FILES};
 use tribo_case::summary::{
@@ -388,17 +389,26 @@ fn bem_damage(s: &mut String, d: &tribo_case::bem::summary::DamageSummary) {
     }
 }
 
-/// The compare lines of a 2D summary.
-/// The lines of a dynamic run: the time grid, each probe's peaks against its static value.
+/// The method as the case writes it (`bdf2`, `radau_iia_2`, `radau_iia_3`).
+pub fn method_name(m: Method) -> &'static str {
+    match m {
+        Method::Bdf2 => "bdf2",
+        Method::RadauIia2 => "radau_iia_2",
+        Method::RadauIia3 => "radau_iia_3",
+    }
+}
+
+/// The lines of a dynamic run: the time grid, each probe's peaks against its static value,
+/// the damage over time and the input work.
 fn bem_dynamics(s: &mut String, d: &tribo_case::bem::summary::DynamicsSummary) {
     let _ = writeln!(
         s,
-        "  dynamics: {} steps of {} s to {} s ({:?}, all steps at once: {} Laplace-domain \
+        "  dynamics: {} steps of {} s to {} s ({}, all steps at once: {} Laplace-domain \
          solves in {:.2} s)",
         d.steps,
         num(d.time_step_s),
         num(d.duration_s),
-        d.method,
+        method_name(d.method),
         d.laplace_solves,
         d.convolution_s
     );
@@ -422,8 +432,44 @@ fn bem_dynamics(s: &mut String, d: &tribo_case::bem::summary::DynamicsSummary) {
             "    (displacements and velocities only: dynamic stresses are not computed yet)"
         );
     }
+    if let Some(g) = &d.damage {
+        let amp = g
+            .psi_max_over_static
+            .map_or_else(String::new, |a| format!(", {a:.3} x static"));
+        let _ = writeln!(
+            s,
+            "    damage of {} ({} at {} {}): max psi = {:.4} at {} s{amp}; peak dangerous \
+             area {} m^2 at {} s; dangerous at some time {} m^2",
+            g.region,
+            g.quantity,
+            num(g.limit),
+            g.unit,
+            g.psi_max,
+            num(g.psi_max_time_s),
+            num(g.peak_dangerous_area_m2),
+            num(g.peak_dangerous_area_time_s),
+            num(g.envelope_dangerous_area_m2)
+        );
+        let _ = writeln!(
+            s,
+            "      over the run: int A dt = {} m^2 s, Psi(V,t) = {} m^2 s, max int psi dt = {} s",
+            num(g.area_time_integral_m2_s),
+            num(g.damageability_time_integral_m2_s),
+            num(g.psi_time_integral_max_s)
+        );
+    }
+    if let Some(e) = &d.energy {
+        let _ = writeln!(
+            s,
+            "    input work: {} J/m at the end, max {} J/m at {} s",
+            num(e.input_work_end_j_per_m),
+            num(e.input_work_max_j_per_m),
+            num(e.input_work_max_time_s)
+        );
+    }
 }
 
+/// The compare lines of a 2D summary.
 fn bem_compare(s: &mut String, c: &tribo_case::bem::summary::CompareSummary) {
     let _ = writeln!(
         s,

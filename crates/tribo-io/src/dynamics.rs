@@ -167,6 +167,12 @@ pub fn snapshot_file(k: usize, n: usize) -> String {
 /// `displacement_m` (3 components, z = 0), the stresses (Pa) and strains as in the static
 /// `fields_<step>.vtu` (only where the history has stresses, [`DynamicHistory::stresses`]).
 pub fn snapshot_vtu(h: &DynamicHistory, k: usize) -> Vec<u8> {
+    snapshot_vtu_with(h, k, &[])
+}
+
+/// [`snapshot_vtu`] with more point arrays: (name, one value per snapshot point of
+/// snapshot `k`), e.g. the damage psi ([`SnapshotArrays`]).
+pub fn snapshot_vtu_with(h: &DynamicHistory, k: usize, extra: &[SnapshotArrays]) -> Vec<u8> {
     let mesh = &h.snapshot_mesh.regions;
     let snap = &h.snapshots[k];
     let npts: usize = mesh.iter().map(|r| r.nodes.len()).sum();
@@ -233,6 +239,11 @@ pub fn snapshot_vtu(h: &DynamicHistory, k: usize) -> Vec<u8> {
         let values: Vec<f64> = samples().map(|x| get(x) + 0.0).collect();
         f.array("        ", name, 1, values.into_iter());
     }
+    for (name, per_snapshot) in extra {
+        if let Some(values) = per_snapshot.get(k) {
+            f.array("        ", name, 1, values.iter().map(|v| v + 0.0));
+        }
+    }
     f.xml("      </PointData>\n    </Piece>\n  </UnstructuredGrid>\n");
     f.finish()
 }
@@ -269,6 +280,12 @@ pub fn dynamics_files(h: &DynamicHistory, plots: bool) -> Vec<String> {
     }
     if !h.energy.series().is_empty() {
         f.extend(["energy.csv".into(), "energy.png".into()]);
+    }
+    if !h.damage.is_empty() {
+        f.extend([
+            crate::dynamics_damage::DAMAGE_CSV.into(),
+            "damage.png".into(),
+        ]);
     }
     let n = h.snapshots.len();
     if n > 0 {
@@ -310,6 +327,7 @@ pub(crate) fn check(h: &DynamicHistory) -> IoResult<()> {
     for (name, v) in h.energy.series() {
         check_finite(&format!("energy.csv ({name})"), v)?;
     }
+    check_finite("damage.csv", &crate::dynamics_damage::values(h))?;
     for (k, s) in h.snapshots.iter().enumerate() {
         let values: Vec<f64> = s
             .samples
@@ -347,7 +365,26 @@ pub fn write_dynamics(
     h: &DynamicHistory,
     opts: &WriteOptions,
 ) -> IoResult<Written<()>> {
+    write_dynamics_with(dir, h, &[], opts)
+}
+
+/// More point arrays of the snapshots: a name and, per snapshot, one value per snapshot
+/// point (all regions of the snapshot mesh in order).
+pub type SnapshotArrays = (String, Vec<Vec<f64>>);
+
+/// [`write_dynamics`] with more point arrays in the snapshots (`extra`, e.g. the damage
+/// psi; every value must be finite).
+pub fn write_dynamics_with(
+    dir: &Path,
+    h: &DynamicHistory,
+    extra: &[SnapshotArrays],
+    opts: &WriteOptions,
+) -> IoResult<Written<()>> {
     check(h)?;
+    for (name, v) in extra {
+        let values: Vec<f64> = v.iter().flatten().copied().collect();
+        check_finite(&format!("snapshot array {name}"), &values)?;
+    }
     let plots = opts.draws_plots();
     if !h.probes.is_empty() {
         write_atomic(dir, "probes.csv", probes_csv(h).as_bytes())?;
@@ -358,9 +395,13 @@ pub fn write_dynamics(
     if !h.energy.series().is_empty() {
         write_atomic(dir, "energy.csv", energy_csv(h).as_bytes())?;
     }
+    if !h.damage.is_empty() {
+        let csv = crate::dynamics_damage::damage_csv(h);
+        write_atomic(dir, crate::dynamics_damage::DAMAGE_CSV, csv.as_bytes())?;
+    }
     let n = h.snapshots.len();
     for k in 0..n {
-        write_atomic(dir, &snapshot_file(k, n), &snapshot_vtu(h, k))?;
+        write_atomic(dir, &snapshot_file(k, n), &snapshot_vtu_with(h, k, extra))?;
     }
     if n > 0 {
         write_atomic(dir, PVD, pvd(h).as_bytes())?;
@@ -368,6 +409,7 @@ pub fn write_dynamics(
     #[cfg(feature = "png")]
     if plots {
         crate::plot::dynamics::write_plots(dir, h)?;
+        crate::plot::dynamics_damage::write_plot(dir, h)?;
     }
     Ok(Written {
         summary: (),

@@ -38,6 +38,7 @@ pub mod atomic;
 pub mod bem;
 pub mod csv;
 pub mod dynamics;
+pub mod dynamics_damage;
 pub mod error;
 pub mod fatigue;
 pub mod halfspace;

@@ -40,6 +40,8 @@ pub mod dyn_verify;
 pub use dyn_verify::dyn_verify_rows;
 mod dyn_stress;
 pub use dyn_stress::dyn_stress_rows;
+mod dyn_damage;
+pub use dyn_damage::dyn_damage_rows;
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -2201,5 +2203,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(dyn_contact_rows()?);
     rows.extend(dyn_verify_rows()?);
     rows.extend(dyn_stress_rows()?);
+    rows.extend(dyn_damage_rows()?);
     Ok(rows)
 }

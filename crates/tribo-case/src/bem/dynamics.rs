@@ -32,8 +32,7 @@ use std::time::{Duration, Instant};
 use tribo::analysis::bem_field::{sample_region, triangulate_region, FieldSample};
 use tribo::dynamics::cq::{convolve, CqGrid, CqMethod, CqParams, LaplaceResponse, C64};
 use tribo::dynamics::history::{
-    DynamicHistory, EnergySample, EnergyTerms, ProbeSample, SnapshotMesh, SnapshotRegion,
-    StepRecord,
+    DynamicHistory, EnergyTerms, ProbeSample, SnapshotMesh, SnapshotRegion, StepRecord,
 };
 use tribo::dynamics::laplace::LaplaceBem;
 use tribo::solvers::bem2d::{BemSolution, Strain2d, Stress2d};
@@ -74,7 +73,7 @@ pub struct DynamicTimings {
 /// The result of the dynamic run of a case.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct DynamicOutcome {
-    /// The histories (probes, snapshots; no contact, energy or damage in a linear run).
+    /// The histories (probes, snapshots, input work, damage; no contact in a linear run).
     pub history: DynamicHistory,
     /// The convolution quadrature's rule.
     pub method: Method,
@@ -92,6 +91,8 @@ pub struct DynamicOutcome {
     pub points: usize,
     /// Peaks per probe.
     pub peaks: Vec<ProbePeak>,
+    /// The damage over time (`[damage]`; [`super::dynamics_damage`]).
+    pub damage: Option<super::dynamics_damage::DynamicDamageOutcome>,
     /// Timings.
     pub timings: DynamicTimings,
 }
@@ -254,7 +255,7 @@ pub fn run(
     // Snapshot points: the static field's triangulation of every sampled region.
     let mut snapshot = SnapshotMesh::default();
     let mut points: Vec<[f64; 2]> = spec.probes.iter().map(|p| p.at).collect();
-    if !spec.field_steps.is_empty() {
+    if !spec.field_steps.is_empty() || super::dynamics_damage::needs_points(case) {
         let mesh = tribo::operators::bem2d::BemMesh::new(&built.model)?;
         let size = case
             .field
@@ -376,8 +377,13 @@ pub fn run(
     let mut history = DynamicHistory::new(
         spec.probes.iter().map(|p| (p.name.clone(), p.at)).collect(),
         Vec::new(),
-        EnergyTerms::default(),
+        EnergyTerms {
+            input_work: true,
+            ..EnergyTerms::default()
+        },
     );
+    let energy = super::dynamics_damage::energy(&bem, &data, &series)?;
+    let mut damage = super::dynamics_damage::start(case, &snapshot, spec.probes.len(), &bem)?;
     history.set_snapshot_mesh(snapshot)?;
     let mut probe_series = Vec::with_capacity(spec.probes.len());
     for k in 0..spec.probes.len() {
@@ -409,6 +415,9 @@ pub fn run(
             Some(k) => stresses_at(k)?,
             None => at_rest.clone(),
         };
+        if let Some(d) = damage.as_mut() {
+            d.push(t, &point_stresses, next_field.peek() == Some(&&n))?;
+        }
         let probes = probe_series
             .iter()
             .zip(&point_stresses)
@@ -425,7 +434,7 @@ pub fn run(
             time: t,
             probes,
             contacts: Vec::new(),
-            energy: EnergySample::default(),
+            energy: energy.get(n).copied().unwrap_or_default(),
         })?;
         if next_field.peek() == Some(&&n) {
             next_field.next();
@@ -457,6 +466,7 @@ pub fn run(
             history.push_snapshot(samples)?;
         }
     }
+    let damage = damage.map(|d| d.finish(&mut history)).transpose()?;
     let peaks = history
         .probes
         .iter()
@@ -490,6 +500,7 @@ pub fn run(
         dof: bem.static_problem().dof(),
         points: points.len(),
         peaks,
+        damage,
         timings: DynamicTimings { setup, convolution },
     })
 }

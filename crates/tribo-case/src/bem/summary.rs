@@ -302,6 +302,12 @@ pub struct DynamicsSummary {
     pub stresses: bool,
     /// The probes.
     pub probes: Vec<ProbeSummary>,
+    /// The damage over time (`[damage]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damage: Option<super::dynamics_damage::DynamicDamageSummary>,
+    /// The input work.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy: Option<super::dynamics_damage::DynamicEnergySummary>,
     /// Setup (model, load patterns, triangulation), s.
     pub setup_s: f64,
     /// The Laplace-domain solves and FFTs, s.
@@ -465,6 +471,8 @@ fn dynamics_summary(out: &BemOutcome) -> Option<DynamicsSummary> {
                 }
             })
             .collect(),
+        damage: super::dynamics_damage::damage_summary(out),
+        energy: super::dynamics_damage::energy_summary(out),
         setup_s: d.timings.setup,
         convolution_s: d.timings.convolution,
     })
@@ -790,6 +798,7 @@ impl BemSummary {
                 Some("dynamics") => dynamics.is_some(),
                 _ => true,
             })
+            .chain(super::dynamics_damage::units(out))
             .collect();
         Ok(BemSummary {
             kind: "bem2d",

@@ -7,6 +7,7 @@
 pub mod bem;
 pub mod canvas;
 pub mod dynamics;
+pub mod dynamics_damage;
 pub mod fatigue;
 pub mod halfspace;
 pub mod style;

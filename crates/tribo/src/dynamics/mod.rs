@@ -9,6 +9,7 @@
 
 pub mod contact;
 pub mod cq;
+pub mod damage;
 pub mod energy;
 pub mod history;
 pub mod kernel;

@@ -105,14 +105,7 @@ pub(super) fn validate(
         dynamics::validate(raw.dynamics.take(), raw.probe.take(), &ctx)?
     };
     if let Some(d) = &dynamics {
-        dynamic_limits(
-            d,
-            &regions,
-            &pairs,
-            &rigid,
-            damage.is_some(),
-            compare.is_some(),
-        )?;
+        dynamic_limits(d, &regions, &pairs, &rigid, compare.is_some())?;
     }
     let title = raw.title.unwrap_or_else(|| match &template_params {
         Some(_) => "Clamp-knife-base of a harvester cutter bar (paper Sec. 7)".into(),
@@ -143,15 +136,13 @@ pub(super) fn validate(
 
 /// What the linear dynamic pipeline does not do yet, refused with `[dynamics]` named: contact
 /// pairs and rigid segments (dynamic contact needs time marching on the condensed
-/// compliance), `[damage]` (psi over time needs the interior stresses in the Laplace
-/// domain), `[compare]`, body forces (not in the Laplace-domain BEM) and initial velocities
+/// compliance), `[compare]`, body forces (not in the Laplace-domain BEM) and initial velocities
 /// (a rigid-body motion enters as a closing gap: contact).
 fn dynamic_limits(
     d: &dynamics::DynamicsSpec,
     regions: &[RegionSpec],
     pairs: &[ContactPair],
     rigid: &[String],
-    damage: bool,
     compare: bool,
 ) -> CaseResult<()> {
     let refuse = |field: &str, value: &str, rule: &str| Err(bad(field, value, rule));
@@ -170,14 +161,6 @@ fn dynamic_limits(
             "(with rigid)",
             "rigid (guided) segments are solved with the contact machinery: not available \
              with [dynamics] yet",
-        );
-    }
-    if damage {
-        return refuse(
-            "dynamics",
-            "(with [damage])",
-            "damage over time needs the interior stresses of the dynamic run (not available \
-             yet): remove [damage] from a dynamic case",
         );
     }
     if compare {
