@@ -30,10 +30,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use tribo::analysis::bem_field::{sample_region, triangulate_region, FieldSample};
-use tribo::dynamics::cq::{convolve, CqGrid, CqMethod, CqParams, LaplaceResponse, C64};
+use tribo::dynamics::cq::{convolve, CqGrid, CqMethod, CqParams, CqSeries, LaplaceResponse, C64};
 use tribo::dynamics::history::{
-    DynamicHistory, EnergySample, EnergyTerms, ProbeSample, SnapshotMesh, SnapshotRegion,
-    StepRecord,
+    ContactSample, DynamicHistory, EnergySample, EnergyTerms, ProbeSample, SnapshotMesh,
+    SnapshotRegion, StepRecord,
 };
 use tribo::dynamics::laplace::LaplaceBem;
 use tribo::solvers::bem2d::{BemSolution, Strain2d, Stress2d};
@@ -94,6 +94,8 @@ pub struct DynamicOutcome {
     pub peaks: Vec<ProbePeak>,
     /// Timings.
     pub timings: DynamicTimings,
+    /// The contact march (contact pairs or initial velocities; None for a linear run).
+    pub contact: Option<super::dynamics_contact::ContactOutcome>,
 }
 
 /// The library's CQ rule of a case's method.
@@ -107,7 +109,7 @@ pub fn cq_method(m: Method) -> CqMethod {
 
 /// The material name of each region of the built model (outline regions by their
 /// `[[regions]]` entry, gmsh regions by their physical surface).
-fn region_materials(case: &BemCase, built: &BuiltModel) -> CaseResult<Vec<String>> {
+pub(crate) fn region_materials(case: &BemCase, built: &BuiltModel) -> CaseResult<Vec<String>> {
     built
         .model
         .regions
@@ -224,59 +226,28 @@ fn invert(a: &[f64], s: usize) -> Vec<f64> {
 }
 
 /// Runs the linear dynamic analysis of `case` (its `[dynamics]`) on the model `built`;
-/// `statics` (the static run's solution, the same model) gives each probe's static
-/// displacement.
+/// `statics` (the static run's solution, the same model; None for an impact) gives each
+/// probe's static
+/// displacement. With contact pairs or initial velocities the case marches instead
+/// ([`super::dynamics_contact::run`]).
 pub fn run(
     case: &BemCase,
     spec: &DynamicsSpec,
     built: &BuiltModel,
-    statics: &BemSolution,
+    statics: Option<&BemSolution>,
     progress: &mut dyn Progress,
 ) -> CaseResult<DynamicOutcome> {
+    if super::dynamics_contact::marches(case, spec) {
+        return super::dynamics_contact::run(case, spec, built, statics, progress);
+    }
     let t0 = Instant::now();
     progress.stage("dynamics: Laplace-domain model and load patterns", None);
-    // Probes in gmsh regions: located on the built model.
-    let locate = model_locator(&built.model);
-    for (k, p) in spec.probes.iter().enumerate() {
-        if locate(p.at).is_none() {
-            return Err(CaseError::field(
-                format!("probe[{k}].at"),
-                format!("[{:e}, {:e}]", p.at[0], p.at[1]),
-                "lies outside every region of the model (a probe records the field inside a \
-                 body)",
-            ));
-        }
-    }
+    check_probes(spec, built)?;
     let materials = region_materials(case, built)?;
     let densities: Vec<f64> = materials.iter().map(|m| spec.densities[m]).collect();
     let factors = &case.steps[0].factors;
     let all = pipeline::scaled_conditions(case, built, factors, &|_| 1.0)?;
-    // Snapshot points: the static field's triangulation of every sampled region.
-    let mut snapshot = SnapshotMesh::default();
-    let mut points: Vec<[f64; 2]> = spec.probes.iter().map(|p| p.at).collect();
-    if !spec.field_steps.is_empty() {
-        let mesh = tribo::operators::bem2d::BemMesh::new(&built.model)?;
-        let size = case
-            .field
-            .size
-            .unwrap_or_else(|| pipeline::default_field_size(&mesh));
-        for r in pipeline::field_regions(case, &mesh, None)? {
-            let tri = triangulate_region(&mesh, r, size)?;
-            for (k, p) in tri.nodes.iter().enumerate() {
-                points.push(if k < tri.boundary_nodes {
-                    inward(p, k, &tri.nodes, &tri.triangles)
-                } else {
-                    *p
-                });
-            }
-            snapshot.regions.push(SnapshotRegion {
-                region: mesh.regions[r].name.clone(),
-                index: r,
-                nodes: tri.nodes,
-                triangles: tri.triangles,
-            });
-        }
-    }
+    let (points, snapshot) = output_points(case, spec, built)?;
     // Stresses at every point (probes and snapshot points): three more outputs each.
     let bem =
         LaplaceBem::new(&built.model, &densities, &all, &points)?.with_stress_probes(&points)?;
@@ -307,27 +278,119 @@ pub fn run(
         }
     }
     let setup = t0.elapsed().as_secs_f64();
+    let t1 = Instant::now();
+    let (series, solves) = convolve_counted(&bem, &grid, &data, spec.steps, progress)?;
+    let convolution = t1.elapsed().as_secs_f64();
+    let history = DynamicHistory::new(
+        spec.probes.iter().map(|p| (p.name.clone(), p.at)).collect(),
+        Vec::new(),
+        EnergyTerms::default(),
+    );
+    let history = record(
+        history,
+        &Recovery {
+            bem: &bem,
+            series: &series,
+            grid: &grid,
+            points: &points,
+            region_velocity: &[],
+        },
+        spec,
+        snapshot,
+        &mut |_| Ok((Vec::new(), EnergySample::default())),
+    )?;
+    let peaks = probe_peaks(&history, spec, statics)?;
+    Ok(DynamicOutcome {
+        history,
+        method: spec.method,
+        time_step: spec.time_step,
+        steps: spec.steps,
+        duration: spec.duration,
+        laplace_solves: solves,
+        dof: bem.static_problem().dof(),
+        points: points.len(),
+        peaks,
+        timings: DynamicTimings { setup, convolution },
+        contact: None,
+    })
+}
 
-    // The convolution, with progress per Laplace-domain solve.
+/// Every probe must lie in a region of the built model (gmsh regions are located there).
+pub(crate) fn check_probes(spec: &DynamicsSpec, built: &BuiltModel) -> CaseResult<()> {
+    let locate = model_locator(&built.model);
+    for (k, p) in spec.probes.iter().enumerate() {
+        if locate(p.at).is_none() {
+            return Err(CaseError::field(
+                format!("probe[{k}].at"),
+                format!("[{:e}, {:e}]", p.at[0], p.at[1]),
+                "lies outside every region of the model (a probe records the field inside a \
+                 body)",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The points whose histories are convolved: the probes, then the nodes of the static
+/// field's triangulation of every sampled region (with snapshots; boundary nodes moved
+/// inwards, module docs), and the snapshot mesh over them.
+pub(crate) fn output_points(
+    case: &BemCase,
+    spec: &DynamicsSpec,
+    built: &BuiltModel,
+) -> CaseResult<(Vec<[f64; 2]>, SnapshotMesh)> {
+    let mut snapshot = SnapshotMesh::default();
+    let mut points: Vec<[f64; 2]> = spec.probes.iter().map(|p| p.at).collect();
+    if !spec.field_steps.is_empty() {
+        let mesh = tribo::operators::bem2d::BemMesh::new(&built.model)?;
+        let size = case
+            .field
+            .size
+            .unwrap_or_else(|| pipeline::default_field_size(&mesh));
+        for r in pipeline::field_regions(case, &mesh, None)? {
+            let tri = triangulate_region(&mesh, r, size)?;
+            for (k, p) in tri.nodes.iter().enumerate() {
+                points.push(if k < tri.boundary_nodes {
+                    inward(p, k, &tri.nodes, &tri.triangles)
+                } else {
+                    *p
+                });
+            }
+            snapshot.regions.push(SnapshotRegion {
+                region: mesh.regions[r].name.clone(),
+                index: r,
+                nodes: tri.nodes,
+                triangles: tri.triangles,
+            });
+        }
+    }
+    Ok((points, snapshot))
+}
+
+/// The convolution of `bem` with the known values `data` (sample-major) on `grid`, in a
+/// scoped thread, the progress advanced from this one as the Laplace-domain solves
+/// complete; also the number of solves.
+pub(crate) fn convolve_counted(
+    bem: &LaplaceBem,
+    grid: &CqGrid,
+    data: &[f64],
+    steps: usize,
+    progress: &mut dyn Progress,
+) -> CaseResult<(CqSeries, usize)> {
     let params = CqParams::default();
     let (l, _) = params.contour(grid.entries())?;
     let solves = (l / 2 + 1) * grid.method().stages();
     progress.stage(
         &format!(
-            "dynamics: {solves} Laplace-domain solves ({} boundary unknowns, {} steps)",
+            "dynamics: {solves} Laplace-domain solves ({} boundary unknowns, {steps} steps)",
             bem.static_problem().dof(),
-            spec.steps
         ),
         Some(solves as u64),
     );
-    let t1 = Instant::now();
     let done = AtomicUsize::new(0);
-    let counted = Counted {
-        bem: &bem,
-        done: &done,
-    };
+    let counted = Counted { bem, done: &done };
     let series = std::thread::scope(|scope| {
-        let job = scope.spawn(|| convolve(&counted, &grid, &data, &params));
+        let job = scope.spawn(|| convolve(&counted, grid, data, &params));
         while !job.is_finished() {
             std::thread::sleep(Duration::from_millis(50));
             progress.advance(done.load(Ordering::Relaxed) as u64);
@@ -335,12 +398,51 @@ pub fn run(
         job.join()
     })
     .map_err(|_| CaseError::field("dynamics", "(run)", "the convolution thread panicked"))??;
-    let convolution = t1.elapsed().as_secs_f64();
     progress.finish();
+    Ok((series, solves))
+}
 
+/// The convolved point histories and what they belong to.
+pub(crate) struct Recovery<'a> {
+    /// The Laplace-domain BEM with the points as displacement and stress probes.
+    pub bem: &'a LaplaceBem,
+    /// Its convolved outputs.
+    pub series: &'a CqSeries,
+    /// The grid of the convolution.
+    pub grid: &'a CqGrid,
+    /// The points (probes first, then the snapshot points).
+    pub points: &'a [[f64; 2]],
+    /// The rigid initial velocity of each region of the model, m/s (empty: all at rest);
+    /// `v t` is added to the displacements and `v` to the velocities of its points.
+    pub region_velocity: &'a [[f64; 2]],
+}
+
+/// Fills `history` (created with the probes, pairs and energy terms) from the convolved
+/// points at every step t_n = n dt and the snapshots at `spec.field_steps`; `per_step(n)`
+/// gives the step's contact and energy samples.
+pub(crate) fn record(
+    mut history: DynamicHistory,
+    rec: &Recovery<'_>,
+    spec: &DynamicsSpec,
+    snapshot: SnapshotMesh,
+    per_step: &mut dyn FnMut(usize) -> CaseResult<(Vec<ContactSample>, EnergySample)>,
+) -> CaseResult<DynamicHistory> {
+    let (bem, series, grid, points) = (rec.bem, rec.series, rec.grid, rec.points);
+    let times = grid.sample_times();
     // The histories at the step times t_n = n dt.
     let no = series.channels;
-    let first_point = bem.first_stress_output() - 2 * points.len();
+    let first_point = if points.is_empty() {
+        0
+    } else {
+        bem.first_stress_output() - 2 * points.len()
+    };
+    // The region of every point (its stress probe's), for the rigid motion.
+    let velocity_of = |i: usize| -> [f64; 2] {
+        bem.stress_probe_region(i)
+            .and_then(|r| rec.region_velocity.get(r))
+            .copied()
+            .unwrap_or([0.0; 2])
+    };
     // The stresses (Pa) and strains of every point at sample k (same order as `points`).
     let stresses_at = |k: usize| -> CaseResult<Vec<(Stress2d, Strain2d)>> {
         let values = bem.stress_probe_values(&series.values[k * no..(k + 1) * no])?;
@@ -368,18 +470,13 @@ pub fn run(
             .map(|k| series.values[k * no + c])
             .collect()
     };
-    let mut history = DynamicHistory::new(
-        spec.probes.iter().map(|p| (p.name.clone(), p.at)).collect(),
-        Vec::new(),
-        EnergyTerms::default(),
-    );
     history.set_snapshot_mesh(snapshot)?;
     let mut probe_series = Vec::with_capacity(spec.probes.len());
     for k in 0..spec.probes.len() {
         let ux = channel(first_point + 2 * k);
         let uy = channel(first_point + 2 * k + 1);
-        let vx = cq_velocity(&grid, &ux);
-        let vy = cq_velocity(&grid, &uy);
+        let vx = cq_velocity(grid, &ux);
+        let vy = cq_velocity(grid, &uy);
         probe_series.push([ux, uy, vx, vy]);
     }
     let zero_stress = Stress2d {
@@ -401,26 +498,29 @@ pub fn run(
         let sample = grid.step_sample(n);
         // Before the first sample (t = 0 of a grid without it) the body is at rest.
         let point_stresses = match sample {
-            Some(k) => stresses_at(k)?,
-            None => at_rest.clone(),
+            Some(k) if !points.is_empty() => stresses_at(k)?,
+            _ => at_rest.clone(),
         };
         let probes = probe_series
             .iter()
             .zip(&point_stresses)
-            .map(|([ux, uy, vx, vy], (stress, _))| {
+            .enumerate()
+            .map(|(i, ([ux, uy, vx, vy], (stress, _)))| {
                 let at = |s: &Vec<f64>| sample.map_or(0.0, |k| s[k]);
+                let v0 = velocity_of(i);
                 ProbeSample {
-                    displacement: [at(ux), at(uy)],
-                    velocity: [at(vx), at(vy)],
+                    displacement: [at(ux) + v0[0] * t, at(uy) + v0[1] * t],
+                    velocity: [at(vx) + v0[0], at(vy) + v0[1]],
                     stress: *stress,
                 }
             })
             .collect();
+        let (contacts, energy) = per_step(n)?;
         history.push_step(StepRecord {
             time: t,
             probes,
-            contacts: Vec::new(),
-            energy: EnergySample::default(),
+            contacts,
+            energy,
         })?;
         if next_field.peek() == Some(&&n) {
             next_field.next();
@@ -434,12 +534,13 @@ pub fn run(
                     .enumerate()
                     .map(|(j, _)| {
                         let c = offset + 2 * j;
+                        let v0 = velocity_of(point + j);
                         let u = sample.map_or([0.0; 2], |k| {
                             [series.values[k * no + c], series.values[k * no + c + 1]]
                         });
                         let (stress, strain) = point_stresses[point + j];
                         FieldSample {
-                            displacement: u,
+                            displacement: [u[0] + v0[0] * t, u[1] + v0[1] * t],
                             stress,
                             strain,
                         }
@@ -452,7 +553,16 @@ pub fn run(
             history.push_snapshot(samples)?;
         }
     }
-    let peaks = history
+    Ok(history)
+}
+
+/// The peaks of the probes' histories and their static displacements.
+pub(crate) fn probe_peaks(
+    history: &DynamicHistory,
+    spec: &DynamicsSpec,
+    statics: Option<&BemSolution>,
+) -> CaseResult<Vec<ProbePeak>> {
+    history
         .probes
         .iter()
         .zip(&spec.probes)
@@ -471,22 +581,13 @@ pub fn run(
                 max_displacement_time: tu,
                 max_velocity: v,
                 max_velocity_time: tv,
-                static_displacement: static_at(statics, &ps.region, ps.at)?,
+                static_displacement: match statics {
+                    Some(st) => static_at(st, &ps.region, ps.at)?,
+                    None => [0.0; 2],
+                },
             })
         })
-        .collect::<CaseResult<Vec<_>>>()?;
-    Ok(DynamicOutcome {
-        history,
-        method: spec.method,
-        time_step: spec.time_step,
-        steps: spec.steps,
-        duration: spec.duration,
-        laplace_solves: solves,
-        dof: bem.static_problem().dof(),
-        points: points.len(),
-        peaks,
-        timings: DynamicTimings { setup, convolution },
-    })
+        .collect()
 }
 
 /// The static displacement at a probe (in the region the case's outlines name, else the
