@@ -172,7 +172,12 @@ pub fn write_bem(
     prepare_dir(dir, SUMMARY, opts.remove_temporary_on_signal)?;
     write_data(dir, case, out, &summary)?;
     if let Some(d) = &out.dynamics {
-        crate::dynamics::write_dynamics(dir, &d.history, opts)?;
+        let extra = d
+            .contact
+            .as_ref()
+            .map(|c| c.energy.columns())
+            .unwrap_or_default();
+        crate::dynamics::write_dynamics_with(dir, &d.history, &extra, opts)?;
     }
     #[cfg(feature = "png")]
     if plots {
