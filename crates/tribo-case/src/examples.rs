@@ -62,6 +62,19 @@ pub const EXAMPLES: &[Example] = &[
         text: include_str!("../examples/cases/column.toml"),
     },
     Example {
+        name: "rod-impact",
+        description: "two equal rods (nu = 0), one striking the other at 1 m/s: contact \
+                      stress rho c v0/2, contact time 2L/c (2D BEM, [dynamics] with contact)",
+        text: include_str!("../examples/cases/rod-impact.toml"),
+    },
+    Example {
+        name: "clamp-knife-base-impact",
+        description: "the clamp-knife-base system with the cutting load as a 10 us impulse: \
+                      peak contact pressure and displacement over the static ones (2D BEM, \
+                      [dynamics] with frictional contact)",
+        text: include_str!("../examples/cases/clamp-knife-base-impact.toml"),
+    },
+    Example {
         name: "sphere-on-flat",
         description: "steel ball (R = 10 mm) on a flat, 100 N: circular Hertz contact",
         text: include_str!("../examples/cases/sphere-on-flat.toml"),

@@ -467,6 +467,61 @@ fn bem_dynamics(s: &mut String, d: &tribo_case::bem::summary::DynamicsSummary) {
             num(e.input_work_max_time_s)
         );
     }
+    if let Some(c) = &d.contact {
+        bem_dynamic_contact(s, c);
+    }
+}
+
+/// The lines of a dynamic contact march: each pair's peaks and times (with the amplification
+/// of the peak pressure over the static one), each free body's velocity at the end.
+fn bem_dynamic_contact(s: &mut String, c: &tribo_case::bem::summary::DynamicContactSummary) {
+    let opt = |x: Option<f64>| x.map_or_else(|| "-".to_string(), num);
+    let _ = writeln!(
+        s,
+        "    contact march: {} contact unknowns, at most {} active-set iterations per step, \
+         {:.2} s (probes and snapshots {:.2} s)",
+        c.contact_unknowns, c.max_iterations, c.march_s, c.recovery_s
+    );
+    for p in &c.pairs {
+        let amp = p
+            .pressure_amplification
+            .map_or_else(String::new, |a| format!(" = {a:.3} x static"));
+        let _ = writeln!(
+            s,
+            "    pair {} / {}: peak normal force {} N/m at {} s, peak pressure {} Pa at {} s{amp}; \
+             contact from {} s to {} s ({} s)",
+            p.slave,
+            p.master,
+            num(p.peak_normal_force_n_per_m),
+            num(p.peak_normal_force_time_s),
+            num(p.peak_pressure_pa),
+            num(p.peak_pressure_time_s),
+            opt(p.first_contact_s),
+            opt(p.first_separation_s),
+            num(p.contact_duration_s)
+        );
+    }
+    for b in &c.bodies {
+        if let Some(v) = b.final_velocity_m_per_s {
+            let _ = writeln!(
+                s,
+                "    body [{}]: mean velocity {} -> {} m/s (x), {} -> {} m/s (y)",
+                b.regions.join(", "),
+                num(b.initial_velocity_m_per_s[0]),
+                num(v[0]),
+                num(b.initial_velocity_m_per_s[1]),
+                num(v[1])
+            );
+        }
+    }
+    let _ = writeln!(
+        s,
+        "    energy: input {} J/m, mechanical {} J/m, dissipated {} J/m, normal contact work {} J/m",
+        num(c.input_work_j_per_m),
+        num(c.mechanical_energy_j_per_m),
+        num(c.dissipation_j_per_m),
+        num(c.normal_contact_work_j_per_m)
+    );
 }
 
 /// The compare lines of a 2D summary.

@@ -725,6 +725,7 @@ fn outputs_reference_lists_every_file_column_and_unit() {
         ("roller-shaft", example("roller-shaft")),
         ("bem2d", bem),
         ("column", example("column")),
+        ("rod-impact", example("rod-impact")),
     ] {
         let dir = tempfile::tempdir().expect("tempdir");
         let out = dir.path().to_str().expect("UTF-8 path");

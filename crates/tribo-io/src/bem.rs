@@ -177,7 +177,12 @@ pub fn write_bem(
             .iter()
             .map(|x| ("psi".into(), x.snapshot_psi.clone()))
             .collect();
-        crate::dynamics::write_dynamics_with(dir, &d.history, &psi, opts)?;
+        let columns = d
+            .contact
+            .as_ref()
+            .map(|c| c.energy.columns())
+            .unwrap_or_default();
+        crate::dynamics::write_dynamics_with(dir, &d.history, &psi, &columns, opts)?;
     }
     #[cfg(feature = "png")]
     if plots {

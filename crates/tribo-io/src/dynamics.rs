@@ -136,7 +136,23 @@ pub fn energy_header(h: &DynamicHistory) -> String {
 
 /// `energy.csv`: one line per sample time.
 pub fn energy_csv(h: &DynamicHistory) -> String {
+    energy_csv_with(h, &[])
+}
+
+/// `energy.csv` with `extra` columns (name with its unit, one value per sample time) after
+/// the history's series: the dynamic contact run's mechanical energy, translational kinetic
+/// energy, normal contact work and balance (docs/user/outputs.md). A column of another
+/// length is left out (the caller checks lengths: [`write_dynamics_with`]).
+pub fn energy_csv_with(h: &DynamicHistory, extra: &[(&str, &[f64])]) -> String {
     let mut s = energy_header(h);
+    let extra: Vec<&(&str, &[f64])> = extra
+        .iter()
+        .filter(|(_, v)| v.len() == h.times.len())
+        .collect();
+    for (name, _) in &extra {
+        s.push(',');
+        s.push_str(name);
+    }
     s.push('\n');
     let series = h.energy.series();
     let balance = h.energy.balance();
@@ -149,6 +165,10 @@ pub fn energy_csv(h: &DynamicHistory) -> String {
         if let Some(b) = &balance {
             s.push(',');
             s.push_str(&num(b[k]));
+        }
+        for (_, v) in &extra {
+            s.push(',');
+            s.push_str(&num(v[k]));
         }
         s.push('\n');
     }
@@ -365,25 +385,36 @@ pub fn write_dynamics(
     h: &DynamicHistory,
     opts: &WriteOptions,
 ) -> IoResult<Written<()>> {
-    write_dynamics_with(dir, h, &[], opts)
+    write_dynamics_with(dir, h, &[], &[], opts)
 }
 
 /// More point arrays of the snapshots: a name and, per snapshot, one value per snapshot
 /// point (all regions of the snapshot mesh in order).
 pub type SnapshotArrays = (String, Vec<Vec<f64>>);
 
-/// [`write_dynamics`] with more point arrays in the snapshots (`extra`, e.g. the damage
-/// psi; every value must be finite).
+/// [`write_dynamics`] with more point arrays in the snapshots (`arrays`, e.g. the damage
+/// psi; every value must be finite) and `columns` more columns in `energy.csv`
+/// ([`energy_csv_with`]; one finite value per sample time); nothing is written otherwise.
 pub fn write_dynamics_with(
     dir: &Path,
     h: &DynamicHistory,
-    extra: &[SnapshotArrays],
+    arrays: &[SnapshotArrays],
+    columns: &[(&str, &[f64])],
     opts: &WriteOptions,
 ) -> IoResult<Written<()>> {
     check(h)?;
-    for (name, v) in extra {
+    for (name, v) in arrays {
         let values: Vec<f64> = v.iter().flatten().copied().collect();
         check_finite(&format!("snapshot array {name}"), &values)?;
+    }
+    for (name, v) in columns {
+        if v.len() != h.times.len() {
+            return Err(IoError::Shape {
+                what: format!("energy.csv ({name})"),
+                detail: format!("{} values for {} sample times", v.len(), h.times.len()),
+            });
+        }
+        check_finite(&format!("energy.csv ({name})"), v)?;
     }
     let plots = opts.draws_plots();
     if !h.probes.is_empty() {
@@ -393,7 +424,7 @@ pub fn write_dynamics_with(
         write_atomic(dir, "contacts.csv", contacts_csv(h).as_bytes())?;
     }
     if !h.energy.series().is_empty() {
-        write_atomic(dir, "energy.csv", energy_csv(h).as_bytes())?;
+        write_atomic(dir, "energy.csv", energy_csv_with(h, columns).as_bytes())?;
     }
     if !h.damage.is_empty() {
         let csv = crate::dynamics_damage::damage_csv(h);
@@ -401,7 +432,7 @@ pub fn write_dynamics_with(
     }
     let n = h.snapshots.len();
     for k in 0..n {
-        write_atomic(dir, &snapshot_file(k, n), &snapshot_vtu_with(h, k, extra))?;
+        write_atomic(dir, &snapshot_file(k, n), &snapshot_vtu_with(h, k, arrays))?;
     }
     if n > 0 {
         write_atomic(dir, PVD, pvd(h).as_bytes())?;

@@ -30,9 +30,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use tribo::analysis::bem_field::{sample_region, triangulate_region, FieldSample};
-use tribo::dynamics::cq::{convolve, CqGrid, CqMethod, CqParams, LaplaceResponse, C64};
+use tribo::dynamics::cq::{convolve, CqGrid, CqMethod, CqParams, CqSeries, LaplaceResponse, C64};
 use tribo::dynamics::history::{
-    DynamicHistory, EnergyTerms, ProbeSample, SnapshotMesh, SnapshotRegion, StepRecord,
+    ContactSample, DynamicHistory, EnergySample, EnergyTerms, ProbeSample, SnapshotMesh,
+    SnapshotRegion, StepRecord,
 };
 use tribo::dynamics::laplace::LaplaceBem;
 use tribo::solvers::bem2d::{BemSolution, Strain2d, Stress2d};
@@ -73,7 +74,7 @@ pub struct DynamicTimings {
 /// The result of the dynamic run of a case.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct DynamicOutcome {
-    /// The histories (probes, snapshots, input work, damage; no contact in a linear run).
+    /// The histories (probes, snapshots; no contact, energy or damage in a linear run).
     pub history: DynamicHistory,
     /// The convolution quadrature's rule.
     pub method: Method,
@@ -95,6 +96,8 @@ pub struct DynamicOutcome {
     pub damage: Option<super::dynamics_damage::DynamicDamageOutcome>,
     /// Timings.
     pub timings: DynamicTimings,
+    /// The contact march (contact pairs or initial velocities; None for a linear run).
+    pub contact: Option<super::dynamics_contact::ContactOutcome>,
 }
 
 /// The library's CQ rule of a case's method.
@@ -108,7 +111,7 @@ pub fn cq_method(m: Method) -> CqMethod {
 
 /// The material name of each region of the built model (outline regions by their
 /// `[[regions]]` entry, gmsh regions by their physical surface).
-fn region_materials(case: &BemCase, built: &BuiltModel) -> CaseResult<Vec<String>> {
+pub(crate) fn region_materials(case: &BemCase, built: &BuiltModel) -> CaseResult<Vec<String>> {
     built
         .model
         .regions
@@ -225,18 +228,105 @@ fn invert(a: &[f64], s: usize) -> Vec<f64> {
 }
 
 /// Runs the linear dynamic analysis of `case` (its `[dynamics]`) on the model `built`;
-/// `statics` (the static run's solution, the same model) gives each probe's static
-/// displacement.
+/// `statics` (the static run's solution, the same model; None for an impact) gives each
+/// probe's static
+/// displacement. With contact pairs or initial velocities the case marches instead
+/// ([`super::dynamics_contact::run`]).
 pub fn run(
     case: &BemCase,
     spec: &DynamicsSpec,
     built: &BuiltModel,
-    statics: &BemSolution,
+    statics: Option<&BemSolution>,
     progress: &mut dyn Progress,
 ) -> CaseResult<DynamicOutcome> {
+    if super::dynamics_contact::marches(case, spec) {
+        return super::dynamics_contact::run(case, spec, built, statics, progress);
+    }
     let t0 = Instant::now();
     progress.stage("dynamics: Laplace-domain model and load patterns", None);
-    // Probes in gmsh regions: located on the built model.
+    check_probes(spec, built)?;
+    let materials = region_materials(case, built)?;
+    let densities: Vec<f64> = materials.iter().map(|m| spec.densities[m]).collect();
+    let factors = &case.steps[0].factors;
+    let all = pipeline::scaled_conditions(case, built, factors, &|_| 1.0)?;
+    let (points, snapshot) = output_points(case, spec, built)?;
+    // Stresses at every point (probes and snapshot points): three more outputs each.
+    let bem =
+        LaplaceBem::new(&built.model, &densities, &all, &points)?.with_stress_probes(&points)?;
+    let mut patterns = Vec::with_capacity(case.bcs.len());
+    for b in 0..case.bcs.len() {
+        let only = pipeline::scaled_conditions(case, built, factors, &|k| {
+            if k == b {
+                1.0
+            } else {
+                0.0
+            }
+        })?;
+        patterns.push(bem.known_values_of(&only)?);
+    }
+    let grid = CqGrid::new(cq_method(spec.method), spec.time_step, spec.steps)?;
+    let times = grid.sample_times();
+    let ni = bem.inputs();
+    let mut data = vec![0.0; times.len() * ni];
+    for (k, &t) in times.iter().enumerate() {
+        let row = &mut data[k * ni..(k + 1) * ni];
+        for (pattern, f) in patterns.iter().zip(&spec.bc_time) {
+            let ft = f.value(t);
+            if ft != 0.0 {
+                for (d, p) in row.iter_mut().zip(pattern) {
+                    *d += ft * p;
+                }
+            }
+        }
+    }
+    let setup = t0.elapsed().as_secs_f64();
+    let t1 = Instant::now();
+    let (series, solves) = convolve_counted(&bem, &grid, &data, spec.steps, progress)?;
+    let convolution = t1.elapsed().as_secs_f64();
+    let history = DynamicHistory::new(
+        spec.probes.iter().map(|p| (p.name.clone(), p.at)).collect(),
+        Vec::new(),
+        EnergyTerms {
+            input_work: true,
+            ..EnergyTerms::default()
+        },
+    );
+    let energy = super::dynamics_damage::energy(&bem, &data, &series)?;
+    let mut damage = super::dynamics_damage::start(case, &snapshot, spec.probes.len(), &bem)?;
+    let mut history = record(
+        history,
+        &Recovery {
+            bem: &bem,
+            series: &series,
+            grid: &grid,
+            points: &points,
+            region_velocity: &[],
+        },
+        spec,
+        snapshot,
+        damage.as_mut(),
+        &mut |n| Ok((Vec::new(), energy.get(n).copied().unwrap_or_default())),
+    )?;
+    let damage = damage.map(|d| d.finish(&mut history)).transpose()?;
+    let peaks = probe_peaks(&history, spec, statics)?;
+    Ok(DynamicOutcome {
+        history,
+        method: spec.method,
+        time_step: spec.time_step,
+        steps: spec.steps,
+        duration: spec.duration,
+        laplace_solves: solves,
+        dof: bem.static_problem().dof(),
+        points: points.len(),
+        peaks,
+        damage,
+        timings: DynamicTimings { setup, convolution },
+        contact: None,
+    })
+}
+
+/// Every probe must lie in a region of the built model (gmsh regions are located there).
+pub(crate) fn check_probes(spec: &DynamicsSpec, built: &BuiltModel) -> CaseResult<()> {
     let locate = model_locator(&built.model);
     for (k, p) in spec.probes.iter().enumerate() {
         if locate(p.at).is_none() {
@@ -248,11 +338,17 @@ pub fn run(
             ));
         }
     }
-    let materials = region_materials(case, built)?;
-    let densities: Vec<f64> = materials.iter().map(|m| spec.densities[m]).collect();
-    let factors = &case.steps[0].factors;
-    let all = pipeline::scaled_conditions(case, built, factors, &|_| 1.0)?;
-    // Snapshot points: the static field's triangulation of every sampled region.
+    Ok(())
+}
+
+/// The points whose histories are convolved: the probes, then the nodes of the static
+/// field's triangulation of every sampled region (with snapshots; boundary nodes moved
+/// inwards, module docs), and the snapshot mesh over them.
+pub(crate) fn output_points(
+    case: &BemCase,
+    spec: &DynamicsSpec,
+    built: &BuiltModel,
+) -> CaseResult<(Vec<[f64; 2]>, SnapshotMesh)> {
     let mut snapshot = SnapshotMesh::default();
     let mut points: Vec<[f64; 2]> = spec.probes.iter().map(|p| p.at).collect();
     if !spec.field_steps.is_empty() || super::dynamics_damage::needs_points(case) {
@@ -278,62 +374,33 @@ pub fn run(
             });
         }
     }
-    // Stresses at every point (probes and snapshot points): three more outputs each.
-    let bem =
-        LaplaceBem::new(&built.model, &densities, &all, &points)?.with_stress_probes(&points)?;
-    let mut patterns = Vec::with_capacity(case.bcs.len());
-    for b in 0..case.bcs.len() {
-        let only = pipeline::scaled_conditions(case, built, factors, &|k| {
-            if k == b {
-                1.0
-            } else {
-                0.0
-            }
-        })?;
-        patterns.push(bem.known_values_of(&only)?);
-    }
-    let grid = CqGrid::new(cq_method(spec.method), spec.time_step, spec.steps)?;
-    for coarse in
-        tribo::dynamics::laplace::verify_limits::coarse_regions(&bem, grid.method(), spec.time_step)
-    {
-        progress.note(&coarse.to_string());
-    }
-    let times = grid.sample_times();
-    let ni = bem.inputs();
-    let mut data = vec![0.0; times.len() * ni];
-    for (k, &t) in times.iter().enumerate() {
-        let row = &mut data[k * ni..(k + 1) * ni];
-        for (pattern, f) in patterns.iter().zip(&spec.bc_time) {
-            let ft = f.value(t);
-            if ft != 0.0 {
-                for (d, p) in row.iter_mut().zip(pattern) {
-                    *d += ft * p;
-                }
-            }
-        }
-    }
-    let setup = t0.elapsed().as_secs_f64();
+    Ok((points, snapshot))
+}
 
-    // The convolution, with progress per Laplace-domain solve.
+/// The convolution of `bem` with the known values `data` (sample-major) on `grid`, in a
+/// scoped thread, the progress advanced from this one as the Laplace-domain solves
+/// complete; also the number of solves.
+pub(crate) fn convolve_counted(
+    bem: &LaplaceBem,
+    grid: &CqGrid,
+    data: &[f64],
+    steps: usize,
+    progress: &mut dyn Progress,
+) -> CaseResult<(CqSeries, usize)> {
     let params = CqParams::default();
     let (l, _) = params.contour(grid.entries())?;
     let solves = (l / 2 + 1) * grid.method().stages();
     progress.stage(
         &format!(
-            "dynamics: {solves} Laplace-domain solves ({} boundary unknowns, {} steps)",
+            "dynamics: {solves} Laplace-domain solves ({} boundary unknowns, {steps} steps)",
             bem.static_problem().dof(),
-            spec.steps
         ),
         Some(solves as u64),
     );
-    let t1 = Instant::now();
     let done = AtomicUsize::new(0);
-    let counted = Counted {
-        bem: &bem,
-        done: &done,
-    };
+    let counted = Counted { bem, done: &done };
     let series = std::thread::scope(|scope| {
-        let job = scope.spawn(|| convolve(&counted, &grid, &data, &params));
+        let job = scope.spawn(|| convolve(&counted, grid, data, &params));
         while !job.is_finished() {
             std::thread::sleep(Duration::from_millis(50));
             progress.advance(done.load(Ordering::Relaxed) as u64);
@@ -341,12 +408,53 @@ pub fn run(
         job.join()
     })
     .map_err(|_| CaseError::field("dynamics", "(run)", "the convolution thread panicked"))??;
-    let convolution = t1.elapsed().as_secs_f64();
     progress.finish();
+    Ok((series, solves))
+}
 
+/// The convolved point histories and what they belong to.
+pub(crate) struct Recovery<'a> {
+    /// The Laplace-domain BEM with the points as displacement and stress probes.
+    pub bem: &'a LaplaceBem,
+    /// Its convolved outputs.
+    pub series: &'a CqSeries,
+    /// The grid of the convolution.
+    pub grid: &'a CqGrid,
+    /// The points (probes first, then the snapshot points).
+    pub points: &'a [[f64; 2]],
+    /// The rigid initial velocity of each region of the model, m/s (empty: all at rest);
+    /// `v t` is added to the displacements and `v` to the velocities of its points.
+    pub region_velocity: &'a [[f64; 2]],
+}
+
+/// Fills `history` (created with the probes, pairs and energy terms) from the convolved
+/// points at every step t_n = n dt and the snapshots at `spec.field_steps`; `per_step(n)`
+/// gives the step's contact and energy samples; `damage` (a linear run's `[damage]`) takes
+/// the points' stresses of every step.
+pub(super) fn record(
+    mut history: DynamicHistory,
+    rec: &Recovery<'_>,
+    spec: &DynamicsSpec,
+    snapshot: SnapshotMesh,
+    mut damage: Option<&mut super::dynamics_damage::DamageRun>,
+    per_step: &mut dyn FnMut(usize) -> CaseResult<(Vec<ContactSample>, EnergySample)>,
+) -> CaseResult<DynamicHistory> {
+    let (bem, series, grid, points) = (rec.bem, rec.series, rec.grid, rec.points);
+    let times = grid.sample_times();
     // The histories at the step times t_n = n dt.
     let no = series.channels;
-    let first_point = bem.first_stress_output() - 2 * points.len();
+    let first_point = if points.is_empty() {
+        0
+    } else {
+        bem.first_stress_output() - 2 * points.len()
+    };
+    // The region of every point (its stress probe's), for the rigid motion.
+    let velocity_of = |i: usize| -> [f64; 2] {
+        bem.stress_probe_region(i)
+            .and_then(|r| rec.region_velocity.get(r))
+            .copied()
+            .unwrap_or([0.0; 2])
+    };
     // The stresses (Pa) and strains of every point at sample k (same order as `points`).
     let stresses_at = |k: usize| -> CaseResult<Vec<(Stress2d, Strain2d)>> {
         let values = bem.stress_probe_values(&series.values[k * no..(k + 1) * no])?;
@@ -374,23 +482,13 @@ pub fn run(
             .map(|k| series.values[k * no + c])
             .collect()
     };
-    let mut history = DynamicHistory::new(
-        spec.probes.iter().map(|p| (p.name.clone(), p.at)).collect(),
-        Vec::new(),
-        EnergyTerms {
-            input_work: true,
-            ..EnergyTerms::default()
-        },
-    );
-    let energy = super::dynamics_damage::energy(&bem, &data, &series)?;
-    let mut damage = super::dynamics_damage::start(case, &snapshot, spec.probes.len(), &bem)?;
     history.set_snapshot_mesh(snapshot)?;
     let mut probe_series = Vec::with_capacity(spec.probes.len());
     for k in 0..spec.probes.len() {
         let ux = channel(first_point + 2 * k);
         let uy = channel(first_point + 2 * k + 1);
-        let vx = cq_velocity(&grid, &ux);
-        let vy = cq_velocity(&grid, &uy);
+        let vx = cq_velocity(grid, &ux);
+        let vy = cq_velocity(grid, &uy);
         probe_series.push([ux, uy, vx, vy]);
     }
     let zero_stress = Stress2d {
@@ -412,8 +510,8 @@ pub fn run(
         let sample = grid.step_sample(n);
         // Before the first sample (t = 0 of a grid without it) the body is at rest.
         let point_stresses = match sample {
-            Some(k) => stresses_at(k)?,
-            None => at_rest.clone(),
+            Some(k) if !points.is_empty() => stresses_at(k)?,
+            _ => at_rest.clone(),
         };
         if let Some(d) = damage.as_mut() {
             d.push(t, &point_stresses, next_field.peek() == Some(&&n))?;
@@ -421,20 +519,23 @@ pub fn run(
         let probes = probe_series
             .iter()
             .zip(&point_stresses)
-            .map(|([ux, uy, vx, vy], (stress, _))| {
+            .enumerate()
+            .map(|(i, ([ux, uy, vx, vy], (stress, _)))| {
                 let at = |s: &Vec<f64>| sample.map_or(0.0, |k| s[k]);
+                let v0 = velocity_of(i);
                 ProbeSample {
-                    displacement: [at(ux), at(uy)],
-                    velocity: [at(vx), at(vy)],
+                    displacement: [at(ux) + v0[0] * t, at(uy) + v0[1] * t],
+                    velocity: [at(vx) + v0[0], at(vy) + v0[1]],
                     stress: *stress,
                 }
             })
             .collect();
+        let (contacts, energy) = per_step(n)?;
         history.push_step(StepRecord {
             time: t,
             probes,
-            contacts: Vec::new(),
-            energy: energy.get(n).copied().unwrap_or_default(),
+            contacts,
+            energy,
         })?;
         if next_field.peek() == Some(&&n) {
             next_field.next();
@@ -448,12 +549,13 @@ pub fn run(
                     .enumerate()
                     .map(|(j, _)| {
                         let c = offset + 2 * j;
+                        let v0 = velocity_of(point + j);
                         let u = sample.map_or([0.0; 2], |k| {
                             [series.values[k * no + c], series.values[k * no + c + 1]]
                         });
                         let (stress, strain) = point_stresses[point + j];
                         FieldSample {
-                            displacement: u,
+                            displacement: [u[0] + v0[0] * t, u[1] + v0[1] * t],
                             stress,
                             strain,
                         }
@@ -466,8 +568,16 @@ pub fn run(
             history.push_snapshot(samples)?;
         }
     }
-    let damage = damage.map(|d| d.finish(&mut history)).transpose()?;
-    let peaks = history
+    Ok(history)
+}
+
+/// The peaks of the probes' histories and their static displacements.
+pub(crate) fn probe_peaks(
+    history: &DynamicHistory,
+    spec: &DynamicsSpec,
+    statics: Option<&BemSolution>,
+) -> CaseResult<Vec<ProbePeak>> {
+    history
         .probes
         .iter()
         .zip(&spec.probes)
@@ -486,23 +596,13 @@ pub fn run(
                 max_displacement_time: tu,
                 max_velocity: v,
                 max_velocity_time: tv,
-                static_displacement: static_at(statics, &ps.region, ps.at)?,
+                static_displacement: match statics {
+                    Some(st) => static_at(st, &ps.region, ps.at)?,
+                    None => [0.0; 2],
+                },
             })
         })
-        .collect::<CaseResult<Vec<_>>>()?;
-    Ok(DynamicOutcome {
-        history,
-        method: spec.method,
-        time_step: spec.time_step,
-        steps: spec.steps,
-        duration: spec.duration,
-        laplace_solves: solves,
-        dof: bem.static_problem().dof(),
-        points: points.len(),
-        peaks,
-        damage,
-        timings: DynamicTimings { setup, convolution },
-    })
+        .collect()
 }
 
 /// The static displacement at a probe (in the region the case's outlines name, else the

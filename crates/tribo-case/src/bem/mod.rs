@@ -6,6 +6,7 @@
 pub mod builder;
 pub mod case;
 pub mod dynamics;
+pub mod dynamics_contact;
 pub mod dynamics_damage;
 pub mod pipeline;
 pub mod summary;

@@ -366,7 +366,7 @@ fn check_names(case: &BemCase, built: &BuiltModel) -> CaseResult<()> {
     Ok(())
 }
 
-fn segment_shapes(model: &BemModel) -> BTreeMap<String, SegmentShape> {
+pub(crate) fn segment_shapes(model: &BemModel) -> BTreeMap<String, SegmentShape> {
     let mut out = BTreeMap::new();
     for r in &model.regions {
         for l in &r.loops {
@@ -775,7 +775,16 @@ fn region_damage(
 
 /// Solves the case and its comparison.
 pub fn solve(case: &BemCase, progress: &mut dyn Progress) -> CaseResult<BemOutcome> {
-    let main = run_variant(case, None, None, progress)?;
+    // An impact (initial velocities) has no static counterpart: the static run then only
+    // builds the model (no load step; its bodies may be held by nothing but the impact).
+    let main = match &case.dynamics {
+        Some(d) if !d.initial_velocity.is_empty() => {
+            let mut bare = case.clone();
+            bare.steps.clear();
+            run_variant(&bare, None, None, progress)?
+        }
+        _ => run_variant(case, None, None, progress)?,
+    };
     let mut compare = Vec::new();
     if let Some(c) = &case.compare {
         let own = main
@@ -814,7 +823,7 @@ pub fn solve(case: &BemCase, progress: &mut dyn Progress) -> CaseResult<BemOutco
         None => None,
         Some(spec) => {
             let built = model(case, None)?;
-            let statics = &main.steps[main.steps.len() - 1].solution;
+            let statics = main.steps.last().map(|s| &s.solution);
             Some(super::dynamics::run(case, spec, &built, statics, progress)?)
         }
     };

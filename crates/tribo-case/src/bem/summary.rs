@@ -310,8 +310,89 @@ pub struct DynamicsSummary {
     pub energy: Option<super::dynamics_damage::DynamicEnergySummary>,
     /// Setup (model, load patterns, triangulation), s.
     pub setup_s: f64,
-    /// The Laplace-domain solves and FFTs, s.
+    /// The Laplace-domain solves and FFTs (with contact: the march and the recovery of the
+    /// probes and snapshots), s.
     pub convolution_s: f64,
+    /// The contact march (absent for a linear run).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact: Option<DynamicContactSummary>,
+}
+
+/// One contact pair of a dynamic run.
+#[derive(Debug, Clone, Serialize)]
+pub struct DynamicPairSummary {
+    /// Slave segment.
+    pub slave: String,
+    /// Master segment.
+    pub master: String,
+    /// Coulomb friction coefficient.
+    pub friction: f64,
+    /// Largest normal force per unit thickness, N/m.
+    pub peak_normal_force_n_per_m: f64,
+    /// Its time, s.
+    pub peak_normal_force_time_s: f64,
+    /// Largest nodal contact pressure, Pa.
+    pub peak_pressure_pa: f64,
+    /// Its time, s.
+    pub peak_pressure_time_s: f64,
+    /// Where, m.
+    pub peak_pressure_at_m: [f64; 2],
+    /// The first time in contact, s (None: never).
+    pub first_contact_s: Option<f64>,
+    /// The first time after it with the pair open, s (None: not separated).
+    pub first_separation_s: Option<f64>,
+    /// Separation minus first contact (to the end where it stays closed), s.
+    pub contact_duration_s: f64,
+    /// The largest pressure of the pair in the static run (the loads at their full
+    /// values), Pa (None for an impact, which has no static run, or a pair open there).
+    pub static_peak_pressure_pa: Option<f64>,
+    /// peak_pressure_pa / static_peak_pressure_pa: the dynamic amplification of the
+    /// contact pressure.
+    pub pressure_amplification: Option<f64>,
+}
+
+/// One body of a dynamic contact run at its end.
+#[derive(Debug, Clone, Serialize)]
+pub struct DynamicBodySummary {
+    /// Its regions.
+    pub regions: Vec<String>,
+    /// Mass per unit thickness, kg/m.
+    pub mass_kg_per_m: f64,
+    /// Rigid velocity at t = 0, m/s.
+    pub initial_velocity_m_per_s: [f64; 2],
+    /// Mean velocity at the end (momentum / mass), m/s (None: prescribed displacements).
+    pub final_velocity_m_per_s: Option<[f64; 2]>,
+    /// Mechanical (strain + kinetic) energy at the end, J/m.
+    pub final_energy_j_per_m: f64,
+    /// Kinetic energy of the mean translation at the end, J/m.
+    pub final_translational_energy_j_per_m: Option<f64>,
+}
+
+/// The contact part of a dynamic run.
+#[derive(Debug, Clone, Serialize)]
+pub struct DynamicContactSummary {
+    /// Contact unknowns of the march.
+    pub contact_unknowns: usize,
+    /// Largest active-set iteration count of a step.
+    pub max_iterations: usize,
+    /// Largest complementarity residual of a step (relative).
+    pub max_residual: f64,
+    /// Per pair.
+    pub pairs: Vec<DynamicPairSummary>,
+    /// Per body.
+    pub bodies: Vec<DynamicBodySummary>,
+    /// Input work (initial kinetic energy and the loads' work) at the end, J/m.
+    pub input_work_j_per_m: f64,
+    /// Mechanical energy of all bodies at the end, J/m.
+    pub mechanical_energy_j_per_m: f64,
+    /// Frictional dissipation at the end, J/m.
+    pub dissipation_j_per_m: f64,
+    /// Normal contact work at the end (<= 0: lost by the time discretisation), J/m.
+    pub normal_contact_work_j_per_m: f64,
+    /// The march (weights and steps), s.
+    pub march_s: f64,
+    /// The recovery of the probes and snapshots, s.
+    pub recovery_s: f64,
 }
 
 /// Timings, s.
@@ -438,6 +519,37 @@ pub const UNITS: &[(&str, &str)] = &[
     ("dynamics.probes[].amplification", "1"),
     ("dynamics.setup_s", "s"),
     ("dynamics.convolution_s", "s"),
+    ("dynamics.contact.contact_unknowns", "1"),
+    ("dynamics.contact.max_iterations", "1"),
+    ("dynamics.contact.max_residual", "1"),
+    ("dynamics.contact.pairs[].friction", "1"),
+    ("dynamics.contact.pairs[].peak_normal_force_n_per_m", "N/m"),
+    ("dynamics.contact.pairs[].peak_normal_force_time_s", "s"),
+    ("dynamics.contact.pairs[].peak_pressure_pa", "Pa"),
+    ("dynamics.contact.pairs[].peak_pressure_time_s", "s"),
+    ("dynamics.contact.pairs[].peak_pressure_at_m[]", "m"),
+    ("dynamics.contact.pairs[].first_contact_s", "s"),
+    ("dynamics.contact.pairs[].first_separation_s", "s"),
+    ("dynamics.contact.pairs[].contact_duration_s", "s"),
+    ("dynamics.contact.pairs[].static_peak_pressure_pa", "Pa"),
+    ("dynamics.contact.pairs[].pressure_amplification", "1"),
+    ("dynamics.contact.bodies[].mass_kg_per_m", "kg/m"),
+    (
+        "dynamics.contact.bodies[].initial_velocity_m_per_s[]",
+        "m/s",
+    ),
+    ("dynamics.contact.bodies[].final_velocity_m_per_s[]", "m/s"),
+    ("dynamics.contact.bodies[].final_energy_j_per_m", "J/m"),
+    (
+        "dynamics.contact.bodies[].final_translational_energy_j_per_m",
+        "J/m",
+    ),
+    ("dynamics.contact.input_work_j_per_m", "J/m"),
+    ("dynamics.contact.mechanical_energy_j_per_m", "J/m"),
+    ("dynamics.contact.dissipation_j_per_m", "J/m"),
+    ("dynamics.contact.normal_contact_work_j_per_m", "J/m"),
+    ("dynamics.contact.march_s", "s"),
+    ("dynamics.contact.recovery_s", "s"),
 ];
 
 /// The summary of a dynamic run.
@@ -445,7 +557,11 @@ fn dynamics_summary(out: &BemOutcome) -> Option<DynamicsSummary> {
     let d = out.dynamics.as_ref()?;
     Some(DynamicsSummary {
         method: d.method,
-        realisation: "all_at_once",
+        realisation: if d.contact.is_some() {
+            "marching"
+        } else {
+            "all_at_once"
+        },
         time_step_s: d.time_step,
         steps: d.steps,
         duration_s: d.duration,
@@ -475,7 +591,80 @@ fn dynamics_summary(out: &BemOutcome) -> Option<DynamicsSummary> {
         energy: super::dynamics_damage::energy_summary(out),
         setup_s: d.timings.setup,
         convolution_s: d.timings.convolution,
+        contact: d.contact.as_ref().map(|c| contact_summary(out, c)),
     })
+}
+
+/// The contact part of a dynamic run; the static peak pressures from the static run's
+/// last step (the loads at their full values).
+fn contact_summary(
+    out: &BemOutcome,
+    c: &super::dynamics_contact::ContactOutcome,
+) -> DynamicContactSummary {
+    let last_static = out.main.steps.last();
+    let last = |v: &[f64]| v.last().copied().unwrap_or(0.0);
+    let input = out
+        .dynamics
+        .as_ref()
+        .and_then(|d| d.history.energy.input_work.as_deref().map(last))
+        .unwrap_or(0.0);
+    let dissipation = out
+        .dynamics
+        .as_ref()
+        .and_then(|d| d.history.energy.dissipation.as_deref().map(last))
+        .unwrap_or(0.0);
+    DynamicContactSummary {
+        contact_unknowns: c.contact_unknowns,
+        max_iterations: c.max_iterations,
+        max_residual: c.max_residual,
+        pairs: c
+            .pairs
+            .iter()
+            .map(|p| {
+                let static_peak = last_static
+                    .and_then(|s| {
+                        s.pairs
+                            .iter()
+                            .find(|r| r.slave == p.slave && r.master == p.master)
+                    })
+                    .map(|r| r.nodes.iter().map(|n| n.pressure).fold(0.0, f64::max))
+                    .filter(|&x| x > 0.0);
+                DynamicPairSummary {
+                    slave: p.slave.clone(),
+                    master: p.master.clone(),
+                    friction: p.friction,
+                    peak_normal_force_n_per_m: p.peak_normal_force,
+                    peak_normal_force_time_s: p.peak_normal_force_time,
+                    peak_pressure_pa: p.peak_pressure,
+                    peak_pressure_time_s: p.peak_pressure_time,
+                    peak_pressure_at_m: p.peak_pressure_at,
+                    first_contact_s: p.first_contact,
+                    first_separation_s: p.first_separation,
+                    contact_duration_s: p.contact_duration,
+                    static_peak_pressure_pa: static_peak,
+                    pressure_amplification: static_peak.map(|s| p.peak_pressure / s),
+                }
+            })
+            .collect(),
+        bodies: c
+            .bodies
+            .iter()
+            .map(|b| DynamicBodySummary {
+                regions: b.regions.clone(),
+                mass_kg_per_m: b.mass,
+                initial_velocity_m_per_s: b.initial_velocity,
+                final_velocity_m_per_s: b.final_velocity,
+                final_energy_j_per_m: b.final_energy,
+                final_translational_energy_j_per_m: b.final_translational_energy,
+            })
+            .collect(),
+        input_work_j_per_m: input,
+        mechanical_energy_j_per_m: last(&c.energy.mechanical),
+        dissipation_j_per_m: dissipation,
+        normal_contact_work_j_per_m: last(&c.energy.normal_contact_work),
+        march_s: c.march_s,
+        recovery_s: c.recovery_s,
+    }
 }
 
 fn at(v: (f64, [f64; 2])) -> At {

@@ -55,6 +55,17 @@ pub enum Method {
     RadauIia3,
 }
 
+impl Method {
+    /// The case file's name of the method (`"bdf2"`, `"radau_iia_2"`, `"radau_iia_3"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Bdf2 => "bdf2",
+            Method::RadauIia2 => "radau_iia_2",
+            Method::RadauIia3 => "radau_iia_3",
+        }
+    }
+}
+
 impl Choices for Method {
     const RULE: &'static str = "must be \"bdf2\" (order 2, the default), \"radau_iia_2\" \
         (Radau IIA 2-stage, order 3) or \"radau_iia_3\" (Radau IIA 3-stage, order 5)";

@@ -105,7 +105,14 @@ pub(super) fn validate(
         dynamics::validate(raw.dynamics.take(), raw.probe.take(), &ctx)?
     };
     if let Some(d) = &dynamics {
-        dynamic_limits(d, &regions, &pairs, &rigid, compare.is_some())?;
+        dynamic_limits(
+            d,
+            &regions,
+            &pairs,
+            &rigid,
+            damage.is_some(),
+            compare.is_some(),
+        )?;
     }
     let title = raw.title.unwrap_or_else(|| match &template_params {
         Some(_) => "Clamp-knife-base of a harvester cutter bar (paper Sec. 7)".into(),
@@ -134,25 +141,36 @@ pub(super) fn validate(
     })
 }
 
-/// What the linear dynamic pipeline does not do yet, refused with `[dynamics]` named: contact
-/// pairs and rigid segments (dynamic contact needs time marching on the condensed
-/// compliance), `[compare]`, body forces (not in the Laplace-domain BEM) and initial velocities
-/// (a rigid-body motion enters as a closing gap: contact).
+/// What the dynamic pipeline does not do yet, refused with the item named: rigid segments
+/// (guided faces: not in the dynamic contact march), with contact pairs a Runge-Kutta
+/// method (the march is multistep: an S-stage step would be a block contact problem) and
+/// `[damage]` (damage over time is computed by the linear run only), `[compare]`, body forces
+/// (not in the Laplace-domain BEM) and initial velocities without contact pairs (a rigid-body
+/// motion acts only through the contact it closes).
 fn dynamic_limits(
     d: &dynamics::DynamicsSpec,
     regions: &[RegionSpec],
     pairs: &[ContactPair],
     rigid: &[String],
+    damage: bool,
     compare: bool,
 ) -> CaseResult<()> {
     let refuse = |field: &str, value: &str, rule: &str| Err(bad(field, value, rule));
-    if !pairs.is_empty() {
+    if !pairs.is_empty() && d.method != dynamics::Method::Bdf2 {
+        return refuse(
+            "dynamics.method",
+            d.method.name(),
+            "dynamic contact marches with the multistep rule \"bdf2\" (a Runge-Kutta step \
+             would be an S-stage block contact problem): use method = \"bdf2\" with \
+             [[contact]]",
+        );
+    }
+    if !pairs.is_empty() && damage {
         return refuse(
             "dynamics",
-            "(with [[contact]])",
-            "a dynamic case with contact pairs needs time marching with contact (not \
-             available yet): remove [dynamics] for the static contact solution, or the \
-             [[contact]] pairs for a linear dynamic run",
+            "(with [[contact]] and [damage])",
+            "damage over time is computed by the linear dynamic run only: remove [damage] \
+             from a dynamic contact case",
         );
     }
     if !rigid.is_empty() {
@@ -178,12 +196,18 @@ fn dynamic_limits(
              the body force or [dynamics]",
         );
     }
-    if let Some(name) = d.initial_velocity.keys().next() {
+    if let Some(name) = d
+        .initial_velocity
+        .keys()
+        .next()
+        .filter(|_| pairs.is_empty())
+    {
         return refuse(
             &format!("dynamics.initial_velocity.{name}"),
             "(given)",
-            "an initial rigid-body velocity acts through contact (an impact): not available \
-             yet",
+            "an initial rigid-body velocity acts only through the contact it closes (an \
+             impact; alone the uniform motion carries no stress): give the [[contact]] \
+             pairs",
         );
     }
     Ok(())

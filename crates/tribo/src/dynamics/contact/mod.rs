@@ -477,6 +477,67 @@ impl DynamicContact {
         &self.compliance.bem
     }
 
+    /// The known values of [`DynamicContact::bem`] (its inputs, [`LaplaceBem::inputs`]) at
+    /// one marched step: the prescribed values of the boundary conditions times their time
+    /// functions at `step.time`, plus the step's contact tractions on the slave and master
+    /// DOFs (the same combinations the condensed map convolves). A [`LaplaceBem`] of the same
+    /// model, densities and conditions with probes, convolved with these values over the
+    /// steps, gives the full boundary and interior state of the march at the probes (the
+    /// bodies are linear), without the rigid motion `v0 t` of the initial velocities.
+    ///
+    /// Error ([`Error::InvalidParameter`]): a step whose pairs or node counts are not this
+    /// problem's.
+    pub fn boundary_inputs(&self, step: &DynamicContactStep) -> Result<Vec<f64>> {
+        let n = self.nodes.len();
+        if step.pairs.len() != self.npairs {
+            return Err(Error::invalid(
+                "step.pairs",
+                step.pairs.len(),
+                format!("the problem has {} contact pairs", self.npairs),
+            ));
+        }
+        let mut next = vec![0usize; self.npairs];
+        let mut y = vec![0.0; 2 * n + self.load_columns.len()];
+        for (i, d) in self.nodes.iter().enumerate() {
+            let node = step.pairs[d.pair].nodes.get(next[d.pair]).ok_or_else(|| {
+                Error::invalid(
+                    "step.pairs.nodes",
+                    step.pairs[d.pair].nodes.len(),
+                    "fewer nodes than the problem's pair",
+                )
+            })?;
+            next[d.pair] += 1;
+            y[i] = node.pressure;
+            y[n + i] = node.shear;
+        }
+        for (c, col) in self.load_columns.iter().enumerate() {
+            y[2 * n + c] = self
+                .loads
+                .get(col.function)
+                .map_or(1.0, |tf| tf.value(step.time));
+        }
+        let mut known = vec![0.0; self.compliance.bem.inputs()];
+        for (col, v) in self.compliance.columns.iter().zip(&y) {
+            if *v != 0.0 {
+                for &(k, c) in col {
+                    known[k] += v * c;
+                }
+            }
+        }
+        Ok(known)
+    }
+
+    /// The mass per unit thickness of each body (in the order of
+    /// [`DynamicContact::body_regions`]), kg/m.
+    pub fn body_masses(&self) -> &[f64] {
+        &self.mass
+    }
+
+    /// The rigid initial velocity of each region, m/s (equal within a body).
+    pub fn region_velocities(&self) -> Vec<[f64; 2]> {
+        self.body_of.iter().map(|&b| self.velocity[b]).collect()
+    }
+
     /// Bytes the march allocates for the weights (with their contour spectra) and the
     /// history; None where the size overflows or the parameters are invalid.
     pub fn memory_estimate(&self, params: &DynamicContactParams) -> Option<usize> {
