@@ -280,28 +280,7 @@ fn impact(dof: usize, contact: usize, steps: usize) -> Result<Value, String> {
     let ny = (contact / 4).max(1);
     let nx = ((dof / 8).saturating_sub(2 * ny) / 2).max(1);
     let (l, w) = (nx as f64 * h, ny as f64 * h);
-    let m = ElasticMaterial::new(1.0, 0.0).map_err(|e| e.to_string())?;
-    let striker = Region::new(
-        "striker",
-        m,
-        vec![
-            Segment::line("s_bottom", [-l, 0.0], [0.0, 0.0], nx),
-            Segment::line("s_end", [0.0, 0.0], [0.0, w], ny),
-            Segment::line("s_top", [0.0, w], [-l, w], nx),
-            Segment::line("s_back", [-l, w], [-l, 0.0], ny),
-        ],
-    );
-    let target = Region::new(
-        "target",
-        m,
-        vec![
-            Segment::line("t_bottom", [0.0, 0.0], [l, 0.0], nx),
-            Segment::line("t_back", [l, 0.0], [l, w], ny),
-            Segment::line("t_top", [l, w], [0.0, w], nx),
-            Segment::line("t_end", [0.0, w], [0.0, 0.0], ny),
-        ],
-    );
-    let model = BemModel::new(PlaneCondition::Strain, vec![striker, target]);
+    let model = tribo::dynamics::contact::two_rods(l, w, nx, ny).map_err(|e| e.to_string())?;
     let (t0, c0) = (Instant::now(), cpu_seconds());
     let problem = DynamicContact::new(
         &model,

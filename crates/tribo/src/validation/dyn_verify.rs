@@ -501,29 +501,7 @@ pub fn lamb_surface_error(h: f64, dt: f64, t_end: f64) -> Result<LambSurfaceErro
 /// quadratic elements each) meeting obliquely: the pair striker end / target end with
 /// friction `f`, the striker's initial velocity `v` (m/s), the target at rest.
 pub fn oblique_rods(nx: usize, ny: usize, f: f64, v: [f64; 2]) -> Result<DynamicContact> {
-    let m = ElasticMaterial::new(1.0, 0.0)?;
-    let (l, w) = (1.0, 0.25);
-    let striker = Region::new(
-        "striker",
-        m,
-        vec![
-            Segment::line("s_bottom", [-l, 0.0], [0.0, 0.0], nx),
-            Segment::line("s_end", [0.0, 0.0], [0.0, w], ny),
-            Segment::line("s_top", [0.0, w], [-l, w], nx),
-            Segment::line("s_back", [-l, w], [-l, 0.0], ny),
-        ],
-    );
-    let target = Region::new(
-        "target",
-        m,
-        vec![
-            Segment::line("t_bottom", [0.0, 0.0], [l, 0.0], nx),
-            Segment::line("t_back", [l, 0.0], [l, w], ny),
-            Segment::line("t_top", [l, w], [0.0, w], nx),
-            Segment::line("t_end", [0.0, w], [0.0, 0.0], ny),
-        ],
-    );
-    let model = BemModel::new(PlaneCondition::Strain, vec![striker, target]);
+    let model = crate::dynamics::contact::two_rods(1.0, 0.25, nx, ny)?;
     DynamicContact::new(
         &model,
         &[1.0, 1.0],

@@ -82,6 +82,7 @@
 
 mod compliance;
 pub(crate) mod reference;
+pub use reference::two_rods;
 mod step;
 
 #[cfg(test)]

@@ -8,15 +8,15 @@ use crate::operators::bem2d::{BemModel, Region, Segment};
 use crate::solvers::bem2d::contact::ContactPair;
 use crate::solvers::bem2d::BoundaryConditions;
 
-/// Rod impact (docs/theory/DYNAMICS.md sec. 4): two identical strips L = 1 by W = 0.25
-/// (E = 1, nu = 0, rho = 1: c = 1, plane strain), the striker on x in [-L, 0] with velocity
-/// `v0` along +x, the target on [0, L] at rest, touching at x = 0 (frictionless pair
-/// striker end / target end); `nx` x `ny` quadratic elements along and across each; every
-/// face free. Exact: contact stress rho c v0 / 2, duration 2 L / c, then striker at rest
-/// and target at v0.
-pub(crate) fn rod_impact_model(nx: usize, ny: usize, v0: f64) -> Result<DynamicContact> {
+/// The two strips of the impact models (docs/theory/DYNAMICS.md sec. 4), plane strain,
+/// E = 1 Pa, nu = 0: the striker on x in [-`length`, 0] (segments `s_bottom`, `s_end` at
+/// x = 0, `s_top`, `s_back`) and the target on [0, `length`] (`t_bottom`, `t_back`, `t_top`,
+/// `t_end` at x = 0), both `width` high (m), touching along x = 0; `nx` x `ny` quadratic
+/// elements along and across each. Used by the tests, the `tribo validate` rows and the
+/// impact benchmark.
+pub fn two_rods(length: f64, width: f64, nx: usize, ny: usize) -> Result<BemModel> {
     let m = ElasticMaterial::new(1.0, 0.0)?;
-    let (l, w) = (1.0, 0.25);
+    let (l, w) = (length, width);
     let striker = Region::new(
         "striker",
         m,
@@ -37,7 +37,17 @@ pub(crate) fn rod_impact_model(nx: usize, ny: usize, v0: f64) -> Result<DynamicC
             Segment::line("t_end", [0.0, w], [0.0, 0.0], ny),
         ],
     );
-    let model = BemModel::new(PlaneCondition::Strain, vec![striker, target]);
+    Ok(BemModel::new(PlaneCondition::Strain, vec![striker, target]))
+}
+
+/// Rod impact (docs/theory/DYNAMICS.md sec. 4): two identical strips L = 1 by W = 0.25
+/// (E = 1, nu = 0, rho = 1: c = 1, plane strain), the striker on x in [-L, 0] with velocity
+/// `v0` along +x, the target on [0, L] at rest, touching at x = 0 (frictionless pair
+/// striker end / target end); `nx` x `ny` quadratic elements along and across each; every
+/// face free. Exact: contact stress rho c v0 / 2, duration 2 L / c, then striker at rest
+/// and target at v0.
+pub(crate) fn rod_impact_model(nx: usize, ny: usize, v0: f64) -> Result<DynamicContact> {
+    let model = two_rods(1.0, 0.25, nx, ny)?;
     DynamicContact::new(
         &model,
         &[1.0, 1.0],
