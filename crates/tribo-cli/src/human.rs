@@ -5,7 +5,6 @@
 use std::fmt::Write;
 use std::path::Path;
 use tribo::validation::ValidationRow;
-use tribo_case::bem::case::dynamics::Method;
 use tribo_case::bem::summary::BemSummary;
 use tribo_case::fatigue::{DiagramReport, FitReport, DIAGRAM_FILES, FIT_FILES};
 use tribo_case::summary::{
@@ -389,26 +388,22 @@ fn bem_damage(s: &mut String, d: &tribo_case::bem::summary::DamageSummary) {
     }
 }
 
-/// The method as the case writes it (`bdf2`, `radau_iia_2`, `radau_iia_3`).
-pub fn method_name(m: Method) -> &'static str {
-    match m {
-        Method::Bdf2 => "bdf2",
-        Method::RadauIia2 => "radau_iia_2",
-        Method::RadauIia3 => "radau_iia_3",
-    }
-}
-
 /// The lines of a dynamic run: the time grid, each probe's peaks against its static value,
 /// the damage over time and the input work.
 fn bem_dynamics(s: &mut String, d: &tribo_case::bem::summary::DynamicsSummary) {
+    let realisation = if d.contact.is_some() {
+        "marching with contact; then"
+    } else {
+        "all steps at once:"
+    };
     let _ = writeln!(
         s,
-        "  dynamics: {} steps of {} s to {} s ({}, all steps at once: {} Laplace-domain \
-         solves in {:.2} s)",
+        "  dynamics: {} steps of {} s to {} s ({}, {realisation} {} Laplace-domain solves; \
+         {:.2} s)",
         d.steps,
         num(d.time_step_s),
         num(d.duration_s),
-        method_name(d.method),
+        d.method.name(),
         d.laplace_solves,
         d.convolution_s
     );

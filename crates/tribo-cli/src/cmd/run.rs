@@ -222,7 +222,7 @@ fn dynamics_cost(case: &BemCase, d: &DynamicsSpec) -> CliResult<String> {
         d.steps,
         d.time_step,
         d.duration,
-        crate::human::method_name(d.method),
+        d.method.name(),
         l / 2 + 1,
         d.probes.len(),
         if d.field_steps.is_empty() && case.damage.is_none() {
