@@ -1,7 +1,7 @@
 //! The dynamic contact case end to end on typed results (`[dynamics]` with `[[contact]]`,
-//! issue 13): the rod impact example against the characteristics solution (docs/theory/
-//! DYNAMICS.md sec. 4) and a slowly ramped frictional block against the static contact
-//! solution of the same case.
+//! issue 13): the rod impact example against the characteristics solution
+//! (docs/theory/DYNAMICS.md sec. 4) and a slowly ramped frictional block against the static
+//! contact solution of the same case.
 // Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
