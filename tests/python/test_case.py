@@ -19,17 +19,19 @@ needs_tomllib = pytest.mark.skipif(tomllib is None, reason="tomllib needs Python
 # Keys of wall times (they differ from run to run; bench/compare_outputs.sh drops the same, and
 # the dynamic cases' dynamics.convolution_s).
 TIMING_KEYS = {"time_s", "timings", "solve_s", "setup_s", "steps_s", "fields_s", "damage_s",
-               "comparison_s", "total_s", "seconds", "convolution_s"}
+               "comparison_s", "total_s", "seconds", "convolution_s", "march_s", "recovery_s"}
 
 ROOT = Path(__file__).resolve().parents[2]
 GMSH_CASE = ROOT / "crates" / "tribo-cli" / "examples" / "gmsh" / "hertz-cylinder.toml"
 
 # The embedded examples by cost (measured with the CLI on a shared 2-core machine): the cheap
 # ones (under ~3 s each) always; the slow ones (the Sec. 6 damage study 200 s, the Sec. 7
-# clamp 28 s, the dynamic cavity and column minutes) with TRIBO_PY_SLOW=1.
+# clamp 28 s, the dynamic cavity and column minutes, the dynamic contact rod impact 8 s and
+# clamp-knife-base impact 40 s) with TRIBO_PY_SLOW=1.
 CHEAP = ["roller-shaft", "roller-shaft-normal", "roller-shaft-approach", "roller-shaft-bending",
          "sphere-on-flat", "steel-on-cast-iron", "crowned-roller", "height-map"]
-SLOW = ["roller-shaft-sec6", "clamp-knife-base", "cavity", "column"]
+SLOW = ["roller-shaft-sec6", "clamp-knife-base", "cavity", "column", "rod-impact",
+        "clamp-knife-base-impact"]
 NOT_RUN = ["fatigue-diagram"]  # the input of `tribo fatigue diagram`, not of `tribo run`
 RUN_EXAMPLES = CHEAP + (SLOW if os.environ.get("TRIBO_PY_SLOW") == "1" else [])
 
