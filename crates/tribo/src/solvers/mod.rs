@@ -105,8 +105,8 @@ pub(crate) fn nan_max(a: f64, b: f64) -> f64 {
 mod near_gross_slip;
 
 pub use normal::{
-    solve_normal, NormalContactParams, NormalContactProblem, NormalContactSolution, NormalLoading,
-    NormalMethod,
+    solve_normal, solve_normal_from, NormalContactParams, NormalContactProblem,
+    NormalContactSolution, NormalLoading, NormalMethod,
 };
 
 /// The rule shared by the iterative solvers' params: a tolerance finite in (0, 1) and at

@@ -402,7 +402,44 @@ pub fn solve_normal(
     operator: Option<&ConvolutionOperator>,
     observer: Option<&mut dyn FnMut(usize, f64)>,
 ) -> SolveResult<NormalContactSolution> {
+    solve_normal_from(problem, params, operator, None, observer)
+}
+
+/// [`solve_normal`] started from `initial_pressure` (Pa, one value per element; a warm
+/// start, e.g. the solution of a nearby load or surface): the conjugate gradient's first
+/// iterate is that pressure, negative values set to 0, and under force control scaled to the
+/// load (Polonsky & Keer 1999 rescale every iterate to it; a guess carrying no load, or
+/// `None`, starts from their uniform pressure). The solution is the same to the tolerance;
+/// a guess near it needs fewer iterations. The dense active set ignores the guess.
+///
+/// Errors: those of [`solve_normal`]; [`Error::InvalidParameter`] (`initial_pressure`) for
+/// a guess of the wrong length or with a non-finite value.
+pub fn solve_normal_from(
+    problem: &NormalContactProblem<'_>,
+    params: &NormalContactParams,
+    operator: Option<&ConvolutionOperator>,
+    initial_pressure: Option<&[f64]>,
+    observer: Option<&mut dyn FnMut(usize, f64)>,
+) -> SolveResult<NormalContactSolution> {
     validate_problem(problem, params)?;
+    if let Some(p) = initial_pressure {
+        if p.len() != problem.grid.len() {
+            return Err(Error::invalid(
+                "initial_pressure",
+                format!("{} values", p.len()),
+                format!("must hold one value per element ({})", problem.grid.len()),
+            )
+            .into());
+        }
+        if let Some(i) = p.iter().position(|v| !v.is_finite()) {
+            return Err(Error::invalid(
+                "initial_pressure",
+                p[i],
+                format!("must be finite (element {i}, Pa)"),
+            )
+            .into());
+        }
+    }
     let mut silent = |_: usize, _: f64| {};
     let observer = observer.unwrap_or(&mut silent);
     match params.method {
@@ -425,6 +462,7 @@ pub fn solve_normal(
                 &mut workspace,
                 problem.initial_gap,
                 problem.loading,
+                initial_pressure,
                 params,
                 observer,
             )
@@ -481,6 +519,7 @@ fn conjugate_gradient(
     workspace: &mut ConvolutionWorkspace,
     initial_gap: &[f64],
     loading: NormalLoading,
+    initial_pressure: Option<&[f64]>,
     params: &NormalContactParams,
     observer: &mut dyn FnMut(usize, f64),
 ) -> SolveResult<NormalContactSolution> {
@@ -490,11 +529,21 @@ fn conjugate_gradient(
     let diagonal = operator.diagonal();
     let h = initial_gap;
 
-    let mut pressure = match loading {
+    // A warm start: the caller's guess, clipped to p >= 0 (and scaled to the load below).
+    let guess: Option<Vec<f64>> = initial_pressure
+        .map(|p| p.iter().map(|v| v.max(0.0)).collect::<Vec<f64>>())
+        .filter(|p| p.iter().any(|&v| v > 0.0));
+    let mut pressure = match (loading, guess) {
+        (NormalLoading::Force(force), Some(mut p)) => {
+            let scale = force / (area * p.iter().sum::<f64>());
+            p.iter_mut().for_each(|v| *v *= scale);
+            p
+        }
+        (NormalLoading::Approach(_), Some(p)) => p,
         // Uniform pressure over the window carrying the load (Polonsky & Keer's start).
-        NormalLoading::Force(force) => vec![force / (n as f64 * area); n],
+        (NormalLoading::Force(force), None) => vec![force / (n as f64 * area); n],
         // Jacobi guess: the pressure that closes each element's interpenetration alone.
-        NormalLoading::Approach(delta) => h
+        (NormalLoading::Approach(delta), None) => h
             .iter()
             .map(|&hi| ((delta - hi) / diagonal).max(0.0))
             .collect(),
