@@ -18,9 +18,15 @@ Quick start::
                              composite_modulus=115e9, load=100.0)
     r.pressure.max(), r.residual
 
+    field = tribo.stress_field(r, E=210e9, nu=0.3, x=x, y=[0.0], z=x[x >= 0])
+    field["von_mises"]                      # an xarray.Dataset (dims z, y, x; units in attrs)
+    tribo.damage(field, {"sigma_int": 0.5e9})["sigma_int"].volume   # V (22), m^3
+
     res = tribo.run(tribo.Case.example("sphere-on-flat"))
     res.summary["contact"]["max_pressure"]  # the numbers of `tribo run --json`
     res.write("out")                        # the CLI's files
+
+    tribo.fatigue.fit(df)                   # pyLife's Woehler keys k_1, ND, SD, TN, TS
 
 Errors: :class:`InputError` (a ``ValueError``; ``.field``, ``.value``, ``.rule``) for bad
 input, :class:`ConvergenceError` (``.residual``, ``.iterations``, ``.tolerance``) for a solver
@@ -42,12 +48,16 @@ import numpy as np
 
 from . import _tribo
 from ._tribo import ConvergenceError, HertzContact, InputError, SolverError
+from ._field import Damage, damage, energy_criterion, stress_field, _to_field
+from . import fatigue
 
 __version__: str = _tribo.__version__
 
 __all__ = [
     "Case",
     "ConvergenceError",
+    "CoupledContact",
+    "Damage",
     "HertzContact",
     "InputError",
     "NormalContact",
@@ -56,10 +66,15 @@ __all__ = [
     "SolverError",
     "TangentialContact",
     "composite_modulus",
+    "coupled_contact",
+    "damage",
+    "energy_criterion",
     "examples",
+    "fatigue",
     "hertz",
     "normal_contact",
     "run",
+    "stress_field",
     "tangential_contact",
 ]
 
@@ -175,6 +190,8 @@ class NormalContact:
     """Final complementarity residual, relative to the maximum pressure (dimensionless)."""
     solve_time_s: float
     """Wall time of the solve inside the library, s (the rest of the call is Python's)."""
+    size: Optional[Tuple[float, float]] = None
+    """The window (Lx, Ly), m (what :func:`stress_field` needs with the pressure)."""
 
     @property
     def max_pressure(self) -> float:
@@ -197,6 +214,7 @@ def normal_contact(
     tolerance: float = 1e-10,
     max_iterations: int = 10_000,
     method: str = "cg",
+    initial_pressure: Any = None,
 ) -> NormalContact:
     """Normal contact of two elastic half-spaces with unknown contact area on a grid.
 
@@ -219,22 +237,41 @@ def normal_contact(
     control). ``tolerance``: on the complementarity residual relative to the maximum
     pressure, in (0, 1). ``max_iterations`` >= 1.
 
+    ``initial_pressure``: a warm start (Pa, shape (ny, nx); or a :class:`NormalContact`,
+    e.g. the solution at a nearby load): the conjugate gradient starts from it (negative
+    values set to 0; under force control scaled to the load). Same solution to the
+    tolerance, fewer iterations when the guess is near it; ``method="active_set"`` ignores it.
+
     Raises :class:`InputError` for bad input (also when the contact reaches the window's
     border or there is no contact), :class:`ConvergenceError` (with ``.residual``) at the
     iteration limit. The GIL is released during the solve.
     """
     g = _grid_array("gap", gap)
+    size = (float(size[0]), float(size[1]))
     d = _tribo.normal_contact(
         g,
-        (float(size[0]), float(size[1])),
+        size,
         float(composite_modulus),
         None if load is None else float(load),
         None if approach is None else float(approach),
         float(tolerance),
         int(max_iterations),
         str(method),
+        _guess(initial_pressure, g.shape),
     )
-    return NormalContact(**d)
+    return NormalContact(**d, size=size)
+
+
+def _guess(initial_pressure: Any, shape: Tuple[int, ...]) -> Optional[np.ndarray]:
+    """A warm start's pressure (an array or a :class:`NormalContact`) as C-contiguous
+    float64 of the gap's shape, or None."""
+    if initial_pressure is None:
+        return None
+    p = _grid_array("initial_pressure", getattr(initial_pressure, "pressure", initial_pressure))
+    if p.shape != tuple(shape):
+        raise _input_error("initial_pressure",
+                           f"the gap's shape {tuple(shape)} is needed, got {p.shape}", p.shape)
+    return p
 
 
 class NormalSolver:
@@ -271,15 +308,24 @@ class NormalSolver:
         )
 
     def solve(
-        self, gap: Any, *, load: Optional[float] = None, approach: Optional[float] = None
+        self,
+        gap: Any,
+        *,
+        load: Optional[float] = None,
+        approach: Optional[float] = None,
+        initial_pressure: Any = None,
     ) -> NormalContact:
         """One solve: the gap (m, shape (ny, nx); converted as in :func:`normal_contact`)
-        under exactly one of ``load`` (N) and ``approach`` (m)."""
+        under exactly one of ``load`` (N) and ``approach`` (m), from ``initial_pressure``
+        (Pa or a :class:`NormalContact`: a warm start, as in :func:`normal_contact`)."""
         g = _grid_array("gap", gap)
         d = self._inner.solve(
-            g, None if load is None else float(load), None if approach is None else float(approach)
+            g,
+            None if load is None else float(load),
+            None if approach is None else float(approach),
+            _guess(initial_pressure, g.shape),
         )
-        return NormalContact(**d)
+        return NormalContact(**d, size=self.size)
 
     def load_path(
         self,
@@ -287,18 +333,24 @@ class NormalSolver:
         *,
         loads: Optional[Sequence[float]] = None,
         approaches: Optional[Sequence[float]] = None,
+        warm_start: bool = True,
     ) -> Iterator[NormalContact]:
         """The solutions along a load sequence, one at a time (a generator): exactly one of
-        ``loads`` (N) and ``approaches`` (m). The gap is converted once."""
+        ``loads`` (N) and ``approaches`` (m). The gap is converted once; with ``warm_start``
+        each solve starts from the previous solution's pressure (same solutions to the
+        tolerance, fewer iterations)."""
         if (loads is None) == (approaches is None):
             raise _input_error("loads", "give exactly one of loads (N) and approaches (m)")
         g = _grid_array("gap", gap)
-        if loads is not None:
-            for f in loads:
-                yield NormalContact(**self._inner.solve(g, float(f), None))
-        else:
-            for d in approaches:  # type: ignore[union-attr]
-                yield NormalContact(**self._inner.solve(g, None, float(d)))
+        previous = None
+        steps = [(float(f), None) for f in loads] if loads is not None else [
+            (None, float(d)) for d in approaches  # type: ignore[union-attr]
+        ]
+        for f, d in steps:
+            r = NormalContact(**self._inner.solve(g, f, d, previous), size=self.size)
+            if warm_start:
+                previous = r.pressure
+            yield r
 
     def __repr__(self) -> str:
         return f"NormalSolver(shape={self.shape}, size={self.size})"
@@ -351,6 +403,7 @@ def tangential_contact(
     angle: float = 0.0,
     tolerance: float = 1e-10,
     max_iterations: int = 10_000,
+    direction: str = "parallel",
 ) -> TangentialContact:
     """Tangential contact with Coulomb friction (the paper's (8)) under a given pressure.
 
@@ -364,9 +417,16 @@ def tangential_contact(
     Young's moduli (Pa) and Poisson's ratios of both bodies. The normal-tangential coupling
     of dissimilar materials is left out here (a case with ``[contact] friction`` includes it).
 
+    ``direction``: ``"parallel"`` (the traction parallel to the load, as above) or ``"free"``
+    (the traction's direction free: the full 2D problem of Coulomb friction, the slip
+    opposite to the traction in each slipping element; the stick zone and the traction
+    then differ from Cattaneo-Mindlin's by the Poisson-ratio effect, docs/theory/HALFSPACE.md).
+
     Raises :class:`InputError` (e.g. ``tangential_load`` at or above f F_N) and
     :class:`ConvergenceError` as :func:`normal_contact` does. The GIL is released.
     """
+    if direction not in ("parallel", "free"):
+        raise _input_error("direction", 'one of "parallel", "free"', direction)
     p = _grid_array("pressure", pressure)
     d = _tribo.tangential_contact(
         p,
@@ -378,8 +438,88 @@ def tangential_contact(
         float(angle),
         float(tolerance),
         int(max_iterations),
+        direction == "free",
     )
     return TangentialContact(**d)
+
+
+@dataclass(frozen=True)
+class CoupledContact:
+    """The solution of the coupled normal-tangential problem of dissimilar bodies."""
+
+    normal: NormalContact
+    """The normal solution of the last pass (the pressure changed by the coupling)."""
+    tangential: TangentialContact
+    """The tangential solution of the last pass."""
+    passes: int
+    """Alternation passes done (1 where the coupling vanishes: similar materials)."""
+    change: float
+    """Largest relative change of p (to p_max) and q (to f p_max) in the last pass."""
+    beta: float
+    """Dundurs' beta of the pair (dimensionless)."""
+    solve_time_s: float
+    """Wall time of the solve inside the library, s."""
+
+
+def coupled_contact(
+    gap: Any,
+    *,
+    size: Tuple[float, float],
+    friction: float,
+    E1: float,
+    nu1: float,
+    E2: float,
+    nu2: float,
+    load: Optional[float] = None,
+    approach: Optional[float] = None,
+    tangential_load: Optional[float] = None,
+    sliding: bool = False,
+    angle: float = 0.0,
+    direction: str = "parallel",
+    tolerance: float = 1e-8,
+    max_passes: int = 100,
+) -> CoupledContact:
+    """Normal and tangential contact of dissimilar bodies with the coupling between them
+    (Johnson 1985 sec. 5.4; docs/theory/HALFSPACE.md 1.1): the pressure moves the surfaces
+    tangentially and the traction normally in proportion to Dundurs' beta, so both problems
+    are solved by alternation (the solver of a case with ``[contact] friction`` and two
+    materials) until the largest change of p (relative to p_max) and of q (relative to
+    f p_max) in a pass is below ``tolerance`` (> 0; each pass contracts by about |beta|).
+
+    ``gap`` (m, shape (ny, nx)) and ``size`` as in :func:`normal_contact`; the materials
+    ``E1``, ``E2`` (Pa), ``nu1``, ``nu2``; exactly one of ``load`` (N) and ``approach`` (m);
+    exactly one of ``tangential_load`` (N, partial slip) and ``sliding=True`` along
+    ``angle`` (rad from x); ``direction``: ``"parallel"`` or ``"free"`` as in
+    :func:`tangential_contact`; ``friction`` f > 0. Raises :class:`InputError`, and
+    :class:`ConvergenceError` (``.residual`` the last change) at ``max_passes``. The GIL is
+    released.
+    """
+    if direction not in ("parallel", "free"):
+        raise _input_error("direction", 'one of "parallel", "free"', direction)
+    g = _grid_array("gap", gap)
+    size = (float(size[0]), float(size[1]))
+    d = _tribo.coupled_contact(
+        g,
+        size,
+        (float(E1), float(nu1), float(E2), float(nu2)),
+        float(friction),
+        None if load is None else float(load),
+        None if approach is None else float(approach),
+        None if tangential_load is None else float(tangential_load),
+        bool(sliding),
+        float(angle),
+        direction == "free",
+        float(tolerance),
+        int(max_passes),
+    )
+    return CoupledContact(
+        normal=NormalContact(**d["normal"], solve_time_s=d["solve_time_s"], size=size),
+        tangential=TangentialContact(**d["tangential"], solve_time_s=d["solve_time_s"]),
+        passes=d["passes"],
+        change=d["change"],
+        beta=d["beta"],
+        solve_time_s=d["solve_time_s"],
+    )
 
 
 def _plain(obj: Any) -> Any:
@@ -490,6 +630,16 @@ class Results:
         (ny, nx), ``x``, ``y`` (m), and with friction ``traction_x``, ``traction_y`` (Pa) and
         the ``stick`` mask; the scalars of the normal solution as well. None for a 2D case."""
         return self._inner.fields()
+
+    def field(self, as_xarray: Optional[bool] = None) -> Any:
+        """The stress field of a half-space run with ``[field]``, as :func:`stress_field`
+        returns it (an ``xarray.Dataset``, or a dict without xarray or with
+        ``as_xarray=False``): the arrays of the CLI's ``stress.vti`` bit for bit, with the
+        damage criteria's ``psi_<name>`` where the case has ``[damage]``; the case's
+        evaluation method, edge treatment, body, E and nu (and the bulk stress superposed)
+        in the attributes. None for a 2D case or a case without ``[field]``."""
+        d = self._inner.field()
+        return None if d is None else _to_field(d, as_xarray)
 
     def write(self, directory: Union[str, "os.PathLike[str]"]) -> List[str]:
         """Writes the files ``tribo run -o directory`` writes (CSV, VTK, PNG, summary.json)

@@ -84,12 +84,14 @@ class NormalSolver:
         gap: npt.NDArray[np.float64],
         load: Optional[float] = ...,
         approach: Optional[float] = ...,
+        initial_pressure: Optional[npt.NDArray[np.float64]] = ...,
     ) -> Dict[str, Any]: ...
 
 class Results:
     def summary_json(self) -> str: ...
     def write(self, directory: str) -> List[str]: ...
     def fields(self) -> Optional[Dict[str, Any]]: ...
+    def field(self) -> Optional[Dict[str, Any]]: ...
 
 def hertz(
     radii1: Sequence[float],
@@ -109,6 +111,7 @@ def normal_contact(
     tolerance: float = ...,
     max_iterations: int = ...,
     method: str = ...,
+    initial_pressure: Optional[npt.NDArray[np.float64]] = ...,
 ) -> Dict[str, Any]: ...
 def tangential_contact(
     pressure: npt.NDArray[np.float64],
@@ -120,6 +123,62 @@ def tangential_contact(
     angle: float = ...,
     tolerance: float = ...,
     max_iterations: int = ...,
+    free: bool = ...,
 ) -> Dict[str, Any]: ...
+def coupled_contact(
+    gap: npt.NDArray[np.float64],
+    size: Tuple[float, float],
+    materials: Tuple[float, float, float, float],
+    friction: float,
+    load: Optional[float] = ...,
+    approach: Optional[float] = ...,
+    tangential_load: Optional[float] = ...,
+    sliding: bool = ...,
+    angle: float = ...,
+    free: bool = ...,
+    tolerance: float = ...,
+    max_passes: int = ...,
+) -> Dict[str, Any]: ...
+def stress_field(
+    pressure: npt.NDArray[np.float64],
+    size: Tuple[float, float],
+    material: Tuple[float, float],
+    z: Sequence[float],
+    x: Optional[Sequence[float]] = ...,
+    y: Optional[Sequence[float]] = ...,
+    traction_x: Optional[npt.NDArray[np.float64]] = ...,
+    traction_y: Optional[npt.NDArray[np.float64]] = ...,
+    method: str = ...,
+    edge_refinement: int = ...,
+) -> Dict[str, Any]: ...
+def damage(
+    components: Sequence[npt.NDArray[np.float64]],
+    x: Sequence[float],
+    y: Sequence[float],
+    z: Sequence[float],
+    material: Tuple[float, float],
+    name: str,
+    limit: float,
+) -> Tuple[npt.NDArray[np.float64], str, str]: ...
+def energy_damage(
+    components: Sequence[npt.NDArray[np.float64]],
+    x: Sequence[float],
+    y: Sequence[float],
+    z: Sequence[float],
+    material: Tuple[float, float],
+    u0: float,
+    coefficients: Tuple[float, float, float, float, float],
+    temperature: Sequence[float],
+) -> Tuple[npt.NDArray[np.float64], str]: ...
+def fatigue_fit(
+    load: Sequence[float],
+    cycles: Sequence[float],
+    runout: Sequence[bool],
+    kind_name: str = ...,
+    measure_name: Optional[str] = ...,
+    confidence: float = ...,
+    source: str = ...,
+) -> str: ...
+def fatigue_diagram(data: Any, base_dir: Optional[str] = ...) -> str: ...
 def run(case: Case) -> Results: ...
 def example_names() -> List[str]: ...

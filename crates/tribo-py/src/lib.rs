@@ -24,15 +24,20 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::path::PathBuf;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
 use tribo::operators::ConvolutionOperator;
+use tribo::solvers::coupled::{solve_coupled, CoupledParams, CoupledProblem, TangentialModel};
 use tribo::solvers::normal::{
-    normal_compliance_operator, solve_normal, NormalContactParams, NormalContactProblem,
+    normal_compliance_operator, solve_normal_from, NormalContactParams, NormalContactProblem,
     NormalContactSolution, NormalLoading, NormalMethod,
 };
 use tribo::solvers::tangential::{
     solve_tangential, TangentialLoading, TangentialParams, TangentialProblem, TangentialSolution,
 };
+use tribo::solvers::tangential_free::solve_tangential_free;
 use tribo::SurfaceGrid;
 use tribo_case::{CaseError, Silent};
+
+mod fatigue;
+mod field;
 
 create_exception!(
     _tribo,
@@ -56,7 +61,13 @@ create_exception!(
 );
 
 /// An [`InputError`] with its attributes set.
-fn input_error(py: Python<'_>, message: String, field: &str, value: &str, rule: &str) -> PyErr {
+pub(crate) fn input_error(
+    py: Python<'_>,
+    message: String,
+    field: &str,
+    value: &str,
+    rule: &str,
+) -> PyErr {
     let err = InputError::new_err(message);
     let value_obj = err.value(py);
     // Setting attributes on a fresh exception instance cannot fail but for memory.
@@ -67,7 +78,7 @@ fn input_error(py: Python<'_>, message: String, field: &str, value: &str, rule: 
 }
 
 /// The exception of a library error.
-fn library_error(py: Python<'_>, e: &tribo::Error) -> PyErr {
+pub(crate) fn library_error(py: Python<'_>, e: &tribo::Error) -> PyErr {
     match e {
         tribo::Error::InvalidParameter { field, value, rule } => {
             input_error(py, e.to_string(), field, value, rule)
@@ -110,7 +121,7 @@ fn clone_kind(e: &tribo::Error) -> tribo::Error {
 }
 
 /// The exception of a case error (the field-named rule, the parser's message, a file).
-fn case_error(py: Python<'_>, e: &CaseError) -> PyErr {
+pub(crate) fn case_error(py: Python<'_>, e: &CaseError) -> PyErr {
     match e {
         CaseError::Library(inner) => library_error(py, inner),
         CaseError::Field { field, value, rule } => {
@@ -380,6 +391,7 @@ fn normal_solve<'py>(
     loading: NormalLoading,
     params: &NormalContactParams,
     operator: Option<&ConvolutionOperator>,
+    initial_pressure: Option<&PyReadonlyArray2<'py, f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let shape = gap.shape();
     if shape != [grid.ny(), grid.nx()] {
@@ -404,6 +416,18 @@ fn normal_solve<'py>(
             "C-contiguous float64 of shape (ny, nx)",
         )
     })?;
+    let guess = match initial_pressure {
+        Some(p) => Some(p.as_slice().map_err(|_| {
+            input_error(
+                py,
+                "initial_pressure: the array must be C-contiguous".into(),
+                "initial_pressure",
+                "non-contiguous array",
+                "C-contiguous float64 of shape (ny, nx)",
+            )
+        })?),
+        None => None,
+    };
     let problem = NormalContactProblem {
         grid,
         initial_gap,
@@ -414,7 +438,7 @@ fn normal_solve<'py>(
     // write to the array from another thread meanwhile (documented in the Python layer).
     let (solved, seconds) = py.detach(|| {
         let start = std::time::Instant::now();
-        let solved = solve_normal(&problem, params, operator, None);
+        let solved = solve_normal_from(&problem, params, operator, guess, None);
         (solved, start.elapsed().as_secs_f64())
     });
     match solved {
@@ -433,7 +457,7 @@ fn normal_solve<'py>(
 /// `size = (Lx, Ly)` (m) centred on the origin; the composite modulus (Pa); exactly one of
 /// `load` (N) and `approach` (m). Returns a dict (see python/tribo/__init__.py).
 #[pyfunction]
-#[pyo3(signature = (gap, size, composite_modulus, load=None, approach=None, tolerance=1e-10, max_iterations=10_000, method="cg"))]
+#[pyo3(signature = (gap, size, composite_modulus, load=None, approach=None, tolerance=1e-10, max_iterations=10_000, method="cg", initial_pressure=None))]
 #[allow(clippy::too_many_arguments)]
 fn normal_contact<'py>(
     py: Python<'py>,
@@ -445,13 +469,23 @@ fn normal_contact<'py>(
     tolerance: f64,
     max_iterations: usize,
     method: &str,
+    initial_pressure: Option<PyReadonlyArray2<'py, f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let shape = gap.shape().to_vec();
     let grid = SurfaceGrid::centred(shape[1], shape[0], 0.5 * size.0, 0.5 * size.1)
         .map_err(|e| library_error(py, &e))?;
     let loading = normal_loading(py, load, approach)?;
     let params = normal_params(py, tolerance, max_iterations, method)?;
-    normal_solve(py, &grid, &gap, composite_modulus, loading, &params, None)
+    normal_solve(
+        py,
+        &grid,
+        &gap,
+        composite_modulus,
+        loading,
+        &params,
+        None,
+        initial_pressure.as_ref(),
+    )
 }
 
 /// A normal contact solver for many solves on one grid and one composite modulus: the FFT
@@ -502,14 +536,16 @@ impl PyNormalSolver {
     }
 
     /// One solve of the gap (m, shape (ny, nx), C-contiguous float64) under exactly one of
-    /// `load` (N) and `approach` (m); a dict as `normal_contact` returns.
-    #[pyo3(signature = (gap, load=None, approach=None))]
+    /// `load` (N) and `approach` (m), from `initial_pressure` (Pa, a warm start) if given; a
+    /// dict as `normal_contact` returns.
+    #[pyo3(signature = (gap, load=None, approach=None, initial_pressure=None))]
     fn solve<'py>(
         &self,
         py: Python<'py>,
         gap: PyReadonlyArray2<'py, f64>,
         load: Option<f64>,
         approach: Option<f64>,
+        initial_pressure: Option<PyReadonlyArray2<'py, f64>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let loading = normal_loading(py, load, approach)?;
         normal_solve(
@@ -520,6 +556,7 @@ impl PyNormalSolver {
             loading,
             &self.params,
             Some(&self.operator),
+            initial_pressure.as_ref(),
         )
     }
 }
@@ -551,9 +588,11 @@ fn tangential_dict<'py>(
 /// parallel to the load (Cattaneo-Mindlin's assumption; the normal-tangential coupling of
 /// dissimilar materials left out): partial slip under the tangential force `tangential_load`
 /// (N) along `angle` (rad from x), or full sliding (q = f p along `angle`) with `sliding`.
-/// Materials: Young's moduli (Pa) and Poisson's ratios of both bodies.
+/// Materials: Young's moduli (Pa) and Poisson's ratios of both bodies. `free`: the traction
+/// direction free (the full 2D problem, [`solve_tangential_free`]) instead of parallel to the
+/// load.
 #[pyfunction]
-#[pyo3(signature = (pressure, size, friction, materials, tangential_load=None, sliding=false, angle=0.0, tolerance=1e-10, max_iterations=10_000))]
+#[pyo3(signature = (pressure, size, friction, materials, tangential_load=None, sliding=false, angle=0.0, tolerance=1e-10, max_iterations=10_000, free=false))]
 #[allow(clippy::too_many_arguments)]
 fn tangential_contact<'py>(
     py: Python<'py>,
@@ -566,6 +605,7 @@ fn tangential_contact<'py>(
     angle: f64,
     tolerance: f64,
     max_iterations: usize,
+    free: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let lib = |e: &tribo::Error| library_error(py, e);
     let shape = pressure.shape().to_vec();
@@ -584,22 +624,7 @@ fn tangential_contact<'py>(
         tribo::ElasticMaterial::named("body1", materials.0, materials.1).map_err(|e| lib(&e))?;
     let body2 =
         tribo::ElasticMaterial::named("body2", materials.2, materials.3).map_err(|e| lib(&e))?;
-    let loading = match (tangential_load, sliding) {
-        (Some(q), false) => TangentialLoading::Force {
-            magnitude: q,
-            angle,
-        },
-        (None, true) => TangentialLoading::Sliding { angle },
-        _ => {
-            return Err(input_error(
-                py,
-                "give exactly one of tangential_load (N) and sliding=True".into(),
-                "tangential_load",
-                &format!("{tangential_load:?}"),
-                "exactly one of tangential_load and sliding",
-            ))
-        }
-    };
+    let loading = tangential_loading(py, tangential_load, sliding, angle)?;
     let problem = TangentialProblem {
         grid: &grid,
         pressure: p,
@@ -615,7 +640,11 @@ fn tangential_contact<'py>(
     };
     let (solved, seconds) = py.detach(|| {
         let start = std::time::Instant::now();
-        let solved = solve_tangential(&problem, &params, None, None);
+        let solved = if free {
+            solve_tangential_free(&problem, &params, None, None)
+        } else {
+            solve_tangential(&problem, &params, None, None)
+        };
         (solved, start.elapsed().as_secs_f64())
     });
     match solved {
@@ -628,13 +657,109 @@ fn tangential_contact<'py>(
     }
 }
 
+/// The tangential loading from its arguments: exactly one of a force (N) and sliding.
+fn tangential_loading(
+    py: Python<'_>,
+    tangential_load: Option<f64>,
+    sliding: bool,
+    angle: f64,
+) -> PyResult<TangentialLoading> {
+    match (tangential_load, sliding) {
+        (Some(q), false) => Ok(TangentialLoading::Force {
+            magnitude: q,
+            angle,
+        }),
+        (None, true) => Ok(TangentialLoading::Sliding { angle }),
+        _ => Err(input_error(
+            py,
+            "give exactly one of tangential_load (N) and sliding=True".into(),
+            "tangential_load",
+            &format!("{tangential_load:?}"),
+            "exactly one of tangential_load and sliding",
+        )),
+    }
+}
+
+/// Normal and tangential contact of dissimilar bodies with their coupling (Johnson 1985
+/// sec. 5.4; docs/theory/HALFSPACE.md 1.1), solved by alternation ([`solve_coupled`]): the
+/// gap (m, shape (ny, nx), C-contiguous float64) on the window `size` (m), the materials
+/// (E1, nu1, E2, nu2), friction f, exactly one of `load` (N) and `approach` (m), exactly one
+/// of `tangential_load` (N) and `sliding` along `angle` (rad), the traction parallel to the
+/// load or (`free`) free in direction. A dict: `normal` and `tangential` (the dicts of
+/// `normal_contact` and `tangential_contact`), `passes`, `change` and Dundurs' `beta`.
+#[pyfunction]
+#[pyo3(signature = (gap, size, materials, friction, load=None, approach=None, tangential_load=None, sliding=false, angle=0.0, free=false, tolerance=1e-8, max_passes=100))]
+#[allow(clippy::too_many_arguments)]
+fn coupled_contact<'py>(
+    py: Python<'py>,
+    gap: PyReadonlyArray2<'py, f64>,
+    size: (f64, f64),
+    materials: (f64, f64, f64, f64),
+    friction: f64,
+    load: Option<f64>,
+    approach: Option<f64>,
+    tangential_load: Option<f64>,
+    sliding: bool,
+    angle: f64,
+    free: bool,
+    tolerance: f64,
+    max_passes: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let lib = |e: &tribo::Error| library_error(py, e);
+    let shape = gap.shape().to_vec();
+    let grid = SurfaceGrid::centred(shape[1], shape[0], 0.5 * size.0, 0.5 * size.1)
+        .map_err(|e| lib(&e))?;
+    let initial_gap = gap.as_slice().map_err(|_| {
+        input_error(
+            py,
+            "gap: the array must be C-contiguous (np.ascontiguousarray)".into(),
+            "gap",
+            "non-contiguous array",
+            "C-contiguous float64 of shape (ny, nx)",
+        )
+    })?;
+    let body1 =
+        tribo::ElasticMaterial::named("body1", materials.0, materials.1).map_err(|e| lib(&e))?;
+    let body2 =
+        tribo::ElasticMaterial::named("body2", materials.2, materials.3).map_err(|e| lib(&e))?;
+    let problem = CoupledProblem {
+        grid: &grid,
+        initial_gap,
+        body1,
+        body2,
+        normal_loading: normal_loading(py, load, approach)?,
+        tangential_loading: tangential_loading(py, tangential_load, sliding, angle)?,
+        friction,
+    };
+    let model = if free {
+        TangentialModel::Free
+    } else {
+        TangentialModel::LoadParallel
+    };
+    let params = CoupledParams::new(tolerance, max_passes, model).map_err(|e| lib(&e))?;
+    let (solved, seconds) = py.detach(|| {
+        let start = std::time::Instant::now();
+        let solved = solve_coupled(&problem, &params, None);
+        (solved, start.elapsed().as_secs_f64())
+    });
+    let s = solved.map_err(|e| lib(&e.kind))?;
+    let d = PyDict::new(py);
+    d.set_item("normal", normal_dict(py, s.normal, &grid)?)?;
+    d.set_item("tangential", tangential_dict(py, s.tangential, &grid)?)?;
+    d.set_item("passes", s.passes)?;
+    d.set_item("change", s.change)?;
+    d.set_item("beta", s.beta)?;
+    d.set_item("solve_time_s", seconds)?;
+    Ok(d)
+}
+
 // ----------------------------------------------------------------------------------------
 // Cases
 // ----------------------------------------------------------------------------------------
 
 /// A TOML value from a Python object (dict, list, tuple, str, bool, int, float); `path`
 /// names it in errors.
-fn to_toml(py: Python<'_>, obj: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
+pub(crate) fn to_toml(py: Python<'_>, obj: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
     let bad = |what: &str| {
         input_error(
             py,
@@ -815,6 +940,32 @@ impl PyResults {
             .map_err(SolverError::new_err)
     }
 
+    /// The stress field of a half-space run with `[field]`: a dict of the named point arrays
+    /// of `stress.vti` (shape (nz, ny, nx); Pa, J/m^3, strains 1), with the damage criteria's
+    /// psi where the case has `[damage]`, the coordinates x, y, z (m) and how the field was
+    /// computed; None without a field.
+    fn field<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let tribo_case::Results::HalfSpace(o) = &self.results else {
+            return Ok(None);
+        };
+        let Some(st) = &o.stress else {
+            return Ok(None);
+        };
+        let d = PyDict::new(py);
+        field::stress_dict(py, st, &d)?;
+        let g = &st.field.grid;
+        let shape = [g.z.len(), g.y.len(), g.x.len()];
+        let psi = PyDict::new(py);
+        if let Some(dmg) = &o.damage {
+            for c in &dmg.criteria {
+                let arr = PyArray1::from_vec(py, c.psi.clone()).reshape(shape)?;
+                psi.set_item(&c.assessment.name, arr)?;
+            }
+        }
+        d.set_item("psi", psi)?;
+        Ok(Some(d))
+    }
+
     /// Writes the files `tribo run` writes into `directory` (created if needed; an earlier
     /// run's files there are removed); returns the names written (the summary's `outputs`).
     fn write(&self, py: Python<'_>, directory: PathBuf) -> PyResult<Vec<String>> {
@@ -840,6 +991,8 @@ impl PyResults {
         };
         let grid = &o.prepared.grid;
         let d = normal_dict(py, o.solution.clone(), grid)?;
+        let (hx, hy) = grid.half_widths();
+        d.set_item("size", (2.0 * hx, 2.0 * hy))?;
         if let Some(t) = &o.tangential {
             d.set_item(
                 "traction_x",
@@ -894,6 +1047,12 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(composite_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(normal_contact, m)?)?;
     m.add_function(wrap_pyfunction!(tangential_contact, m)?)?;
+    m.add_function(wrap_pyfunction!(coupled_contact, m)?)?;
+    m.add_function(wrap_pyfunction!(field::stress_field, m)?)?;
+    m.add_function(wrap_pyfunction!(field::damage, m)?)?;
+    m.add_function(wrap_pyfunction!(field::energy_damage, m)?)?;
+    m.add_function(wrap_pyfunction!(fatigue::fatigue_fit, m)?)?;
+    m.add_function(wrap_pyfunction!(fatigue::fatigue_diagram, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(example_names, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
