@@ -4,19 +4,25 @@
 #  2. the Python package as a newcomer installs it: a virtual environment under
 #     target/py-venv (made here), `pip install .` (maturin builds the wheel from
 #     crates/tribo-py into the workspace's target/), then pytest on tests/python (parity with
-#     the `tribo` binary built in step 1, Hertz, arrays, errors, threads, the example script).
-# Needs the Rust toolchain and CPython >= 3.9 with the venv module; pip fetches maturin, numpy
-# and pytest from PyPI. `scripts/test.sh --python` runs step 2 alone (after a cargo build).
+#     the `tribo` binary built in step 1, Hertz, arrays, errors, threads, the stress field,
+#     damage, fatigue, the example script and notebook).
+# Needs the Rust toolchain and CPython >= 3.9 with the venv module; pip fetches maturin, numpy,
+# pytest and the optional pandas and xarray from PyPI (TRIBO_PY_MINIMAL=1 leaves the optional
+# ones out: the tests then take the dict paths). `scripts/test.sh --python` runs step 2 alone.
+# The wheel reuses step 1's compiled dependencies (the feature pins in crates/tribo-py/
+# Cargo.toml): only pyo3, numpy and tribo-py itself are compiled for it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 if [ "${1:-}" != "--python" ]; then
   echo "== cargo test --release --workspace"
   cargo test --release --workspace
+  # target/release/tribo, the binary the parity tests compare with, is built by step 1 (the
+  # CLI's integration tests run it), with the features of the whole workspace: a separate
+  # `cargo build -p tribo-cli` would build it again with fewer (no dev-dependencies).
+else
+  cargo build --release -p tribo-cli --quiet
 fi
-
-# The binary the parity tests compare with (built by step 1; a no-op then).
-cargo build --release -p tribo-cli --quiet
 
 python=${PYTHON:-python3}
 venv=target/py-venv
@@ -26,7 +32,10 @@ if [ ! -x "$venv/bin/python" ]; then
 fi
 echo "== pip install . (the wheel: maturin, crates/tribo-py)"
 start=$(date +%s)
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check numpy pytest
+extras="pandas xarray"
+if [ "${TRIBO_PY_MINIMAL:-}" = "1" ]; then extras=""; fi
+# shellcheck disable=SC2086
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check numpy pytest $extras
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps .
 echo "   installed in $(( $(date +%s) - start )) s"
 
