@@ -394,7 +394,7 @@ fn status(dir: &Path, chunk: Option<usize>) -> Outcome {
         missing.len()
     );
     for (i, r) in &failed {
-        text.push_str(&format!("  failed {i}: {r}\n"));
+        text.push_str(&format!("  point {i}: {r}\n"));
     }
     if !missing.is_empty() {
         text.push_str(&format!("  missing: {}\n", slurm::ranges(&missing)));

@@ -28,7 +28,7 @@
 //! dist = "normal"
 //! mean = 2000.0
 //! sd = 100.0
-//! low = 1500.0
+//! truncate = { low = 1500.0 }
 //! ```
 //!
 //! The points are the product of the grid axes (the first slowest), then the zip groups, then
@@ -644,7 +644,8 @@ fn grid_values(item: &str, g: &RawGrid) -> StudyResult<Vec<toml::Value>> {
 }
 
 /// A `[[random]]` entry: `key`, the distribution (`dist` and its parameters, as
-/// [`tribo::stats::Distribution`] reads them) and the optional truncation `low`, `high`.
+/// [`tribo::stats::Distribution`] reads them) and the optional truncation
+/// `truncate = { low, high }`.
 fn random(item: &str, table: &toml::Table) -> StudyResult<Parameter> {
     let mut t = table.clone();
     let key = match t.remove("key") {
@@ -657,20 +658,43 @@ fn random(item: &str, table: &toml::Table) -> StudyResult<Parameter> {
             ))
         }
     };
-    let bound = |t: &mut toml::Table, name: &str| -> StudyResult<Option<f64>> {
-        match t.remove(name) {
-            None => Ok(None),
-            Some(toml::Value::Float(x)) => Ok(Some(x)),
-            Some(toml::Value::Integer(x)) => Ok(Some(x as f64)),
-            Some(v) => Err(StudyError::item(
-                format!("{item}.{name}"),
-                v,
-                "a truncation bound is a number (SI units)",
-            )),
+    let (mut low, mut high) = (None, None);
+    match t.remove("truncate") {
+        None => {}
+        Some(toml::Value::Table(b)) => {
+            for (name, v) in b {
+                let x = match v {
+                    toml::Value::Float(x) => x,
+                    toml::Value::Integer(x) => x as f64,
+                    v => {
+                        return Err(StudyError::item(
+                            format!("{item}.truncate.{name}"),
+                            v,
+                            "a truncation bound is a number (SI units)",
+                        ))
+                    }
+                };
+                match name.as_str() {
+                    "low" => low = Some(x),
+                    "high" => high = Some(x),
+                    _ => {
+                        return Err(StudyError::item(
+                            format!("{item}.truncate.{name}"),
+                            x,
+                            "the truncation is { low = .., high = .. } (either optional)",
+                        ))
+                    }
+                }
+            }
         }
-    };
-    let low = bound(&mut t, "low")?;
-    let high = bound(&mut t, "high")?;
+        Some(v) => {
+            return Err(StudyError::item(
+                format!("{item}.truncate"),
+                v,
+                "the truncation is a table { low = .., high = .. } (either optional)",
+            ))
+        }
+    }
     let dist: Distribution = toml::Value::Table(t).try_into().map_err(|e| {
         StudyError::item(
             item,
@@ -716,10 +740,18 @@ fn collect(list: &[String], kind: CaseKind) -> StudyResult<Vec<Collected>> {
         })?;
         // A unit given by another key ("damage.criteria[].unit") or a note stays out of the
         // column name; the attribute carries it.
-        let suffix = if unit.contains(['.', '(']) {
+        let last = key
+            .segments
+            .last()
+            .map(|s| s.name.to_ascii_lowercase())
+            .unwrap_or_default();
+        let suffix = path::unit_suffix(unit);
+        // A key that says its unit already (`dangerous_area_m2`, `peak_pressure_pa`) keeps
+        // its name.
+        let suffix = if unit.contains(['.', '(']) || last.ends_with(&suffix.to_ascii_lowercase()) {
             String::new()
         } else {
-            path::unit_suffix(unit)
+            suffix
         };
         let column = format!("{text}{suffix}");
         if out.iter().any(|c| c.column == column) {
