@@ -57,7 +57,7 @@ pub fn value(study: &Study, j: usize, i: usize) -> toml::Value {
     }
 }
 
-/// The SplitMix64 finaliser (Steele, Lea & Flood 2014): a bijection of u64 that mixes every
+/// The SplitMix64 finaliser (Steele et al. 2014): a bijection of u64 that mixes every
 /// input bit into every output bit.
 fn mix(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
