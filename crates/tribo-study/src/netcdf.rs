@@ -68,7 +68,7 @@ const NC_INT: u32 = 4;
 const NC_DOUBLE: u32 = 6;
 
 fn pad4(b: &mut Vec<u8>) {
-    while b.len() % 4 != 0 {
+    while !b.len().is_multiple_of(4) {
         b.push(0);
     }
 }

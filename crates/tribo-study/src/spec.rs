@@ -615,7 +615,7 @@ fn grid_values(item: &str, g: &RawGrid) -> StudyResult<Vec<toml::Value>> {
             }
             let n = usize::try_from(points)
                 .ok()
-                .filter(|&n| n >= 1 && n <= MAX_POINTS && (n > 1 || from == to))
+                .filter(|&n| (1..=MAX_POINTS).contains(&n) && (n > 1 || from == to))
                 .ok_or_else(|| {
                     StudyError::item(
                         format!("{item}.points"),
