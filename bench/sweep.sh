@@ -5,7 +5,7 @@
 # are noisy); (2) an N-point study (default 1000) of the paper's 21 x 21 case
 # (roller-shaft-normal) over the load, with --jobs J (default 2), wall and CPU time.
 #
-# usage: bench/sweep.sh            environment: N=1000, JOBS=2, REPEAT=3, BUILD=1
+# usage: bench/sweep.sh            environment: N=1000, JOBS=2, REPEAT=3, BUILD=1, CUT=0, BIG=1
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(dirname "$here")"
@@ -22,9 +22,13 @@ cpu() { # command... -> "wall_s cpu_s"
 }
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg); cores: $(nproc)"
 
-# (1) overhead: the Sec. 6 roller/shaft (41 x 41, sliding, the 39 x 39 x 20 field, damage)
-# without its loading study and load cycle.
-"$bin" example roller-shaft-sec6 | sed '/^\[damage.study\]/,$d' >"$tmp/case.toml"
+# (1) overhead: the Sec. 6 roller/shaft (41 x 41, sliding, the 39 x 39 x 20 field, damage,
+# its loading study and load cycle: a few CPU seconds); CUT=1 drops the study and the cycle.
+if [ "${CUT:-0}" = 1 ]; then
+    "$bin" example roller-shaft-sec6 | sed '/^\[damage.study\]/,$d' >"$tmp/case.toml"
+else
+    "$bin" example roller-shaft-sec6 >"$tmp/case.toml"
+fi
 echo
 echo "| run | outputs | wall (s) | CPU (s) per case |"
 echo "|---|---|---:|---:|"
@@ -48,7 +52,8 @@ TOML
     echo "| sweep run, $repeat points, --jobs 1 | $outputs | $w | $(awk -v c="$c" -v r="$repeat" 'BEGIN{printf "%.3f", c / r}') |"
 done
 
-# (2) the N-point study of the 21 x 21 case.
+# (2) the N-point study of the 21 x 21 case (BIG=0 skips it).
+if [ "${BIG:-1}" = 0 ]; then exit 0; fi
 cat >"$tmp/big.toml" <<TOML
 [study]
 name = "big"
