@@ -6,6 +6,7 @@ mod exit;
 mod human;
 mod memory;
 mod progress;
+mod sweep;
 mod term;
 
 use clap::{Args, Parser, Subcommand};
@@ -161,6 +162,9 @@ Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3
     /// Fatigue curves from test data and the limiting-state diagram (paper Figs. 3, 4).
     #[command(subcommand)]
     Fatigue(cmd::fatigue::FatigueCommand),
+    /// Studies over many cases: plan, run (locally or on SLURM), status, gather.
+    #[command(subcommand)]
+    Sweep(sweep::SweepCommand),
     /// Run the verification suite and print its table (exit 1 if a row fails).
     Validate {
         /// Print the rows as JSON.
@@ -215,6 +219,7 @@ fn main() -> ExitCode {
         Command::Example { name } => cmd::example::run(name.as_deref()),
         Command::Validate { json } => cmd::validate::run(json),
         Command::Fatigue(c) => cmd::fatigue::run(c),
+        Command::Sweep(c) => sweep::run(c),
     };
     match result {
         Ok(code) => ExitCode::from(code),

@@ -1,0 +1,166 @@
+//! SLURM array scripts for a planned study: `slurm/array.sbatch` runs chunk
+//! `$SLURM_ARRAY_TASK_ID` of the points (`tribo sweep run DIR --task I --chunk K`, as many
+//! jobs as the task has CPUs), `slurm/gather.sbatch` gathers the table once the array has
+//! ended (submitted with `--dependency=afterany:<array job>`, so failed or timed-out tasks
+//! do not block it: `tribo sweep status` then names the tasks to resubmit).
+
+use std::path::Path;
+
+/// The settings of the scripts.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Slurm {
+    /// Points per array task.
+    pub chunk: usize,
+    /// `--partition`, if any.
+    pub partition: Option<String>,
+    /// `--time` of an array task, `HH:MM:SS` (or `D-HH:MM:SS`).
+    pub time: String,
+    /// `--cpus-per-task`: the jobs of `tribo sweep run` in each task.
+    pub cpus_per_task: usize,
+    /// The `%K` limit of running array tasks, if any.
+    pub max_running: Option<usize>,
+}
+
+/// The default points per task for `n` points: one, or as many as keep the array within
+/// SLURM's default `MaxArraySize` (1001, i.e. task ids 0 to 1000).
+pub fn default_chunk(n: usize) -> usize {
+    n.div_ceil(1000).max(1)
+}
+
+/// A word quoted for the shell (single quotes).
+pub fn sh_quote(s: &str) -> String {
+    if !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "/._-+=:,@%".contains(c))
+    {
+        s.to_string()
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
+    }
+}
+
+/// Checks a `--time` value: `[D-]HH:MM:SS`, `MM:SS` or minutes (SLURM's forms).
+pub fn valid_time(t: &str) -> bool {
+    let body = match t.split_once('-') {
+        Some((d, rest)) if !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()) => rest,
+        Some(_) => return false,
+        None => t,
+    };
+    let parts: Vec<&str> = body.split(':').collect();
+    !body.is_empty()
+        && parts.len() <= 3
+        && parts
+            .iter()
+            .all(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// The two scripts' texts: (`array.sbatch`, `gather.sbatch`). `tribo` is the binary's path
+/// and `dir` the study directory, both absolute (the tasks run in another working folder).
+pub fn scripts(s: &Slurm, name: &str, n: usize, tribo: &Path, dir: &Path) -> (String, String) {
+    let tasks = crate::run::chunks(n, s.chunk);
+    let exe = sh_quote(&tribo.display().to_string());
+    let d = sh_quote(&dir.display().to_string());
+    let logs = dir.join("slurm").join("logs");
+    let job = format!("tribo-{}", name.replace(|c: char| c.is_whitespace(), "_"));
+    let mut a = String::from("#!/bin/bash\n");
+    a.push_str(&format!("#SBATCH --job-name={}\n", sh_quote(&job)));
+    a.push_str(&format!(
+        "#SBATCH --array=0-{}{}\n",
+        tasks.saturating_sub(1),
+        s.max_running.map(|k| format!("%{k}")).unwrap_or_default()
+    ));
+    a.push_str(&format!("#SBATCH --cpus-per-task={}\n", s.cpus_per_task));
+    a.push_str(&format!("#SBATCH --time={}\n", s.time));
+    if let Some(p) = &s.partition {
+        a.push_str(&format!("#SBATCH --partition={}\n", sh_quote(p)));
+    }
+    a.push_str(&format!(
+        "#SBATCH --output={}\n",
+        sh_quote(&logs.join("array-%A_%a.out").display().to_string())
+    ));
+    a.push_str(&format!(
+        "# {n} points in {tasks} tasks of {} (tribo sweep slurm)\n",
+        s.chunk
+    ));
+    a.push_str("set -eu\n");
+    a.push_str("# Threads from the allocation: one worker per CPU, each point on one thread.\n");
+    a.push_str("export OMP_NUM_THREADS=\"${SLURM_CPUS_PER_TASK:-1}\"\n");
+    a.push_str("export RAYON_NUM_THREADS=\"${SLURM_CPUS_PER_TASK:-1}\"\n");
+    a.push_str(&format!(
+        "exec {exe} sweep run {d} --task \"$SLURM_ARRAY_TASK_ID\" --chunk {} --jobs \"${{SLURM_CPUS_PER_TASK:-1}}\" --quiet\n",
+        s.chunk
+    ));
+    let mut g = String::from("#!/bin/bash\n");
+    g.push_str(&format!(
+        "#SBATCH --job-name={}\n",
+        sh_quote(&format!("{job}-gather"))
+    ));
+    g.push_str("#SBATCH --cpus-per-task=1\n");
+    g.push_str("#SBATCH --time=00:30:00\n");
+    if let Some(p) = &s.partition {
+        g.push_str(&format!("#SBATCH --partition={}\n", sh_quote(p)));
+    }
+    g.push_str(&format!(
+        "#SBATCH --output={}\n",
+        sh_quote(&logs.join("gather-%j.out").display().to_string())
+    ));
+    g.push_str(
+        "# Submitted with --dependency=afterany:<array job id> (tribo sweep slurm --submit).\n",
+    );
+    g.push_str("set -eu\n");
+    g.push_str(&format!("{exe} sweep gather {d}\n"));
+    g.push_str(&format!("exec {exe} sweep status {d}\n"));
+    (a, g)
+}
+
+/// The job id in sbatch's answer: `Submitted batch job 42` (or `--parsable`'s `42;cluster`).
+pub fn job_id(answer: &str) -> Option<u64> {
+    let line = answer.lines().find(|l| !l.trim().is_empty())?.trim();
+    let word = line.rsplit(' ').next()?.split(';').next()?;
+    word.parse().ok()
+}
+
+/// The task ids of a list, compressed into SLURM's `--array=` form: `0-3,7,9-10`.
+pub fn ranges(ids: &[usize]) -> String {
+    let mut out: Vec<String> = Vec::new();
+    let mut k = 0;
+    while k < ids.len() {
+        let start = ids[k];
+        let mut end = start;
+        while k + 1 < ids.len() && ids[k + 1] == end + 1 {
+            k += 1;
+            end += 1;
+        }
+        out.push(if start == end {
+            start.to_string()
+        } else {
+            format!("{start}-{end}")
+        });
+        k += 1;
+    }
+    out.join(",")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_ranges_times_quotes() {
+        assert_eq!(job_id("Submitted batch job 42\n"), Some(42));
+        assert_eq!(job_id("42;cluster\n"), Some(42));
+        assert_eq!(job_id("error"), None);
+        assert_eq!(ranges(&[0, 1, 2, 3, 7, 9, 10]), "0-3,7,9-10");
+        assert_eq!(ranges(&[]), "");
+        for ok in ["01:00:00", "2-00:00:00", "30", "10:00"] {
+            assert!(valid_time(ok), "{ok}");
+        }
+        for bad in ["", "1h", "a-01:00:00", "1:2:3:4", "01::00"] {
+            assert!(!valid_time(bad), "{bad}");
+        }
+        assert_eq!(sh_quote("/a/b"), "/a/b");
+        assert_eq!(sh_quote("a b'c"), "'a b'\\''c'");
+        assert_eq!(default_chunk(1000), 1);
+        assert_eq!(default_chunk(1001), 2);
+    }
+}
