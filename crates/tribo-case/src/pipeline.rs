@@ -17,7 +17,8 @@ use tribo::analysis::damage::{
     RollerShaftStudy, RollingContact, RotatingBentShaft, StudyResult,
 };
 use tribo::analysis::edge_refinement::{
-    refine_tractions, EdgeBand, RefinedTractions, BAND_DEPTH_ELEMENTS, BAND_REACH_CELLS, BAND_RINGS,
+    refine_tractions, EdgeBand, RefinedTractions, BAND_DEPTH_ELEMENTS, BAND_REACH_CELLS,
+    BAND_RINGS, LEVEL2_RATIO,
 };
 use tribo::analysis::hertz_error::{pressure_errors, PressureErrors};
 use tribo::analysis::stress_field::{
@@ -134,8 +135,10 @@ pub struct Stress {
     pub bulk: Option<(LoadKind, f64)>,
     /// How it was computed.
     pub method: FieldEvaluation,
-    /// The tractions' refinement factor (`field.edge_refinement`): 1, the element tractions
-    /// interpolated bilinearly; N > 1, the edge-aware tractions on a grid N times finer.
+    /// The tractions' refinement factor (`field.edge_refinement`):
+    /// [`crate::case::EDGE_REFINEMENT_BAND`] (the default), the element tractions with the
+    /// edge band; 1, the element tractions interpolated bilinearly; N > 1, the edge-aware
+    /// tractions on a grid N times finer.
     pub edge_refinement: usize,
     /// Wall time, s.
     pub time_s: f64,
@@ -999,12 +1002,23 @@ const DAMAGE_SECONDS: f64 = 3e-7;
 /// a square root.
 const RECONSTRUCTION_SECONDS: f64 = 5e-8;
 
-/// Seconds per field point reached by the edge band (`field.edge_refinement = "band"`), one
-/// core: the band cells' sub-cells near it (tent kernels) and far (point forces), their
-/// projection, and on the FFT path the local window. Measured 5-10 ms at z = 0 (the tent
-/// kernels containing the point dominate), 4-8 ms at half an element below, on a loaded
-/// 2-core machine.
-const BAND_POINT_SECONDS: f64 = 0.01;
+/// Seconds per surface point (z = 0) reached by the edge band (`field.edge_refinement =
+/// "band"`), one core: the band cells' sub-cells near it (tent kernels) and far (point
+/// forces), their projection, and on the FFT path the local window. Measured about 5 ms (the
+/// tent kernels containing the point dominate; bench/results/field-default-2026-11-24.md).
+const BAND_SURFACE_POINT_SECONDS: f64 = 5e-3;
+
+/// Seconds per point below the surface (0 < z <= the band's depth limit) reached by the
+/// band, one core: point forces for the sub-cells (the depth keeps them away from the
+/// point), the closed-form tents of the element nodes. Measured about 3 ms at 0.8 element.
+const BAND_POINT_SECONDS: f64 = 3e-3;
+
+/// Second-level samples kept across the contact edge per unit of its length in
+/// second-level sub-cells ([`EdgeBand::second_level_samples`]; measured 44.6 on the sliding
+/// sphere 64 x 64, f = 0.4: the square root's linear interpolation between first-level
+/// samples misses it by more than the tolerance over about 1.2 elements inside the edge, for
+/// the pressure and the shear; test `edge_option::the_dry_run_counts_the_second_level`).
+const LEVEL2_KEPT_ACROSS: f64 = 45.0;
 
 /// The estimated cost of the `[field]` and `[damage]` stages of `case` on `prepared`'s grid
 /// (for `tribo run --dry-run`): (field, damage). The loaded elements are the Hertz contact's
@@ -1081,8 +1095,13 @@ pub fn stage_costs(
         };
         let cells = perimeter / h * 2.0 * (BAND_RINGS as f64 + 1.0);
         let samples = cells * (EDGE_BAND_FACTOR * EDGE_BAND_FACTOR) as f64;
+        // The second level: every band cell's (factor LEVEL2_RATIO)^2 sub-cells evaluated,
+        // those along the edge kept (about LEVEL2_KEPT_ACROSS of them across it).
+        let fine = (EDGE_BAND_FACTOR * LEVEL2_RATIO) as f64;
+        let evaluated = cells * fine * fine;
+        let kept = perimeter / (h / fine) * LEVEL2_KEPT_ACROSS;
         let depth = resolve(spec.depth, a);
-        let layers = (0..spec.n[2])
+        let layers = (1..spec.n[2])
             .filter(|&k| depth * k as f64 / (nz - 1.0) <= BAND_DEPTH_ELEMENTS * h)
             .count() as f64;
         let reach = 2.0 * (BAND_REACH_CELLS as f64 + 1.0) * h;
@@ -1090,9 +1109,10 @@ pub fn stage_costs(
             FieldPoints::Centres => grid.len() as f64 * grid.element_area(),
             FieldPoints::Uniform => 4.0 * half * half,
         };
-        let near = (perimeter * reach / box_area).min(1.0) * nx * ny * layers;
-        seconds += samples * RECONSTRUCTION_SECONDS + near * BAND_POINT_SECONDS / cores;
-        bytes += samples * 3.0 * 8.0;
+        let near = (perimeter * reach / box_area).min(1.0) * nx * ny;
+        seconds += (samples + evaluated) * RECONSTRUCTION_SECONDS
+            + near * (BAND_SURFACE_POINT_SECONDS + layers * BAND_POINT_SECONDS) / cores;
+        bytes += samples * 3.0 * 8.0 + kept * (3.0 * 8.0 + 4.0);
     }
     let field = StageCost { seconds, bytes };
     let damage = case.damage.as_ref().map(|d| {

@@ -627,10 +627,6 @@ impl Summary {
         let present = |path: &str| match path.split('.').next().unwrap_or("") {
             "back_effect" => self.back_effect.is_some(),
             "tangential" => self.tangential.is_some(),
-            "stress" if path == "stress.edge_refinement" => self
-                .stress
-                .as_ref()
-                .is_some_and(|st| st.edge_refinement.is_some()),
             "stress" => self.stress.is_some(),
             "damage" if path.starts_with("damage.study") => {
                 self.damage.as_ref().is_some_and(|d| d.study.is_some())
@@ -765,24 +761,27 @@ pub struct Located {
     pub location: [f64; 3],
 }
 
-/// The edge refinement a stress field used, as `summary.json` echoes it: `"band"` or the
-/// refinement factor N (> 1).
+/// The edge refinement a stress field used, as `summary.json` echoes it: `"band"` (the
+/// default), `"none"` or the refinement factor N (> 1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EdgeRefinementEcho {
-    /// `field.edge_refinement = "band"`: the element tractions with the edge band.
+    /// `field.edge_refinement = "band"` (the default): the element tractions with the edge
+    /// band.
     Band,
+    /// `field.edge_refinement = "none"` (or 1): the element tractions, bilinear.
+    Bilinear,
     /// `field.edge_refinement = N > 1`: the edge-aware tractions refined N times per side.
     Factor(usize),
 }
 
 impl EdgeRefinementEcho {
     /// The echo of `field.edge_refinement` as the pipeline holds it
-    /// ([`crate::case::EDGE_REFINEMENT_BAND`] for the band); `None` for the default 1.
-    pub fn of(factor: usize) -> Option<Self> {
+    /// ([`crate::case::EDGE_REFINEMENT_BAND`] for the band, 1 for `"none"`).
+    pub fn of(factor: usize) -> Self {
         match factor {
-            crate::case::EDGE_REFINEMENT_BAND => Some(Self::Band),
-            1 => None,
-            n => Some(Self::Factor(n)),
+            crate::case::EDGE_REFINEMENT_BAND => Self::Band,
+            1 => Self::Bilinear,
+            n => Self::Factor(n),
         }
     }
 }
@@ -791,6 +790,7 @@ impl std::fmt::Display for EdgeRefinementEcho {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::Band => f.write_str("edge band"),
+            Self::Bilinear => f.write_str("bilinear element tractions (no edge band)"),
             Self::Factor(n) => write!(f, "edge-aware tractions refined x{n}"),
         }
     }
@@ -800,6 +800,7 @@ impl Serialize for EdgeRefinementEcho {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         match self {
             Self::Band => serializer.serialize_str("band"),
+            Self::Bilinear => serializer.serialize_str("none"),
             Self::Factor(n) => serializer.serialize_u64(*n as u64),
         }
     }
@@ -818,11 +819,10 @@ pub struct StressSummary {
     pub depth: f64,
     /// "direct sum".
     pub method: &'static str,
-    /// `field.edge_refinement` where it is not the default (1): `"band"` (the element
-    /// tractions with the edge band) or N > 1 (the field of the edge-aware tractions on a grid
-    /// N times finer per side); absent: the element tractions, bilinear.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub edge_refinement: Option<EdgeRefinementEcho>,
+    /// `field.edge_refinement`: `"band"` (the default: the element tractions with the edge
+    /// band), `"none"` (the element tractions, bilinear) or N > 1 (the field of the
+    /// edge-aware tractions on a grid N times finer per side).
+    pub edge_refinement: EdgeRefinementEcho,
     /// The bulk stress superposed (kind, operating stress Pa), if any.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bulk: Option<(&'static str, f64)>,

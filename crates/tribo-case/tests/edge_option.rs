@@ -207,7 +207,8 @@ fn field_error(text: &str) -> String {
 /// Bad values are refused naming `field.edge_refinement` and the rule: 0 and 17 (outside
 /// 1 ... 16), a non-integer (2.5, "8"), a negative, and a refined grid beyond the library's
 /// MAX_ELEMENTS_PER_SIDE (600 elements x 16 = 9600 > 8192); the same rule in code
-/// (CaseBuilder). Absent, the option is 1 (off); 16 on 512 elements (8192) is accepted.
+/// (CaseBuilder). Absent, the option is the band (the default since session 11); "none" is 1
+/// (the bilinear element tractions); 16 on 512 elements (8192) is accepted.
 #[test]
 fn bad_values_are_refused_naming_the_field() {
     let field = "n = [5, 3, 2]\n";
@@ -238,7 +239,24 @@ fn bad_values_are_refused_naming_the_field() {
     .unwrap();
     assert_eq!(ok.field.unwrap().edge_refinement, 16);
     let default = parse(&sliding_sphere(16, field)).unwrap();
-    assert_eq!(default.field.unwrap().edge_refinement, 1);
+    assert_eq!(
+        default.field.unwrap().edge_refinement,
+        tribo_case::case::EDGE_REFINEMENT_BAND
+    );
+    let none = parse(&sliding_sphere(
+        16,
+        &format!("{field}edge_refinement = \"none\"\n"),
+    ))
+    .unwrap();
+    assert_eq!(none.field.unwrap().edge_refinement, 1);
+    let e = field_error(&sliding_sphere(
+        16,
+        &format!("{field}edge_refinement = \"off\"\n"),
+    ));
+    assert!(
+        e.starts_with("field.edge_refinement = ") && e.contains("\"none\""),
+        "{e}"
+    );
     let e = CaseBuilder::new("x")
         .body1(2.01e11, 0.3, [0.01, 0.01])
         .body2(2.01e11, 0.3, [f64::INFINITY, f64::INFINITY])
@@ -256,13 +274,13 @@ fn bad_values_are_refused_naming_the_field() {
 /// The refinement is counted before solving: the memory estimate gains an "edge refinement"
 /// part and its field FFT buffers grow N^2 (x8 on 64 x 64: 512 x 512 refined elements), and
 /// the dry-run cost of the field stage grows (the FFT grid N^2 times larger); at 1 neither
-/// changes from a case without the key.
+/// changes from `"none"`.
 #[test]
 fn memory_and_stage_costs_count_the_refinement() {
     let field = "n = [39, 39, 20]\n";
     let case = |extra: &str| parse(&sliding_sphere(64, &format!("{field}{extra}"))).unwrap();
     let (plain, one, eight) = (
-        case(""),
+        case("edge_refinement = \"none\"\n"),
         case("edge_refinement = 1\n"),
         case("edge_refinement = 8\n"),
     );
@@ -292,5 +310,59 @@ fn memory_and_stage_costs_count_the_refinement() {
     assert!(
         c8.seconds > 30.0 * c1.seconds && c8.bytes > 20.0 * c1.bytes,
         "{c1:?} {c8:?}"
+    );
+}
+
+/// `--dry-run` counts the band's second level (the samples at h/32 along the contact edge,
+/// `tribo::analysis::edge_refinement::LEVEL2_RATIO`): on the sliding sphere (64 x 64, the
+/// default band) the estimated bytes of the band (the dry run's field cost with the band
+/// minus that with `"none"`) are within a factor 1.5 of the band the solved case builds
+/// (`EdgeBand::sample_bytes`: the first level's 8 x 8 samples per band cell and the second
+/// level's kept ones). The count before session 11 had the first level alone: 1.5e6 bytes
+/// against the built band's 7.7e6 (measured: 624 band cells, 39936 first-level samples,
+/// 239304 kept on the second level, 44.6 per h/32 of the contact edge; printed).
+#[test]
+fn the_dry_run_counts_the_second_level() {
+    use tribo::analysis::edge_refinement::EdgeBand;
+    use tribo::analysis::stress_field::SurfaceTractions;
+    let field = "n = [39, 39, 20]\n";
+    let band = parse(&sliding_sphere(64, field)).unwrap();
+    let none = parse(&sliding_sphere(
+        64,
+        &format!("{field}edge_refinement = \"none\"\n"),
+    ))
+    .unwrap();
+    let cost = |c: &HalfSpaceCase| {
+        let prepared = pipeline::prepare(c).unwrap();
+        pipeline::stage_costs(c, &prepared).unwrap().0
+    };
+    let estimated = cost(&band).bytes - cost(&none).bytes;
+    // The band the solved case builds (a small field: only the tractions matter here).
+    let small = parse(&sliding_sphere(64, "n = [3, 3, 2]\n")).unwrap();
+    let out = pipeline::run(&small, &mut Silent).unwrap();
+    let (qx, qy) = pipeline::field_tractions(&out, "body2");
+    let tractions = SurfaceTractions {
+        grid: &out.prepared.grid,
+        pressure: &out.solution.pressure,
+        shear_x: qx.as_deref(),
+        shear_y: qy.as_deref(),
+    };
+    let built = EdgeBand::new(&tractions, pipeline::EDGE_BAND_FACTOR).unwrap();
+    let actual = built.sample_bytes() as f64;
+    let hertz = out.prepared.hertz.unwrap().contact;
+    let h = out.prepared.grid.dx();
+    let per_length = built.second_level_samples() as f64
+        / (std::f64::consts::TAU * hertz.semi_major / (h / 32.0));
+    eprintln!(
+        "band cells {} (estimate {:.0}), second level kept {} ({per_length:.2} per h/32 of \
+         edge), bytes estimated {estimated:.3e}, built {actual:.3e}, first level alone {:.3e}",
+        built.cells(),
+        std::f64::consts::TAU * hertz.semi_major / h * 6.0,
+        built.second_level_samples(),
+        built.cells() as f64 * 64.0 * 24.0,
+    );
+    assert!(
+        estimated > actual / 1.5 && estimated < actual * 1.5,
+        "estimated {estimated:e} bytes, built {actual:e}"
     );
 }

@@ -220,7 +220,9 @@ fn stress(o: &mut String, st: &StressSummary) {
         st.max_principal.value,
         loc(st.max_principal.location)
     );
-    if let Some(e) = st.edge_refinement {
+    // The edge band is the default: only another choice is named.
+    if st.edge_refinement != tribo_case::summary::EdgeRefinementEcho::Band {
+        let e = st.edge_refinement;
         let _ = writeln!(o, "                {e}");
     }
 }

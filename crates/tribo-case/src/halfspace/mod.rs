@@ -52,10 +52,10 @@
 //!                                  #   or "direct" (the exact direct sum, slow)
 //! # points = "centres"             # instead of n and extent: x, y at the contact grid's
 //! # layers = 20                    # element centres (FFT, for large grids), `layers` depths
-//! # edge_refinement = "band"       # 1 (default): the bilinear element tractions; "band":
-//!                                  #   the edge-aware tractions near the contact edges at
-//!                                  #   shallow depths; 2 ... 16: the edge-aware tractions
-//!                                  #   everywhere, on a grid this many times finer (slow)
+//! # edge_refinement = "none"       # "band" (default): the edge-aware tractions near the
+//!                                  #   contact edges at shallow depths; "none" (or 1): the
+//!                                  #   bilinear element tractions; 2 ... 16: the edge-aware
+//!                                  #   tractions everywhere, on a grid this many times finer
 //! ```
 
 mod model;

@@ -211,10 +211,10 @@ pub struct FieldSpec {
     pub depth: Length,
     /// The body the field is computed in ("body1" or "body2").
     pub body: &'static str,
-    /// `edge_refinement`: 1 (the default) the element tractions interpolated bilinearly;
-    /// [`EDGE_REFINEMENT_BAND`] (`"band"`) the element tractions with the edge band (the
-    /// edge-aware tractions in the cells along the contact edges, at the surface and shallow
-    /// depths); N > 1 the edge-aware reconstruction of the tractions (a
+    /// `edge_refinement`: [`EDGE_REFINEMENT_BAND`] (`"band"`, the default) the element
+    /// tractions with the edge band (the edge-aware tractions in the cells along the contact
+    /// edges, at the surface and shallow depths); 1 (`"none"`) the element tractions
+    /// interpolated bilinearly; N > 1 the edge-aware reconstruction of the tractions (a
     /// square-root contact edge at a sub-element position) sampled on a grid N times finer per
     /// side, [`tribo::analysis::edge_refinement::refine_tractions`] (docs/theory/HALFSPACE.md
     /// 2.5). In 1 ..= [`MAX_EDGE_REFINEMENT`], with N times the contact grid's elements per

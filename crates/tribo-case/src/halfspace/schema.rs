@@ -224,8 +224,8 @@ pub(super) struct RawField {
     pub edge_refinement: Option<Refinement>,
 }
 
-/// `[field] edge_refinement`: `"band"` or a count (the range is checked in
-/// [`super::validate`]).
+/// `[field] edge_refinement`: `"band"` (the default), `"none"` (the factor 1) or a count
+/// (the range is checked in [`super::validate`]).
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Refinement {
     /// The factor, `None` for `"band"`.
@@ -236,9 +236,10 @@ impl FromToml for Refinement {
     fn from_toml(value: &Value) -> Result<Self, Refusal> {
         match value {
             Value::String(s) if s == "band" => Ok(Refinement { n: None }),
+            Value::String(s) if s == "none" => Ok(Refinement { n: Some(1) }),
             Value::String(_) => Err(Refusal::new(
                 value,
-                "must be \"band\" or an integer in 1 ... 16",
+                "must be \"band\" (the default), \"none\" or an integer in 1 ... 16",
             )),
             _ => Count::from_toml(value).map(|c| Refinement { n: Some(c.n) }),
         }

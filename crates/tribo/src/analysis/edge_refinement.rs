@@ -520,9 +520,16 @@ pub const BAND_REACH_CELLS: isize = 3;
 /// Rings of nodes with band weight 1 on either side of a loaded/unloaded boundary.
 pub const BAND_RINGS: usize = 2;
 
-/// Depth, in element sizes (the larger of dx, dy), down to which [`EdgeBand::correction`]
-/// adds the fine band; below it the projection alone (module docs, measured).
-pub const BAND_DEPTH_ELEMENTS: f64 = 4.0;
+/// Depth, in element sizes h (the larger of dx, dy), down to which [`EdgeBand::correction`]
+/// adds the fine band; below it the projection alone. Measured (`band_depth_measure`: the
+/// solved sliding sphere, 64 x 64, f = 0 ... 0.5, the line y = 0 through the contact edges,
+/// three alignments), the error against Hamilton of the projection alone / the band / the
+/// bilinear tractions: z = h 0.0121 / 0.0025 / 0.0177 p0, 1.5h 0.0066 / 0.0029 / 0.0109,
+/// 2h 0.0037 / 0.0023 / 0.0070, 4h 0.0008 / 0.0004 / 0.0020: below 2h the projection is
+/// within 0.004 p0 (a fifth of the 2 %), and the band costs per layer it reaches
+/// (was 4 until session 11: the layers from 2h to 4h doubled the field stage's time on
+/// `bench/field_default.sh` for 0.003 p0).
+pub const BAND_DEPTH_ELEMENTS: f64 = 2.0;
 
 /// Fine sub-cells within this many sub-cells (Chebyshev) of the point take the fine tent
 /// kernel ([`tent_stress_outside`]: exact within 1.5 sub-cells, an 8 x 8 or 4 x 4 Gauss
@@ -824,6 +831,19 @@ impl EdgeBand {
         self.cells.len()
     }
 
+    /// Samples kept on the second level (module docs), over all band cells.
+    pub fn second_level_samples(&self) -> usize {
+        self.cells.iter().map(|c| c.refined.len()).sum()
+    }
+
+    /// Bytes held by the band's samples: the first level's `factor`^2 and the second level's
+    /// kept samples per cell (3 doubles each, plus the index of a second-level one), the
+    /// projection increments and the cell lookup.
+    pub fn sample_bytes(&self) -> usize {
+        let first = self.cells.len() * (self.factor * self.factor * 24 + 4 * 24 + 16);
+        first + self.second_level_samples() * 28 + self.lookup.len() * 4
+    }
+
     /// Depth (m) below which [`EdgeBand::correction`] is zero.
     pub fn depth_limit(&self) -> f64 {
         self.depth_limit
@@ -908,7 +928,9 @@ impl EdgeBand {
                 let (si, sj) = (idx % n, idx / n);
                 let ox = x - (x0 + (si as f64 + 0.5) * fx);
                 let oy = y - (y0 + (sj as f64 + 0.5) * fy);
-                let distance = (ox / fx).abs().max((oy / fy).abs());
+                // Chebyshev distance in sub-cells, the depth included: the rules' errors fall
+                // with the 3D distance from the sub-cell (it bounds that distance from below).
+                let distance = (ox / fx).abs().max((oy / fy).abs()).max(z / fx.max(fy));
                 let point = |c: usize, px: f64, py: f64| match c {
                     0 => boussinesq_stress(px, py, z, nu),
                     1 => cerruti_stress(px, py, z, nu),
@@ -1519,6 +1541,77 @@ mod tests {
                     .collect();
                 eprintln!("   {}", line.join(" "));
             }
+        }
+    }
+
+    /// How deep the fine band matters (measurement, printed): the solved sliding sphere
+    /// (64 x 64 over 2.4a, h the element), f = 0 ... 0.5, the line y = 0 (on element edges,
+    /// 1e-12 m and 0.3 element off) at depths z = h/4 ... 4h, by the FFT path: the error
+    /// against Hamilton of the bilinear tractions, of the band's projection alone (the band
+    /// beyond its depth limit) and of the band.
+    #[test]
+    #[ignore = "measurement"]
+    fn band_depth_measure() {
+        let (hertz, grid, _averaged, solved) = sphere_pressures();
+        let (a, p0) = (hertz.semi_major, hertz.max_pressure);
+        let h = grid.dx();
+        let zero = vec![0.0; grid.len()];
+        let t = |q: &'static str| SurfaceTractions {
+            grid: &grid,
+            pressure: &solved,
+            shear_x: Some(if q == "n" { &zero } else { &solved }),
+            shear_y: None,
+        };
+        for k in [0.0, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0] {
+            let z = k * h;
+            let mut worst = [0.0f64; 3];
+            for shift in [0.0, 1e-12, 0.3 * h] {
+                let pts = surface_line(&grid, a, 0.0, shift);
+                let field = FieldGrid {
+                    x: pts.iter().map(|p| p.0).collect(),
+                    y: vec![0.0],
+                    z: vec![z],
+                };
+                let eval = |q: &'static str, mode: usize| -> Vec<StressTensor> {
+                    let tr = t(q);
+                    let f = match mode {
+                        0 => stress_field_interpolated(&tr, 0.3, &field, |_| {}).unwrap(),
+                        1 => {
+                            let b = EdgeBand::new(&tr, 8).unwrap();
+                            stress_field_interpolated(&b.projected(), 0.3, &field, |_| {}).unwrap()
+                        }
+                        _ => {
+                            let b = EdgeBand::new(&tr, 8).unwrap();
+                            crate::analysis::stress_field::stress_field_interpolated_banded(
+                                &b,
+                                0.3,
+                                &field,
+                                |_| {},
+                            )
+                            .unwrap()
+                        }
+                    };
+                    f.stress
+                };
+                for (mode, w) in worst.iter_mut().enumerate() {
+                    let (normal, both) = (eval("n", mode), eval("q", mode));
+                    for f in [0.0, 0.1, 0.2, 0.3, 0.4, 0.5] {
+                        for (i, &(x, _)) in pts.iter().enumerate() {
+                            let s = normal[i] + (both[i] - normal[i]).scale(f);
+                            let r = sliding_sphere_stress(x, 0.0, z, a, p0, f, 0.3);
+                            let mut e = (s.von_mises() - r.von_mises()).abs() / p0;
+                            for d in (s - r).to_array() {
+                                e = e.max(d.abs() / p0);
+                            }
+                            *w = w.max(e);
+                        }
+                    }
+                }
+            }
+            eprintln!(
+                "z {k} h: bilinear {:.4}, projection {:.4}, band {:.4} p0",
+                worst[0], worst[1], worst[2]
+            );
         }
     }
 

@@ -257,11 +257,28 @@ impl Mul<f64> for StressTensor {
 // Point loads
 // ---------------------------------------------------------------------------------------
 
+/// Smallest sum of squares [`norm3`] takes the square root of directly: above it the sum
+/// carries full precision (no subnormal terms that matter).
+const NORM3_MIN: f64 = 1e-280;
+
+/// sqrt(x^2 + y^2 + z^2), overflow- and underflow-free: the square root of the sum of
+/// squares (within 1 ulp of `x.hypot(y).hypot(z)`, about ten times cheaper: libm's `hypot`
+/// took 43 % of the edge band's time) wherever that sum is a normal number, else the nested
+/// `hypot` (lengths beyond about 1e154 m or below 1e-140 m).
+pub(crate) fn norm3(x: f64, y: f64, z: f64) -> f64 {
+    let s = x * x + y * y + z * z;
+    if s.is_finite() && s > NORM3_MIN {
+        s.sqrt()
+    } else {
+        x.hypot(y).hypot(z)
+    }
+}
+
 /// Splits a point into its distance R (overflow-free) and the unit direction; `None` at the
 /// origin. Negative z is treated as 0.
 fn unit_direction(x: f64, y: f64, z: f64) -> Option<(f64, [f64; 3])> {
     let z = z.max(0.0);
-    let r = x.hypot(y).hypot(z);
+    let r = norm3(x, y, z);
     if r == 0.0 || !r.is_finite() {
         return None;
     }
@@ -400,7 +417,7 @@ struct Corner {
 
 impl Corner {
     fn new(x: f64, y: f64, z: f64) -> Self {
-        let r = x.hypot(y).hypot(z);
+        let r = norm3(x, y, z);
         // R + Y = (X^2 + z^2)/(R - Y) when Y < 0, without cancellation.
         let inv = |s: f64, other: f64| {
             if s >= 0.0 {

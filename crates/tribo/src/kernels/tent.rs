@@ -252,7 +252,7 @@ pub fn tent_stress(
         half_y / scale,
     );
     let nu = poisson_ratio;
-    let dist = x.hypot(y).hypot(z);
+    let dist = crate::kernels::subsurface::norm3(x, y, z);
     if !dist.is_finite() {
         return StressTensor::ZERO;
     }
@@ -311,7 +311,7 @@ pub const OUTSIDE_NEAR: f64 = 1.5;
 
 /// [`tent_stress`] at a point outside the tent's support, cheaply: where the point lies
 /// at least [`OUTSIDE_NEAR`] tent half-widths (2 `half_x`, 2 `half_y`) from the centre
-/// in x or y (Chebyshev), point loads against the tent weight by Gauss on each quadrant,
+/// in x, y or depth z (Chebyshev; z in the larger half-width), point loads against the tent weight by Gauss on each quadrant,
 /// 8 x 8 within 2 half-widths, 4 x 4 within 6, 2 x 2 beyond (the kernel is smooth over the
 /// support there: the nearest support edge is at least half a half-width away). Measured
 /// against [`tent_stress`] per unit traction (test `outside_rule_measure`, square
@@ -327,7 +327,12 @@ pub fn tent_stress_outside(
     half_y: f64,
     poisson_ratio: f64,
 ) -> StressTensor {
-    let d = (x.abs() / (2.0 * half_x)).max(y.abs() / (2.0 * half_y));
+    // The depth counts too (in the larger tent half-width): the kernel's nearest singularity
+    // is the point itself, at least z from every quadrant (test `outside_rule_matches_tent`,
+    // points straight above the tent).
+    let d = (x.abs() / (2.0 * half_x))
+        .max(y.abs() / (2.0 * half_y))
+        .max(z.max(0.0) / (2.0 * half_x.max(half_y)));
     if !(half_x > 0.0 && half_y > 0.0 && d.is_finite()) || d < OUTSIDE_NEAR {
         return tent_stress(direction, x, y, z, half_x, half_y, poisson_ratio);
     }
@@ -523,6 +528,22 @@ mod tests {
                     (9.0, -2.0),
                 ] {
                     let (x, y) = (u * 2.0 * hx, v * 2.0 * hy);
+                    let exact = tent_stress(direction, x, y, z, hx, hy, NU);
+                    let rule = tent_stress_outside(direction, x, y, z, hx, hy, NU);
+                    worst = worst.max(max_abs_diff(exact, rule));
+                }
+            }
+        }
+        // Points over the tent's support whose depth alone puts them beyond the switch
+        // (z in tent half-widths of the larger side, 2 * 0.7).
+        for direction in [
+            TractionDirection::Pressure,
+            TractionDirection::ShearX,
+            TractionDirection::ShearY,
+        ] {
+            for k in [1.5, 1.9, 2.0, 3.0, 5.9, 6.0, 9.0] {
+                for (u, v) in [(0.0, 0.0), (0.5, 0.3), (1.0, -1.0), (1.4, 0.0), (0.2, 1.45)] {
+                    let (x, y, z) = (u * 2.0 * hx, v * 2.0 * hy, k * 2.0 * hy);
                     let exact = tent_stress(direction, x, y, z, hx, hy, NU);
                     let rule = tent_stress_outside(direction, x, y, z, hx, hy, NU);
                     worst = worst.max(max_abs_diff(exact, rule));
