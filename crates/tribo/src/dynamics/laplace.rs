@@ -42,16 +42,20 @@
 // Index loops read like the tensor formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+use faer::linalg::solvers::Solve;
 use faer::{c64, Mat};
 
 use crate::dynamics::cq::LaplaceResponse;
 use crate::dynamics::kernel::{LaplaceKelvin2d, RadialTable, Tensor2};
 use crate::error::{Error, Result};
-use crate::operators::bem2d::assemble::assemble_rows;
+use crate::operators::bem2d::assemble::{
+    assemble_rows, matrix_bytes_of, probe_memory, try_zeros_of,
+};
 use crate::operators::bem2d::integrate::{element_hg, element_integrals};
 use crate::operators::bem2d::mesh::{Element, RegionMesh};
 use crate::operators::bem2d::{BemModel, RegionOperators};
 use crate::solvers::bem2d::{known_values, locate_interior, BemProblem, BoundaryConditions, Dof};
+use crate::solvers::nan_max;
 
 /// The largest number of pieces an element is cut into for the Laplace-domain integrals
 /// (|s| l / c2 up to 256: far beyond the resolution of the elements' quadratic fields).
@@ -197,6 +201,61 @@ pub fn region_operators(
     Ok((h, g))
 }
 
+/// LU-solves `a x = b` (any number of right-hand sides) at frequency `s` and checks it:
+/// every entry of x finite and the relative residual of one combination of the columns,
+/// `|a (x w) - b w| / (|a| |x w| + |b w|)` (infinity norms, w_j = 1 + j / k for k
+/// columns), below 1e-8. LU with partial pivoting is backward stable in practice (a
+/// residual of a few ulps of |a| |x| for every column), so a combination with distinct positive weights has one
+/// too; a singular or failed factorization shows as a non-finite x or a large residual.
+/// The check costs one matrix-vector product instead of the full `a x - b` (a fifth of the
+/// LU's flops for ~100 right-hand sides) and the moduli as `sqrt(re^2 + im^2)` (the
+/// entries are far from overflow; a NaN propagates and fails the check).
+///
+/// Errors: [`Error::OutOfMemory`]; a singular or inaccurate solve ([`Error::Numerical`]
+/// naming s).
+fn lu_solve(a: Mat<c64>, b: Mat<c64>, s: c64) -> Result<Mat<c64>> {
+    let (n, k) = (a.nrows(), b.ncols());
+    // The LU's copy of A: allocated inside faer.
+    probe_memory(
+        &format!("the LU factorization of the Laplace-domain BEM system ({n} x {n})"),
+        matrix_bytes_of::<c64>(n, n),
+    )?;
+    let x = a.partial_piv_lu().solve(&b);
+    let fail = |residual: f64| Error::Numerical {
+        context: "Laplace-domain BEM solve",
+        detail: format!(
+            "the LU solve of the {n} x {n} system at s = {s} failed (relative residual \
+             {residual:.3e}); the system is singular or ill-conditioned"
+        ),
+    };
+    let finite = |v: &c64| v.re.is_finite() && v.im.is_finite();
+    if !(0..k).all(|j| x.col(j).iter().all(finite)) {
+        return Err(fail(f64::NAN));
+    }
+    let w = Mat::<c64>::from_fn(k, 1, |j, _| c64::new(1.0 + j as f64 / k.max(1) as f64, 0.0));
+    let xw = &x * &w;
+    let bw = &b * &w;
+    let res = &a * &xw - &bw;
+    let modulus = |v: c64| (v.re * v.re + v.im * v.im).sqrt();
+    let vec_inf =
+        |m: &Mat<c64>| (0..m.nrows()).fold(0.0, |acc, i| nan_max(acc, modulus(m[(i, 0)])));
+    let mut na = 0.0_f64;
+    let mut rows = vec![0.0_f64; n];
+    for j in 0..n {
+        for (r, v) in rows.iter_mut().zip(a.col(j).iter()) {
+            *r += modulus(*v);
+        }
+    }
+    for r in rows {
+        na = nan_max(na, r);
+    }
+    let residual = vec_inf(&res) / (na * vec_inf(&xw) + vec_inf(&bw)).max(f64::MIN_POSITIVE);
+    if !(residual.is_finite() && residual < 1e-8) {
+        return Err(fail(residual));
+    }
+    Ok(x)
+}
+
 /// One known DOF (an input of [`LaplaceBem::respond`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct KnownDof {
@@ -242,6 +301,11 @@ pub struct LaplaceBem {
     probes: Vec<(usize, [f64; 2])>,
     /// (region, model-local evaluation point) per stress probe ([`stress`]).
     stress_probes: Vec<(usize, [f64; 2])>,
+    /// Per region the index into [`LaplaceBem::operators`]' list of the operators it uses
+    /// (congruent regions share one, [`congruence`]).
+    slot: Vec<usize>,
+    /// The regions whose operators are assembled (one per slot).
+    assembled: Vec<usize>,
 }
 
 impl LaplaceBem {
@@ -288,6 +352,12 @@ impl LaplaceBem {
                 })?,
             );
         }
+        let sources = congruence::operator_sources(regions, &kernels);
+        let assembled: Vec<usize> = (0..regions.len()).filter(|&r| sources[r] == r).collect();
+        let slot = sources
+            .iter()
+            .map(|q| assembled.iter().position(|a| a == q).unwrap_or(0))
+            .collect();
         let (dofs, ncol) = problem.dofs(bcs)?;
         let statics = known_values(&dofs);
         let mut known: Vec<(usize, KnownDof, f64)> = Vec::new();
@@ -337,6 +407,8 @@ impl LaplaceBem {
             traction_col,
             probes,
             stress_probes: Vec::new(),
+            slot,
+            assembled,
             problem,
         })
     }
@@ -480,16 +552,30 @@ impl LaplaceBem {
             .collect())
     }
 
-    /// The region operators `(H(s), G(s))` of every region ([`region_operators`]).
+    /// The region operators `(H(s), G(s))` ([`region_operators`]) of the regions in
+    /// `self.assembled`: region r uses entry `self.slot[r]` (congruent regions share one,
+    /// [`congruence`]).
     fn operators(&self, s: c64) -> Result<Vec<(Mat<c64>, Mat<c64>)>> {
-        self.problem
-            .mesh
-            .regions
+        self.assembled
             .iter()
-            .zip(&self.problem.operators)
-            .zip(&self.kernels)
-            .map(|((region, statics), kernel)| region_operators(region, statics, kernel, s))
+            .map(|&r| {
+                region_operators(
+                    &self.problem.mesh.regions[r],
+                    &self.problem.operators[r],
+                    &self.kernels[r],
+                    s,
+                )
+            })
             .collect()
+    }
+
+    /// The operators of every region (in region order) from the list of
+    /// [`LaplaceBem::operators`].
+    fn region_refs<'a>(
+        &self,
+        ops: &'a [(Mat<c64>, Mat<c64>)],
+    ) -> Vec<(&'a Mat<c64>, &'a Mat<c64>)> {
+        self.slot.iter().map(|&k| (&ops[k].0, &ops[k].1)).collect()
     }
 
     /// The raw solutions (`ncol x known.len()`, the traction unknowns divided by the
@@ -501,30 +587,30 @@ impl LaplaceBem {
         }
         let mesh = &self.problem.mesh;
         let ops = self.operators(s)?;
-        let refs: Vec<(&Mat<c64>, &Mat<c64>)> = ops.iter().map(|(h, g)| (h, g)).collect();
-        let zero: Vec<Vec<[c64; 2]>> = mesh
-            .regions
-            .iter()
-            .map(|r| vec![[c64::ZERO; 2]; r.nodes.len()])
-            .collect();
-        let (a, _) = self
-            .problem
-            .assemble_system(&self.dofs, self.ncol, &refs, &zero, &[])?;
+        let refs = self.region_refs(&ops);
         // Right-hand sides: the known column of G (known traction) or -H (known
         // displacement) times the value, as the system build of the static solver.
-        let mut offsets = Vec::with_capacity(ops.len());
+        let mut offsets = Vec::with_capacity(refs.len());
         let mut offset = 0;
-        for (h, _) in &ops {
+        for (h, _) in &refs {
             offsets.push(offset);
             offset += h.nrows();
         }
-        let mut b = Mat::<c64>::zeros(self.ncol, known.len());
+        let mut b = try_zeros_of::<c64>(
+            &format!(
+                "the Laplace-domain right-hand sides ({} x {})",
+                self.ncol,
+                known.len()
+            ),
+            self.ncol,
+            known.len(),
+        )?;
         for (j, values) in known.iter().enumerate() {
             for (k, v) in self.known.iter().zip(values) {
                 if *v == c64::ZERO {
                     continue;
                 }
-                let (h, g) = &ops[k.region];
+                let (h, g) = refs[k.region];
                 let c = 2 * k.node + k.direction;
                 let off = offsets[k.region];
                 for row in 0..h.nrows() {
@@ -538,30 +624,137 @@ impl LaplaceBem {
         }
         let blocks = self.independent_blocks(&offsets);
         if blocks.len() < 2 {
-            return Ok(self.problem.solve_assembled(a, b)?.0);
+            let zero: Vec<Vec<[c64; 2]>> = mesh
+                .regions
+                .iter()
+                .map(|r| vec![[c64::ZERO; 2]; r.nodes.len()])
+                .collect();
+            let (a, _) = self
+                .problem
+                .assemble_system(&self.dofs, self.ncol, &refs, &zero, &[])?;
+            return lu_solve(a, b, s);
         }
         // Bodies that share no interface: A is block diagonal (region rows x the columns of
         // the region's DOFs), so each body's block is factored alone (the same solution,
-        // a fraction of the dense LU's cost: two equal bodies take a quarter).
-        let mut x = Mat::<c64>::zeros(self.ncol, known.len());
-        for (rows, cols) in blocks {
-            let ab = Mat::<c64>::from_fn(rows.len(), cols.len(), |i, j| a[(rows[i], cols[j])]);
-            let bb = Mat::<c64>::from_fn(rows.len(), known.len(), |i, j| b[(rows[i], j)]);
-            let (xb, _) = self.problem.solve_assembled(ab, bb)?;
-            for (i, &c) in cols.iter().enumerate() {
-                for j in 0..known.len() {
-                    x[(c, j)] = xb[(i, j)];
+        // a fraction of the dense LU's cost: two equal bodies take a quarter). A block of
+        // one region is built from its operators directly (the dense A is never formed);
+        // blocks with the same operators and column layout (congruent bodies with the same
+        // conditions) are factored once for all their right-hand sides.
+        let single: Vec<Option<Vec<(bool, usize)>>> = blocks
+            .iter()
+            .map(|(regions, _, cols)| match regions.as_slice() {
+                [r] => self.single_layout(*r, cols),
+                _ => None,
+            })
+            .collect();
+        let full = if single.iter().any(Option::is_none) {
+            let zero: Vec<Vec<[c64; 2]>> = mesh
+                .regions
+                .iter()
+                .map(|r| vec![[c64::ZERO; 2]; r.nodes.len()])
+                .collect();
+            Some(
+                self.problem
+                    .assemble_system(&self.dofs, self.ncol, &refs, &zero, &[])?
+                    .0,
+            )
+        } else {
+            None
+        };
+        let nk = known.len();
+        let mut x = try_zeros_of::<c64>(
+            &format!("the Laplace-domain solutions ({} x {nk})", self.ncol),
+            self.ncol,
+            nk,
+        )?;
+        let mut done = vec![false; blocks.len()];
+        for k in 0..blocks.len() {
+            if done[k] {
+                continue;
+            }
+            // The blocks that share block k's matrix (k itself first).
+            let group: Vec<usize> = match (&single[k], &blocks[k].0[..]) {
+                (Some(layout), [r]) => (k..blocks.len())
+                    .filter(|&m| {
+                        !done[m]
+                            && matches!(blocks[m].0[..], [q] if self.slot[q] == self.slot[*r])
+                            && single[m].as_ref() == Some(layout)
+                    })
+                    .collect(),
+                _ => vec![k],
+            };
+            let (_, rows, cols) = &blocks[k];
+            let ab = match (&single[k], &full) {
+                (Some(layout), _) => {
+                    let what = format!(
+                        "the Laplace-domain block matrix ({} x {}, complex)",
+                        rows.len(),
+                        cols.len()
+                    );
+                    let mut ab = try_zeros_of::<c64>(&what, rows.len(), cols.len())?;
+                    let (h, g) = refs[blocks[k].0[0]];
+                    let scale = self.problem.traction_scale();
+                    // The same operations as `BemProblem::assemble_system` on a zero matrix.
+                    for (c, &(traction, j)) in layout.iter().enumerate() {
+                        for row in 0..rows.len() {
+                            if traction {
+                                ab[(row, j)] -= g[(row, c)] * scale;
+                            } else {
+                                ab[(row, j)] += h[(row, c)];
+                            }
+                        }
+                    }
+                    ab
                 }
+                (None, Some(a)) => {
+                    Mat::<c64>::from_fn(rows.len(), cols.len(), |i, j| a[(rows[i], cols[j])])
+                }
+                (None, None) => {
+                    return Err(Error::Numerical {
+                        context: "Laplace-domain BEM solve",
+                        detail: "no system matrix for a block".into(),
+                    })
+                }
+            };
+            let bb = Mat::<c64>::from_fn(rows.len(), group.len() * nk, |i, j| {
+                b[(blocks[group[j / nk]].1[i], j % nk)]
+            });
+            let xb = lu_solve(ab, bb, s)?;
+            for (g, &m) in group.iter().enumerate() {
+                for (i, &c) in blocks[m].2.iter().enumerate() {
+                    for j in 0..nk {
+                        x[(c, j)] = xb[(i, g * nk + j)];
+                    }
+                }
+                done[m] = true;
             }
         }
         Ok(x)
     }
 
-    /// The independent diagonal blocks of the system matrix (rows, columns), one per set of
-    /// regions joined by bonded interfaces, with the first row of each region at
+    /// The column layout of the block of region `r` alone with the (sorted) system columns
+    /// `cols`: per region DOF 2 node + direction, whether it is a traction unknown and its
+    /// column in the block; None where the region has an interface DOF or a column is not
+    /// in `cols`.
+    fn single_layout(&self, r: usize, cols: &[usize]) -> Option<Vec<(bool, usize)>> {
+        let mut layout = Vec::with_capacity(2 * self.dofs[r].len());
+        for dof in self.dofs[r].iter().flatten() {
+            let (traction, col) = match *dof {
+                Dof::U { col, .. } => (false, col),
+                Dof::T { col, .. } => (true, col),
+                Dof::Interface { .. } => return None,
+            };
+            layout.push((traction, cols.binary_search(&col).ok()?));
+        }
+        Some(layout)
+    }
+
+    /// The independent diagonal blocks of the system matrix (regions, rows, columns), one
+    /// per set of regions joined by bonded interfaces, with the first row of each region at
     /// `offsets[r]`; empty where a block would not be square (then the whole system is
     /// solved at once).
-    fn independent_blocks(&self, offsets: &[usize]) -> Vec<(Vec<usize>, Vec<usize>)> {
+    #[allow(clippy::type_complexity)]
+    fn independent_blocks(&self, offsets: &[usize]) -> Vec<(Vec<usize>, Vec<usize>, Vec<usize>)> {
         let nr = self.dofs.len();
         // Union-find over the regions: an interface column joins the regions that use it.
         let mut parent: Vec<usize> = (0..nr).collect();
@@ -590,31 +783,32 @@ impl LaplaceBem {
                 }
             }
         }
-        let mut blocks: Vec<(usize, Vec<usize>, Vec<usize>)> = Vec::new();
+        let mut blocks: Vec<(usize, Vec<usize>, Vec<usize>, Vec<usize>)> = Vec::new();
         for r in 0..nr {
             let id = root(&mut parent, r);
             let k = match blocks.iter().position(|b| b.0 == id) {
                 Some(k) => k,
                 None => {
-                    blocks.push((id, Vec::new(), Vec::new()));
+                    blocks.push((id, Vec::new(), Vec::new(), Vec::new()));
                     blocks.len() - 1
                 }
             };
+            blocks[k].1.push(r);
             blocks[k]
-                .1
+                .2
                 .extend(offsets[r]..offsets[r] + 2 * self.dofs[r].len());
         }
         for (c, o) in owner.iter().enumerate() {
             let Some(o) = o else { return Vec::new() };
             let id = root(&mut parent, *o);
             if let Some(b) = blocks.iter_mut().find(|b| b.0 == id) {
-                b.2.push(c);
+                b.3.push(c);
             }
         }
-        if blocks.iter().any(|b| b.1.len() != b.2.len()) {
+        if blocks.iter().any(|b| b.2.len() != b.3.len()) {
             return Vec::new();
         }
-        blocks.into_iter().map(|b| (b.1, b.2)).collect()
+        blocks.into_iter().map(|b| (b.1, b.2, b.3)).collect()
     }
 
     /// The transfer matrix `R(s)` (`outputs x inputs`, row-major: the outputs of
@@ -714,7 +908,7 @@ impl LaplaceBem {
             values[k.region][k.node][k.direction] = *v;
         }
         let ops = self.operators(s)?;
-        let refs: Vec<(&Mat<c64>, &Mat<c64>)> = ops.iter().map(|(h, g)| (h, g)).collect();
+        let refs = self.region_refs(&ops);
         let (x, residual) =
             self.problem
                 .solve_system(&self.dofs, self.ncol, &refs, &values, &[])?;
@@ -809,6 +1003,7 @@ impl LaplaceResponse for LaplaceBem {
     }
 }
 
+mod congruence;
 pub mod stress;
 pub mod verify_limits;
 
@@ -832,3 +1027,6 @@ mod verify_lamb;
 
 #[cfg(test)]
 mod fast_tests;
+
+#[cfg(test)]
+mod congruence_tests;
