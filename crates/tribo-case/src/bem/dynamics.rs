@@ -410,7 +410,7 @@ pub(crate) fn output_points_with(
 /// each region's Hooke's law, the velocities by the rule's own difference of the
 /// displacements ([`cq_velocity`]); at rest before the first sample. Regions the
 /// triangulation leaves out (`[field] regions`) are not integrated.
-pub(crate) fn domain_energies(
+pub fn domain_energies(
     bem: &LaplaceBem,
     series: &CqSeries,
     grid: &CqGrid,

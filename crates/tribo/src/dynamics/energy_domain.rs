@@ -178,7 +178,7 @@ pub fn worst_balance(
         return None;
     }
     let w_max = input_work.iter().fold(0.0_f64, |m, &w| m.max(w));
-    if !(w_max > 0.0) {
+    if w_max <= 0.0 {
         return None;
     }
     let mut worst = (0.0, times.first().copied().unwrap_or(0.0));
