@@ -391,7 +391,7 @@ fn bem_damage(s: &mut String, d: &tribo_case::bem::summary::DamageSummary) {
 }
 
 /// The lines of a dynamic run: the time grid, each probe's peaks against its static value,
-/// the damage over time and the input work.
+/// the damage over time and the energies.
 fn bem_dynamics(s: &mut String, d: &tribo_case::bem::summary::DynamicsSummary) {
     let realisation = if d.contact.is_some() {
         "marching with contact; then"
@@ -463,6 +463,22 @@ fn bem_dynamics(s: &mut String, d: &tribo_case::bem::summary::DynamicsSummary) {
             num(e.input_work_max_j_per_m),
             num(e.input_work_max_time_s)
         );
+        if let (Some(u), Some(k), Some(b), Some(t)) = (
+            e.strain_energy_end_j_per_m,
+            e.kinetic_energy_end_j_per_m,
+            e.balance_worst_relative,
+            e.balance_worst_time_s,
+        ) {
+            let _ = writeln!(
+                s,
+                "    strain + kinetic energy: {} + {} J/m at the end; balance W - U - K at \
+                 worst {:.2e} of max W (at {} s)",
+                num(u),
+                num(k),
+                b,
+                num(t)
+            );
+        }
     }
     if let Some(c) = &d.contact {
         bem_dynamic_contact(s, c);

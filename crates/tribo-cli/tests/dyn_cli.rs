@@ -33,7 +33,13 @@ fn a_dynamic_run_with_damage_prints_and_writes_the_damage_and_the_input_work() {
     );
     assert_eq!(lines.count(), 161);
     let energy = std::fs::read_to_string(out.join("energy.csv")).unwrap();
-    assert_eq!(energy.lines().next(), Some("time_s,input_work_J_per_m"));
+    assert_eq!(
+        energy.lines().next(),
+        Some(
+            "time_s,input_work_J_per_m,strain_energy_J_per_m,kinetic_energy_J_per_m,\
+             balance_J_per_m"
+        )
+    );
     let s = read_json(&out.join("summary.json"));
     let d = &s["dynamics"]["damage"];
     assert_eq!(d["region"], "column");

@@ -21,6 +21,11 @@
 //! kernels ([`LaplaceBem::with_stress_probes`], docs/theory/DYNAMICS.md sec. 5.5), convolved
 //! with the displacements; they cost about as much again per point as the displacements.
 //!
+//! **Energies.** The input work W of the boundary tractions, and the strain and kinetic
+//! energy U, K of the bodies integrated over the field triangulation (sampled for this also
+//! without snapshots; [`domain_energies`], [`tribo::dynamics::energy_domain`]) at every
+//! step, with the balance W - U - K (docs/theory/DYNAMICS.md sec. 5.8).
+//!
 //! Field snapshot points on the boundary are evaluated 1 % of the way towards the centroid
 //! of their first triangle (the Somigliana identity holds inside; at a corner the static
 //! sampler's boundary-layer rule has two feet and no single inside point): a displacement
@@ -74,7 +79,7 @@ pub struct DynamicTimings {
 /// The result of the dynamic run of a case.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct DynamicOutcome {
-    /// The histories (probes, snapshots; no contact, energy or damage in a linear run).
+    /// The histories (probes, snapshots, the energies W, U, K; no contact in a linear run).
     pub history: DynamicHistory,
     /// The convolution quadrature's rule.
     pub method: Method,
@@ -239,6 +244,9 @@ pub fn run(
     statics: Option<&BemSolution>,
     progress: &mut dyn Progress,
 ) -> CaseResult<DynamicOutcome> {
+    for note in &spec.notes {
+        progress.note(note);
+    }
     if super::dynamics_contact::marches(case, spec) {
         return super::dynamics_contact::run(case, spec, built, statics, progress);
     }
@@ -249,7 +257,8 @@ pub fn run(
     let densities: Vec<f64> = materials.iter().map(|m| spec.densities[m]).collect();
     let factors = &case.steps[0].factors;
     let all = pipeline::scaled_conditions(case, built, factors, &|_| 1.0)?;
-    let (points, snapshot) = output_points(case, spec, built)?;
+    // The field triangulation always: the strain and kinetic energies integrate over it.
+    let (points, snapshot) = output_points_with(case, spec, built, true)?;
     // Stresses at every point (probes and snapshot points): three more outputs each.
     let bem =
         LaplaceBem::new(&built.model, &densities, &all, &points)?.with_stress_probes(&points)?;
@@ -288,10 +297,17 @@ pub fn run(
         Vec::new(),
         EnergyTerms {
             input_work: true,
+            strain_energy: true,
+            kinetic_energy: true,
             ..EnergyTerms::default()
         },
     );
-    let energy = super::dynamics_damage::energy(&bem, &data, &series)?;
+    let mut energy = super::dynamics_damage::energy(&bem, &data, &series)?;
+    let domain = domain_energies(&bem, &series, &grid, &points, &snapshot, &densities)?;
+    for (e, (u, k)) in energy.iter_mut().zip(domain) {
+        e.strain_energy = Some(u);
+        e.kinetic_energy = Some(k);
+    }
     let mut damage = super::dynamics_damage::start(case, &snapshot, spec.probes.len(), &bem)?;
     let mut history = record(
         history,
@@ -349,9 +365,20 @@ pub(crate) fn output_points(
     spec: &DynamicsSpec,
     built: &BuiltModel,
 ) -> CaseResult<(Vec<[f64; 2]>, SnapshotMesh)> {
+    output_points_with(case, spec, built, false)
+}
+
+/// [`output_points`], with the triangulation also without snapshots or `[damage]` where
+/// `always` (the linear run's domain energies).
+pub(crate) fn output_points_with(
+    case: &BemCase,
+    spec: &DynamicsSpec,
+    built: &BuiltModel,
+    always: bool,
+) -> CaseResult<(Vec<[f64; 2]>, SnapshotMesh)> {
     let mut snapshot = SnapshotMesh::default();
     let mut points: Vec<[f64; 2]> = spec.probes.iter().map(|p| p.at).collect();
-    if !spec.field_steps.is_empty() || super::dynamics_damage::needs_points(case) {
+    if always || !spec.field_steps.is_empty() || super::dynamics_damage::needs_points(case) {
         let mesh = tribo::operators::bem2d::BemMesh::new(&built.model)?;
         let size = case
             .field
@@ -375,6 +402,124 @@ pub(crate) fn output_points(
         }
     }
     Ok((points, snapshot))
+}
+
+/// The strain and kinetic energy (J/m) of the bodies at every step t_n = n dt, n =
+/// 0..=steps ([`tribo::dynamics::energy_domain`]): the stresses convolved at the snapshot
+/// points (the field triangulation's nodes, after the probes in `points`), the strains by
+/// each region's Hooke's law, the velocities by the rule's own difference of the
+/// displacements ([`cq_velocity`]); at rest before the first sample. Regions the
+/// triangulation leaves out (`[field] regions`) are not integrated.
+pub fn domain_energies(
+    bem: &LaplaceBem,
+    series: &CqSeries,
+    grid: &CqGrid,
+    points: &[[f64; 2]],
+    snapshot: &SnapshotMesh,
+    densities: &[f64],
+) -> CaseResult<Vec<(f64, f64)>> {
+    use tribo::dynamics::energy_domain::EnergyMesh;
+    let steps = grid.steps();
+    let no = series.channels;
+    let first_snapshot: usize = points.len().saturating_sub(
+        snapshot
+            .regions
+            .iter()
+            .map(|r| r.nodes.len())
+            .sum::<usize>(),
+    );
+    if snapshot.regions.is_empty() {
+        return Ok(vec![(0.0, 0.0); steps + 1]);
+    }
+    let first_point = bem.first_stress_output() - 2 * points.len();
+    let samples = grid.sample_times().len();
+    // Per region: its mesh, its first point, its kernels; the velocities per point.
+    let mut meshes = Vec::with_capacity(snapshot.regions.len());
+    let mut start = first_snapshot;
+    for r in &snapshot.regions {
+        let density = densities.get(r.index).copied().ok_or_else(|| {
+            CaseError::field(
+                "regions",
+                r.region.clone(),
+                "has no density in the dynamic run",
+            )
+        })?;
+        meshes.push((
+            EnergyMesh::new(&r.nodes, &r.triangles, density)?,
+            start,
+            r.index,
+        ));
+        start += r.nodes.len();
+    }
+    let velocity: Vec<[Vec<f64>; 2]> = (first_snapshot..points.len())
+        .map(|i| {
+            [0, 1].map(|d| {
+                let c = first_point + 2 * i + d;
+                let u: Vec<f64> = (0..samples).map(|k| series.values[k * no + c]).collect();
+                cq_velocity(grid, &u)
+            })
+        })
+        .collect();
+    let mut out = Vec::with_capacity(steps + 1);
+    for n in 0..=steps {
+        let Some(k) = grid.step_sample(n) else {
+            out.push((0.0, 0.0));
+            continue;
+        };
+        let stress = bem.stress_probe_values(&series.values[k * no..(k + 1) * no])?;
+        let (mut u, mut kin) = (0.0, 0.0);
+        for (mesh, start, region) in &meshes {
+            let kernels = &bem.static_problem().mesh.regions[*region].kernels;
+            let range = *start..*start + mesh.node_count();
+            let s: Vec<[f64; 3]> = stress[range.clone()]
+                .iter()
+                .map(|s| [s.xx, s.yy, s.xy])
+                .collect();
+            let e: Vec<[f64; 3]> = s.iter().map(|s| kernels.strain_from_stress(*s)).collect();
+            let v: Vec<[f64; 2]> = range
+                .map(|i| {
+                    let v = &velocity[i - first_snapshot];
+                    [v[0][k], v[1][k]]
+                })
+                .collect();
+            u += mesh.strain_energy(&s, &e)?;
+            kin += mesh.kinetic_energy(&v)?;
+        }
+        out.push((u, kin));
+    }
+    Ok(out)
+}
+
+/// The end values and the worst balance of a history with input work, strain and kinetic
+/// energy (the linear run's; [`tribo::dynamics::energy_domain::worst_balance`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnergyBalance {
+    /// U at the end, J/m.
+    pub strain_end: f64,
+    /// K at the end, J/m.
+    pub kinetic_end: f64,
+    /// max |W - U - K - D| / max W.
+    pub worst: f64,
+    /// Its time, s.
+    pub worst_time: f64,
+}
+
+/// The [`EnergyBalance`] of `h`; None without the three series or without input work.
+pub fn energy_balance(h: &DynamicHistory) -> Option<EnergyBalance> {
+    let e = &h.energy;
+    let (w, u, k) = (
+        e.input_work.as_deref()?,
+        e.strain_energy.as_deref()?,
+        e.kinetic_energy.as_deref()?,
+    );
+    let d = e.dissipation.as_deref().unwrap_or(&[]);
+    let (worst, worst_time) = tribo::dynamics::energy_domain::worst_balance(&h.times, w, u, k, d)?;
+    Some(EnergyBalance {
+        strain_end: u.last().copied()?,
+        kinetic_end: k.last().copied()?,
+        worst,
+        worst_time,
+    })
 }
 
 /// The convolution of `bem` with the known values `data` (sample-major) on `grid`, in a

@@ -13,8 +13,8 @@
 //!
 //! **Energy.** The input work W(t) of the boundary tractions
 //! ([`tribo::dynamics::energy::input_work`], trapezoid in time) at every step: for a linear
-//! run from rest W = U + K (strain plus kinetic energy; nothing is dissipated), which
-//! are domain integrals not computed here.
+//! run from rest W = U + K (strain plus kinetic energy; nothing is dissipated), the
+//! domain integrals of [`super::dynamics::domain_energies`].
 
 use tribo::analysis::damage::{DamageMesh, Execution, Limit};
 use tribo::dynamics::cq::CqSeries;
@@ -220,6 +220,20 @@ pub struct DynamicEnergySummary {
     pub input_work_max_j_per_m: f64,
     /// Its time, s.
     pub input_work_max_time_s: f64,
+    /// The strain energy at the end of the run, J/m (linear run only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub strain_energy_end_j_per_m: Option<f64>,
+    /// The kinetic energy at the end of the run, J/m (linear run only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kinetic_energy_end_j_per_m: Option<f64>,
+    /// The worst balance max |W - U - K| over max W (linear run only; the first sample
+    /// included, where a load applied at t = 0 shows the CQ start-up: U + K > 0 at W = 0,
+    /// docs/theory/DYNAMICS.md sec. 5.8).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub balance_worst_relative: Option<f64>,
+    /// Its time, s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub balance_worst_time_s: Option<f64>,
 }
 
 /// The units of the summary's `dynamics.damage` and `dynamics.energy` keys.
@@ -241,6 +255,10 @@ pub const UNITS: &[(&str, &str)] = &[
     ("dynamics.energy.input_work_end_j_per_m", "J/m"),
     ("dynamics.energy.input_work_max_j_per_m", "J/m"),
     ("dynamics.energy.input_work_max_time_s", "s"),
+    ("dynamics.energy.strain_energy_end_j_per_m", "J/m"),
+    ("dynamics.energy.kinetic_energy_end_j_per_m", "J/m"),
+    ("dynamics.energy.balance_worst_relative", "1"),
+    ("dynamics.energy.balance_worst_time_s", "s"),
 ];
 
 /// The entries of [`UNITS`] whose block `out` has.
@@ -254,6 +272,8 @@ pub fn units(out: &BemOutcome) -> Vec<(&'static str, &'static str)> {
         .filter(|(k, _)| {
             if k.starts_with("dynamics.damage.") {
                 d.damage.is_some()
+            } else if !k.starts_with("dynamics.energy.input_work") {
+                super::dynamics::energy_balance(&d.history).is_some()
             } else {
                 d.history.energy.input_work.is_some()
             }
@@ -300,9 +320,14 @@ pub fn energy_summary(out: &BemOutcome) -> Option<DynamicEnergySummary> {
         .iter()
         .zip(&d.history.times)
         .fold((0.0, 0.0), |m, (&v, &t)| if v > m.0 { (v, t) } else { m });
+    let balance = super::dynamics::energy_balance(&d.history);
     Some(DynamicEnergySummary {
         input_work_end_j_per_m: w.last().copied().unwrap_or(0.0),
         input_work_max_j_per_m: max,
         input_work_max_time_s: at,
+        strain_energy_end_j_per_m: balance.map(|b| b.strain_end),
+        kinetic_energy_end_j_per_m: balance.map(|b| b.kinetic_end),
+        balance_worst_relative: balance.map(|b| b.worst),
+        balance_worst_time_s: balance.map(|b| b.worst_time),
     })
 }

@@ -374,6 +374,9 @@ pub fn panels_plot(path: &Path, panels: &[Panel], x_desc: &str, log_y: bool) -> 
             .margin(12)
             .x_label_area_size(45)
             .y_label_area_size(80);
+        // A line without a label only widens the y range (room for the legend: the
+        // dynamic energy plot); it is neither drawn nor listed.
+        let lines: Vec<Line> = lines.into_iter().filter(|l| !l.label.is_empty()).collect();
         let mut occupied = Vec::new();
         for l in &lines {
             occupied.extend(densify(&l.points));

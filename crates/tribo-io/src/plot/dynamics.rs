@@ -169,28 +169,92 @@ fn contact_panels(h: &DynamicHistory, t: &[f64]) -> Vec<Panel> {
     panels
 }
 
-/// The energy panel: every computed series and the balance (dashed).
-fn energy_panel(h: &DynamicHistory, t: &[f64]) -> Vec<Panel> {
-    let series = h.energy.series();
-    let balance = h.energy.balance();
+/// The legend label of an energy series or `energy.csv` column (name with its unit).
+fn energy_label(name: &str) -> String {
+    match name {
+        "input_work_J_per_m" => "input work W".into(),
+        "strain_energy_J_per_m" => "strain energy U".into(),
+        "kinetic_energy_J_per_m" => "kinetic energy K".into(),
+        "dissipation_J_per_m" => "friction dissipation D".into(),
+        "mechanical_energy_J_per_m" => "mechanical energy U + K".into(),
+        "translational_kinetic_J_per_m" => "translational kinetic energy".into(),
+        "normal_contact_work_J_per_m" => "normal contact work".into(),
+        other => other.trim_end_matches("_J_per_m").replace('_', " "),
+    }
+}
+
+/// A line without a label at (t_0, `top`): it widens the panel's y range so that the
+/// upper corners hold no data and the legend covers no line ([`super::bem::panels_plot`]
+/// neither draws nor lists it).
+fn headroom(t: &[f64], top: f64) -> Line {
+    Line {
+        label: String::new(),
+        points: t.first().map(|&t0| (t0, top)).into_iter().collect(),
+        colour: palette(0),
+        dashed: false,
+    }
+}
+
+/// The y value above which a legend of `n` lines fits in a panel of `energy.png` whose data
+/// span `lo..hi` (a 360 px panel has ~270 px of axis; a legend row takes 22 px, its frame
+/// 16 px, [`super::style::legend_frac`]; 10 % more as a margin).
+fn legend_top(lo: f64, hi: f64, n: usize) -> f64 {
+    let frac = ((n as f64 * 22.0 + 16.0) / 270.0 + 0.1).min(0.8);
+    let (lo, hi) = (lo.min(0.0), hi.max(0.0));
+    lo + (hi - lo) / (1.0 - frac)
+}
+
+/// The panels of `energy.png`: the computed energies (the history's series, U + K where
+/// both are computed, and the `columns` of `energy.csv` beyond the history's: a contact
+/// run's mechanical and translational kinetic energy and contact work), then the balance
+/// on its own scale (the history's W - U - K - D, [`crate::dynamics::energy_balance`], or
+/// a `balance_J_per_m` column).
+fn energy_panels(h: &DynamicHistory, t: &[f64], columns: &[(&str, &[f64])]) -> Vec<Panel> {
+    let mut series: Vec<(String, Vec<f64>)> = h
+        .energy
+        .series()
+        .into_iter()
+        .map(|(name, v)| (energy_label(name), v.to_vec()))
+        .collect();
+    if let (Some(u), Some(k)) = (&h.energy.strain_energy, &h.energy.kinetic_energy) {
+        series.push((
+            "U + K".into(),
+            u.iter().zip(k).map(|(u, k)| u + k).collect(),
+        ));
+    }
+    let mut balance = crate::dynamics::energy_balance(h).map(|b| ("W - U - K".to_string(), b));
+    if h.energy.dissipation.is_some() {
+        if let Some(b) = &mut balance {
+            b.0 = "W - U - K - D".into();
+        }
+    }
+    for (name, v) in columns {
+        if v.len() != t.len() {
+            continue;
+        }
+        if name.starts_with("balance") {
+            balance.get_or_insert(("W - (U + K) - D".into(), v.to_vec()));
+        } else {
+            series.push((energy_label(name), v.to_vec()));
+        }
+    }
     let e = unit_for(
         series
             .iter()
             .flat_map(|s| s.1.iter().copied())
-            .chain(balance.iter().flatten().copied()),
+            .chain(balance.iter().flat_map(|b| b.1.iter().copied())),
         ENERGY,
     );
-    let names = |n: &str| match n {
-        "input_work_J_per_m" => "input work W",
-        "strain_energy_J_per_m" => "strain energy U",
-        "kinetic_energy_J_per_m" => "kinetic energy K",
-        _ => "friction dissipation D",
-    };
-    let lines: Vec<Line> = series
+    let mut lines: Vec<Line> = series
         .iter()
         .enumerate()
-        .map(|(k, (name, v))| line(names(name).into(), t, v.iter().copied(), e.1, k))
+        .map(|(k, (name, v))| line(name.clone(), t, v.iter().copied(), e.1, k))
         .collect();
+    let (lo, hi) = lines
+        .iter()
+        .flat_map(|l| l.points.iter().map(|p| p.1))
+        .fold((0.0_f64, 0.0_f64), |(a, b), y| (a.min(y), b.max(y)));
+    lines.push(headroom(t, legend_top(lo, hi, series.len())));
     let mut panels = vec![(
         "Energy per unit thickness".into(),
         format!("energy, {}", e.0),
@@ -199,7 +263,7 @@ fn energy_panel(h: &DynamicHistory, t: &[f64]) -> Vec<Panel> {
     )];
     // The balance on its own scale: a drift small against W (spurious contact
     // oscillation, a scheme's numerical damping) shows here.
-    if let Some(b) = balance {
+    if let Some((label, b)) = balance {
         // Below 1e-12 of the largest energy the balance is rounding (1e-16 relative), which
         // an axis fitted to it would blow up into a plot of noise: shown as 0 (energy.csv
         // keeps the values).
@@ -210,20 +274,30 @@ fn energy_panel(h: &DynamicHistory, t: &[f64]) -> Vec<Panel> {
         let shown = b
             .into_iter()
             .map(|v| if v.abs() < 1e-12 * largest { 0.0 } else { v });
-        let mut l = line("W - U - K - D".into(), t, shown, e.1, 0);
+        let mut l = line(label.clone(), t, shown, e.1, 0);
         l.colour = plotters::style::RGBColor(0, 0, 0);
+        let (lo, hi) = l
+            .points
+            .iter()
+            .fold((0.0_f64, 0.0_f64), |(a, b), p| (a.min(p.1), b.max(p.1)));
+        let room = headroom(t, legend_top(lo, hi, 1));
         panels.push((
-            "Energy balance W - U - K - D (0 for an exact solution)".into(),
+            format!("Energy balance {label} (0 for an exact solution)"),
             format!("energy, {}", e.0),
-            vec![l],
+            vec![l, room],
             None,
         ));
     }
     panels
 }
 
-/// Draws `probes.png`, `contacts.png` and `energy.png` (those with data) into `dir`.
-pub(crate) fn write_plots(dir: &Path, h: &DynamicHistory) -> IoResult<()> {
+/// Draws `probes.png`, `contacts.png` and `energy.png` (those with data) into `dir`;
+/// `columns` are `energy.csv`'s columns beyond the history's ([`energy_panels`]).
+pub(crate) fn write_plots(
+    dir: &Path,
+    h: &DynamicHistory,
+    columns: &[(&str, &[f64])],
+) -> IoResult<()> {
     let tu = unit_for(h.times.iter().copied(), TIME);
     let t: Vec<f64> = h.times.iter().map(|x| x / tu.1).collect();
     let x_desc = format!("t, {}", tu.0);
@@ -240,7 +314,7 @@ pub(crate) fn write_plots(dir: &Path, h: &DynamicHistory) -> IoResult<()> {
         })?;
     }
     if !h.energy.series().is_empty() {
-        let panels = energy_panel(h, &t);
+        let panels = energy_panels(h, &t, columns);
         draw_atomic(dir, "energy.png", |p| {
             panels_plot(p, &panels, &x_desc, false)
         })?;

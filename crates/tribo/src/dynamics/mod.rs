@@ -11,6 +11,7 @@ pub mod contact;
 pub mod cq;
 pub mod damage;
 pub mod energy;
+pub mod energy_domain;
 pub mod history;
 pub mod kernel;
 pub mod laplace;

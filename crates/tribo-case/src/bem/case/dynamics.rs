@@ -19,6 +19,7 @@ use serde::Deserialize;
 use toml::Value;
 use tribo::dynamics::time_function::TimeFunction;
 use tribo::operators::bem2d::{BemModel, LoopItem, SegmentShape};
+use tribo::ElasticMaterial;
 
 use super::RegionSpec;
 use crate::error::{CaseError, CaseResult};
@@ -348,7 +349,23 @@ pub struct DynamicsSpec {
     pub probes: Vec<ProbeSpec>,
     /// Initial rigid-body velocity per region, (v_x, v_y) m/s (regions not listed: at rest).
     pub initial_velocity: BTreeMap<String, [f64; 2]>,
+    /// Validation notes the run prints (an initial velocity above 1 % of the shear wave
+    /// speed, [`IMPACT_NOTE`]).
+    pub notes: Vec<String>,
 }
+
+/// The largest |factor| of a tabulated time function (inline points or CSV): the factor
+/// scales the condition's value (a load of 10 MPa times 1e308 overflows the convolution);
+/// 1e6 leaves any physical load history room (a dynamic amplification is O(1)).
+pub const MAX_TIME_FACTOR: f64 = 1e6;
+
+const FACTOR_RULE: &str = "must be at most 1e6 in magnitude (a time function's factor scales \
+    the condition's value; give the load's size in the [[bc]] and the shape here)";
+
+/// The fraction of a region's shear wave speed c2 above which an initial velocity gets a
+/// validation note: the linear-elastic impact (small strains, no plasticity) needs |v|
+/// well below c2 (the impact strain is of the order of v/c); at |v| >= c2 it is refused.
+pub const IMPACT_NOTE: f64 = 0.01;
 
 /// What the dynamic rules need from the validated static case.
 pub(crate) struct DynamicsContext<'a> {
@@ -366,6 +383,8 @@ pub(crate) struct DynamicsContext<'a> {
     pub base_dir: &'a Path,
     /// The region holding a point (None: outside every region).
     pub locate: &'a dyn Fn([f64; 2]) -> Option<String>,
+    /// The materials by name (the wave speeds of the initial-velocity rule).
+    pub materials: &'a BTreeMap<String, ElasticMaterial>,
 }
 
 fn bad(
@@ -382,8 +401,9 @@ fn bad(
 /// steps, too many steps); `all_at_once` with contact; more than one load step; output times
 /// outside [0, duration] or falling on the same step; a region's material without a density
 /// (or one outside [`DENSITY_RANGE`]); a time function that breaks its rule (a table not
-/// increasing, a rise time not positive); a probe outside every region or named twice; an
-/// initial velocity of no region.
+/// increasing, a rise time not positive, a factor above [`MAX_TIME_FACTOR`]); a probe
+/// outside every region or named twice; an initial velocity of no region, not finite or not
+/// below the region's shear wave speed (a note above [`IMPACT_NOTE`] of it).
 pub(crate) fn validate(
     raw: Option<RawDynamics>,
     probes: Option<Vec<RawProbe>>,
@@ -439,6 +459,7 @@ pub(crate) fn validate(
     }
     let probes = probe_specs(probes.unwrap_or_default(), ctx)?;
     let mut initial_velocity = BTreeMap::new();
+    let mut notes = Vec::new();
     let regions: BTreeSet<&str> = ctx.regions.iter().map(|r| r.0.as_str()).collect();
     for (name, v) in raw.initial_velocity.iter().flatten() {
         let field = format!("dynamics.initial_velocity.{name}");
@@ -452,7 +473,11 @@ pub(crate) fn validate(
                 ),
             ));
         }
-        initial_velocity.insert(name.clone(), [v[0].si(), v[1].si()]);
+        let si = [v[0].si(), v[1].si()];
+        if let Some(note) = velocity_rule(&field, si, name, ctx, &densities)? {
+            notes.push(note);
+        }
+        initial_velocity.insert(name.clone(), si);
     }
     Ok(Some(DynamicsSpec {
         time_step,
@@ -465,6 +490,60 @@ pub(crate) fn validate(
         bc_time,
         probes,
         initial_velocity,
+        notes,
+    }))
+}
+
+/// The range rule of `dynamics.initial_velocity.<region>` (`field`), the velocity `v` in
+/// m/s: finite components and |v| below the shear wave speed c2 = sqrt(mu / rho) of the
+/// region's material (a rigid-body velocity entering a linear-elastic impact as a closing
+/// gap: the impact strain is ~ |v| / c, so |v| must be << c2; 1e300 m/s used to reach the
+/// convolution as a numerical failure). Returns a note for |v| > [`IMPACT_NOTE`] c2.
+fn velocity_rule(
+    field: &str,
+    v: [f64; 2],
+    region: &str,
+    ctx: &DynamicsContext<'_>,
+    densities: &BTreeMap<String, f64>,
+) -> CaseResult<Option<String>> {
+    let shown = format!("[{:e}, {:e}] m/s", v[0], v[1]);
+    if !(v[0].is_finite() && v[1].is_finite()) {
+        return Err(bad(field, shown, "both components must be finite numbers"));
+    }
+    let material = ctx
+        .regions
+        .iter()
+        .find(|(r, _)| r == region)
+        .map(|(_, m)| m.as_str());
+    let c2 = material.and_then(|m| {
+        let rho = densities.get(m)?;
+        let mu = ctx.materials.get(m)?.shear_modulus();
+        Some((mu / rho).sqrt())
+    });
+    let Some(c2) = c2.filter(|c| c.is_finite() && *c > 0.0) else {
+        return Ok(None);
+    };
+    let speed = v[0].hypot(v[1]);
+    if speed >= c2 {
+        return Err(bad(
+            field,
+            shown,
+            format!(
+                "|v| = {speed:e} m/s must be below the shear wave speed c2 = sqrt(mu/rho) = \
+                 {c2:.6e} m/s of the region's material {:?} (a linear-elastic impact needs \
+                 |v| << c2: the impact strain is about |v|/c)",
+                material.unwrap_or_default()
+            ),
+        ));
+    }
+    Ok((speed > IMPACT_NOTE * c2).then(|| {
+        format!(
+            "{field}: |v| = {speed:e} m/s is {:.1} % of the shear wave speed c2 = {c2:.4e} m/s \
+             of {:?}: the impact strain (~ |v|/c) may leave the linear-elastic range the \
+             dynamic model assumes",
+            100.0 * speed / c2,
+            material.unwrap_or_default()
+        )
     }))
 }
 
@@ -708,6 +787,13 @@ pub(crate) fn time_function(
                     ));
                 }
             }
+            if let Some((k, (_, f))) = points
+                .iter()
+                .enumerate()
+                .find(|(_, (_, f))| f.si().abs() > MAX_TIME_FACTOR)
+            {
+                return Err(bad(format!("{field}.points[{k}][1]"), f, FACTOR_RULE));
+            }
             TimeFunction::table(points.iter().map(|(t, f)| [t.si(), f.si()]).collect())
         }
         RawTime::Table(RawTimeTable::Csv(path)) => {
@@ -722,8 +808,8 @@ pub(crate) fn time_function(
 /// per line; an optional header line first (a first line none of whose fields is a number,
 /// so that a malformed first data row such as `0.001,abc` is an error, not a skipped header);
 /// blank lines and lines starting with `#` skipped. Errors ([`CaseError::DataFile`]) carry
-/// the 1-based line number: not two columns, not numbers, not finite, a time not after the
-/// one before; fewer than two rows.
+/// the 1-based line number: not two columns, not numbers, not finite, a factor above
+/// [`MAX_TIME_FACTOR`] in magnitude, a time not after the one before; fewer than two rows.
 pub fn read_time_csv(field: &str, path: &Path) -> CaseResult<TimeFunction> {
     let text = std::fs::read_to_string(path).map_err(|source| CaseError::Unreadable {
         field: field.to_string(),
@@ -769,6 +855,12 @@ pub fn read_time_csv(field: &str, path: &Path) -> CaseResult<TimeFunction> {
         };
         if let Some(k) = values.iter().position(|v| !v.is_finite()) {
             return Err(data_error(n, format!("{} is not a finite number", cols[k])));
+        }
+        if values[1].abs() > MAX_TIME_FACTOR {
+            return Err(data_error(
+                n,
+                format!("the factor {} {FACTOR_RULE}", cols[1]),
+            ));
         }
         if let Some(p) = points.last() {
             if values[0] <= p[0] {

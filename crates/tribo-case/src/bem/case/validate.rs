@@ -101,6 +101,7 @@ pub(super) fn validate(
             load_steps: steps.len(),
             base_dir,
             locate: &locate,
+            materials: &materials,
         };
         dynamics::validate(raw.dynamics.take(), raw.probe.take(), &ctx)?
     };

@@ -92,6 +92,12 @@ fn run_with(text: &str, contact: bool, load_steps: usize) -> CaseResult<Option<D
     let doc: Doc = from_text(text, "t.toml")?;
     let regions = regions();
     let locate = outline_locator(&regions);
+    // Steel c2 = sqrt(mu/rho) = 3.2e3 m/s (mu = 80.77 GPa, rho = 7850).
+    let materials: BTreeMap<String, ElasticMaterial> =
+        [("steel", 210e9, 0.3), ("brass", 100e9, 0.34)]
+            .into_iter()
+            .map(|(n, e, nu)| (n.to_string(), ElasticMaterial::new(e, nu).unwrap()))
+            .collect();
     let ctx = DynamicsContext {
         densities: doc
             .materials
@@ -114,6 +120,7 @@ fn run_with(text: &str, contact: bool, load_steps: usize) -> CaseResult<Option<D
         load_steps,
         base_dir: Path::new(env!("CARGO_MANIFEST_DIR")),
         locate: &locate,
+        materials: &materials,
     };
     validate(doc.dynamics, doc.probe, &ctx)
 }
@@ -653,4 +660,119 @@ proptest! {
             prop_assert!(names_a_key(&e), "{e}\n--- case:\n{text}");
         }
     }
+}
+
+/// `dynamics.initial_velocity`: finite components below the shear wave speed c2 =
+/// sqrt(mu/rho) of the region's material (brass here: mu = 100e9 / 2.68 = 37.3 GPa, rho =
+/// 8500 kg/m^3, c2 = 2095 m/s); a note above 1 % of c2 (20.95 m/s), none below.
+#[test]
+fn initial_velocity_is_finite_and_below_the_shear_wave_speed() {
+    for v in [
+        "[1e300, 0]",
+        "[0, -1e300]",
+        "[\"2100 m/s\", 0]",
+        "[\"1500 m/s\", \"1500 m/s\"]",
+        "[nan, 0]",
+        "[0, inf]",
+    ] {
+        let e = err(&with_dyn(&format!("initial_velocity = {{ tip = {v} }}")));
+        assert!(e.starts_with("dynamics.initial_velocity.tip"), "{v}: {e}");
+        assert!(
+            e.contains("shear wave speed c2") || e.contains("finite"),
+            "{v}: {e}"
+        );
+    }
+    let e = err(&with_dyn("initial_velocity = { tip = [1e300, 0] }"));
+    assert!(e.contains("2.095189e3"), "c2 of brass named: {e}");
+    let s = run(&with_dyn("initial_velocity = { tip = [\"2000 m/s\", 0] }"))
+        .unwrap()
+        .unwrap();
+    assert_eq!(s.notes.len(), 1, "{:?}", s.notes);
+    assert!(
+        s.notes[0].starts_with("dynamics.initial_velocity.tip") && s.notes[0].contains("95.5 %"),
+        "{:?}",
+        s.notes
+    );
+    let s = run(&with_dyn("initial_velocity = { tip = [\"20 m/s\", 0] }"))
+        .unwrap()
+        .unwrap();
+    assert!(s.notes.is_empty(), "{:?}", s.notes);
+}
+
+/// The probe of the dynamic inputs at extreme values (issue 13: each a clean error naming
+/// the item, or a correct result): (what is set, the field the error must start with).
+#[test]
+fn extreme_dynamic_inputs_are_refused_naming_the_item() {
+    let csv = std::env::temp_dir().join(format!("tribo_dynenergy_nan_{}.csv", std::process::id()));
+    std::fs::write(&csv, "t,f\n0,0\n1e-3,NaN\n").unwrap();
+    let big = std::env::temp_dir().join(format!("tribo_dynenergy_big_{}.csv", std::process::id()));
+    std::fs::write(&big, "t,f\n0,0\n1e-3,1e308\n").unwrap();
+    let table: Vec<(String, &str)> = vec![
+        // dt = 1e-300 s over 2 ms: 2e297 steps.
+        (
+            with_dyn("time_step = \"1e-300 s\"").replace("time_step = \"1 us\"\n", ""),
+            "dynamics",
+        ),
+        // 1e12 steps (with the time step: the duration line removed).
+        (
+            with_dyn("steps = 1000000000000").replace("duration = \"2 ms\"\n", ""),
+            "dynamics.steps",
+        ),
+        // 2 ms / 3 us is not a whole number of steps.
+        (
+            with_dyn("time_step = \"3 us\"").replace("time_step = \"1 us\"\n", ""),
+            "dynamics",
+        ),
+        // A time table with 1e308 factors (a load times 1e308 overflows).
+        (
+            BASE.replace(
+                "time = \"step\"",
+                "time = { points = [[0, 0], [\"1 ms\", 1e308]] }",
+            ),
+            "bc[0].time.points[1][1]",
+        ),
+        (
+            BASE.replace(
+                "time = \"step\"",
+                &format!("time = {{ csv = {:?} }}", big.display().to_string()),
+            ),
+            "bc[0].time.csv",
+        ),
+        // A NaN factor in a tabulated CSV.
+        (
+            BASE.replace(
+                "time = \"step\"",
+                &format!("time = {{ csv = {:?} }}", csv.display().to_string()),
+            ),
+            "bc[0].time.csv",
+        ),
+        // A probe at 1e300.
+        (
+            BASE.replace("at = [\"0.2 m\", 0.5]", "at = [1e300, 0.5]"),
+            "probe[0].at",
+        ),
+        // Densities 1e-300 and 1e300 kg/m^3.
+        (
+            BASE.replace("\"7850 kg/m^3\"", "\"1e-300 kg/m^3\""),
+            "materials.steel.density",
+        ),
+        (
+            BASE.replace("\"8.5 g/cm^3\"", "\"1e300 kg/m^3\""),
+            "materials.brass.density",
+        ),
+    ];
+    for (text, field) in &table {
+        let e = match run(text) {
+            Err(e) => e.to_string(),
+            Ok(_) => panic!("accepted: {text}"),
+        };
+        assert!(
+            e.starts_with(field)
+                || e.contains(&format!("{field}:"))
+                || e.contains(&format!("{field} ")),
+            "{field}: {e}"
+        );
+    }
+    let _ = std::fs::remove_file(&csv);
+    let _ = std::fs::remove_file(&big);
 }
