@@ -37,6 +37,7 @@ pub mod kernels;
 pub mod material;
 pub mod operators;
 pub mod solvers;
+pub mod stats;
 pub mod validation;
 
 pub use error::{Error, Result};
