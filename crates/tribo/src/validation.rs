@@ -42,6 +42,8 @@ mod dyn_stress;
 pub use dyn_stress::dyn_stress_rows;
 mod dyn_damage;
 pub use dyn_damage::dyn_damage_rows;
+pub mod prob_damage;
+pub use prob_damage::prob_damage_rows;
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -2204,5 +2206,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(dyn_verify_rows()?);
     rows.extend(dyn_stress_rows()?);
     rows.extend(dyn_damage_rows()?);
+    rows.extend(prob_damage_rows()?);
     Ok(rows)
 }
