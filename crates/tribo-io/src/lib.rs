@@ -45,6 +45,7 @@ pub mod halfspace;
 pub mod json;
 #[cfg(feature = "png")]
 mod plot;
+pub mod probabilistic;
 pub mod vtk;
 
 pub use bem::write_bem;

@@ -44,6 +44,8 @@ mod dyn_damage;
 pub use dyn_damage::dyn_damage_rows;
 pub(crate) mod dyn_energy;
 pub use dyn_energy::dyn_energy_rows;
+pub mod prob_damage;
+pub use prob_damage::prob_damage_rows;
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -2207,5 +2209,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(dyn_stress_rows()?);
     rows.extend(dyn_damage_rows()?);
     rows.extend(dyn_energy_rows()?);
+    rows.extend(prob_damage_rows()?);
     Ok(rows)
 }

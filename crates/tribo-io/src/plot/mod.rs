@@ -10,4 +10,5 @@ pub mod dynamics;
 pub mod dynamics_damage;
 pub mod fatigue;
 pub mod halfspace;
+pub mod probabilistic;
 pub mod style;

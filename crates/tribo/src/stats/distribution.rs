@@ -277,7 +277,7 @@ impl Distribution {
         }
     }
 
-    /// The mean E[X]. Lognormal: median exp(sigma_ln^2 / 2); Weibull: location + scale
+    /// The mean E(X). Lognormal: median exp(sigma_ln^2 / 2); Weibull: location + scale
     /// Gamma(1 + 1/k).
     pub fn mean(&self) -> f64 {
         match *self {

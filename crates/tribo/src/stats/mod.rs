@@ -7,7 +7,7 @@
 //! functions come from [`crate::analysis::woehler::stats`] (the normal CDF accurate in both
 //! tails, ln Gamma); the normal quantile is Wichura's AS 241 (PPND16), written here.
 //!
-//! Used by the probabilistic damage (`analysis::damage::probabilistic`) for the
+//! Used by the probabilistic damage ([`crate::analysis::damage::probabilistic`]) for the
 //! distribution of a limiting value, and by the study engine for random parameters.
 
 mod distribution;

@@ -70,6 +70,7 @@
 mod cycle;
 mod faces;
 mod mesh;
+pub mod probabilistic;
 mod quantity;
 mod study;
 pub(crate) mod sum;
