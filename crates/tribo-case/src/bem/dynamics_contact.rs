@@ -290,6 +290,9 @@ pub fn run(
     };
     let t2 = Instant::now();
     let (points, snapshot) = output_points(case, spec, built)?;
+    // `[damage]`: the damage triangulation is among the points (`output_points`), so the
+    // damage run starts with the recovery model below.
+    let mut damage = None;
     let (history, solves, dof) = if points.is_empty() {
         let grid = CqGrid::new(CqMethod::Bdf2, spec.time_step, spec.steps)?;
         let empty = tribo::dynamics::cq::CqSeries {
@@ -332,6 +335,7 @@ pub fn run(
             data.extend(problem.boundary_inputs(step)?);
         }
         let (series, solves) = convolve_counted(&bem, &grid, &data, spec.steps, progress)?;
+        damage = super::dynamics_damage::start(case, &snapshot, spec.probes.len(), &bem)?;
         let h = record(
             history,
             &Recovery {
@@ -343,11 +347,13 @@ pub fn run(
             },
             spec,
             snapshot,
-            None,
+            damage.as_mut(),
             &mut per_step,
         )?;
         (h, solves, bem.static_problem().dof())
     };
+    let mut history = history;
+    let damage = damage.map(|d| d.finish(&mut history)).transpose()?;
     let recovery_s = t2.elapsed().as_secs_f64();
     let peaks = probe_peaks(&history, spec, statics)?;
     let contact = summarise(case, &problem, &result, built)?;
@@ -361,7 +367,7 @@ pub fn run(
         dof,
         points: points.len(),
         peaks,
-        damage: None,
+        damage,
         timings: DynamicTimings {
             setup,
             convolution: march_s + recovery_s,
