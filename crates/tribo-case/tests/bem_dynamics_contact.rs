@@ -203,6 +203,10 @@ fn a_slow_ramp_reproduces_the_static_contact() {
         "tangential {ft_d} vs {}",
         fs[0]
     );
+    // The faces touch at rest at t = 0 with no force: first contact is the first step with
+    // a positive normal force (the ramp's first step, 5 us), not 0 (the old report).
+    let first = d.contact.as_ref().unwrap().pairs[0].first_contact;
+    assert_eq!(first, Some(5e-6), "first contact {first:?}");
     let static_nodes = st.nodes.iter().filter(|n| n.pressure > 0.0).count();
     assert!(static_nodes > 0);
     assert!(pair.length[n] > 0.019, "contact length {}", pair.length[n]);
