@@ -94,10 +94,18 @@ pub fn halfspace(summary: &Summary, dir: &Path) -> String {
 pub fn bem(summary: &BemSummary, dir: &Path) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "{} ({})", summary.title, summary.source);
+    // A dynamic contact run has two counts: the static model's (here) and the march's.
+    let marches = summary
+        .dynamics
+        .as_ref()
+        .is_some_and(|d| d.contact.is_some());
     let _ = writeln!(
         s,
-        "  plane {}, {} boundary unknowns, {} contact unknowns",
-        summary.plane, summary.dof, summary.contact_unknowns
+        "  plane {}, {} boundary unknowns, {} {}contact unknowns",
+        summary.plane,
+        summary.dof,
+        summary.contact_unknowns,
+        if marches { "static " } else { "" }
     );
     for r in &summary.regions {
         let _ = writeln!(
@@ -491,9 +499,9 @@ fn bem_dynamic_contact(s: &mut String, c: &tribo_case::bem::summary::DynamicCont
     let opt = |x: Option<f64>| x.map_or_else(|| "-".to_string(), num);
     let _ = writeln!(
         s,
-        "    contact march: {} contact unknowns, at most {} active-set iterations per step, \
-         {:.2} s (probes and snapshots {:.2} s)",
-        c.contact_unknowns, c.max_iterations, c.march_s, c.recovery_s
+        "    contact march: {} nodal contact unknowns, at most {} active-set iterations per \
+         step, {:.2} s (probes and snapshots {:.2} s)",
+        c.march_contact_unknowns, c.max_iterations, c.march_s, c.recovery_s
     );
     for p in &c.pairs {
         let amp = p

@@ -62,15 +62,17 @@ pub struct PairPeaks {
     pub peak_pressure_time: f64,
     /// Where (the slave node), m.
     pub peak_pressure_at: [f64; 2],
-    /// The first step time with a node in contact, s (None: never in contact).
+    /// The first step time with a positive normal force, s (None: never in contact). A
+    /// node closed at zero pressure (faces touching at rest, before any load) is not
+    /// contact: the pair is in contact at a step where it transmits a force.
     pub first_contact: Option<f64>,
-    /// The first step time after `first_contact` with no node in contact, s (None: still
+    /// The first step time after `first_contact` with no normal force, s (None: still
     /// in contact at the end, or never in contact).
     pub first_separation: Option<f64>,
     /// `first_separation - first_contact` (to the end of the run where it does not
     /// separate; 0 where it never touches), s.
     pub contact_duration: f64,
-    /// The number of steps with a node in contact.
+    /// The number of steps with a positive normal force.
     pub steps_in_contact: usize,
 }
 
@@ -125,8 +127,10 @@ impl ContactEnergy {
 /// What the contact march adds to a dynamic run.
 #[derive(Debug, Clone, Serialize)]
 pub struct ContactOutcome {
-    /// Contact unknowns (2 per slave node that projects onto its master).
-    pub contact_unknowns: usize,
+    /// The march's contact unknowns: 2 per slave node that projects onto its master (the
+    /// static model's `contact_unknowns` also count the rigid segments and the free
+    /// rigid-body modes of bodies held only by contact).
+    pub march_contact_unknowns: usize,
     /// Largest active-set iteration count of a step.
     pub max_iterations: usize,
     /// Largest complementarity residual of a step (relative to the largest pressure).
@@ -257,7 +261,8 @@ pub fn run(
     };
     progress.stage(
         &format!(
-            "dynamics: contact march ({} contact unknowns, {} boundary unknowns, {} steps)",
+            "dynamics: contact march ({} nodal contact unknowns, {} boundary unknowns, {} \
+             steps)",
             problem.contact_unknowns(),
             problem.bem().static_problem().dof(),
             spec.steps
@@ -290,6 +295,9 @@ pub fn run(
     };
     let t2 = Instant::now();
     let (points, snapshot) = output_points(case, spec, built)?;
+    // `[damage]`: the damage triangulation is among the points (`output_points`), so the
+    // damage run starts with the recovery model below.
+    let mut damage = None;
     let (history, solves, dof) = if points.is_empty() {
         let grid = CqGrid::new(CqMethod::Bdf2, spec.time_step, spec.steps)?;
         let empty = tribo::dynamics::cq::CqSeries {
@@ -332,6 +340,7 @@ pub fn run(
             data.extend(problem.boundary_inputs(step)?);
         }
         let (series, solves) = convolve_counted(&bem, &grid, &data, spec.steps, progress)?;
+        damage = super::dynamics_damage::start(case, &snapshot, spec.probes.len(), &bem)?;
         let h = record(
             history,
             &Recovery {
@@ -343,11 +352,13 @@ pub fn run(
             },
             spec,
             snapshot,
-            None,
+            damage.as_mut(),
             &mut per_step,
         )?;
         (h, solves, bem.static_problem().dof())
     };
+    let mut history = history;
+    let damage = damage.map(|d| d.finish(&mut history)).transpose()?;
     let recovery_s = t2.elapsed().as_secs_f64();
     let peaks = probe_peaks(&history, spec, statics)?;
     let contact = summarise(case, &problem, &result, built)?;
@@ -361,7 +372,7 @@ pub fn run(
         dof,
         points: points.len(),
         peaks,
-        damage: None,
+        damage,
         timings: DynamicTimings {
             setup,
             convolution: march_s + recovery_s,
@@ -416,7 +427,9 @@ fn summarise(
                     peaks.peak_pressure_at = node.position;
                 }
             }
-            let touching = sample.length > 0.0;
+            // In contact: a positive normal force (not merely closed nodes at zero
+            // pressure, e.g. faces touching at rest before the load).
+            let touching = sample.normal_force > 0.0;
             if touching {
                 peaks.steps_in_contact += 1;
                 if peaks.first_contact.is_none() {
@@ -470,7 +483,7 @@ fn summarise(
         })
         .collect();
     Ok(ContactOutcome {
-        contact_unknowns: problem.contact_unknowns(),
+        march_contact_unknowns: problem.contact_unknowns(),
         max_iterations: result.max_iterations,
         max_residual,
         pairs,

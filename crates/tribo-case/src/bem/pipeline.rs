@@ -678,7 +678,9 @@ pub fn run_variant(
     // Damage.
     let t3 = Instant::now();
     let damage = match &case.damage {
+        // An impact solves no static step (its dynamic run has the damage over time).
         None => None,
+        Some(_) if steps.is_empty() => None,
         Some(d) => Some(region_damage(case, d, &fields)?),
     };
     let damage_time = t3.elapsed().as_secs_f64();

@@ -337,9 +337,10 @@ pub struct DynamicPairSummary {
     pub peak_pressure_time_s: f64,
     /// Where, m.
     pub peak_pressure_at_m: [f64; 2],
-    /// The first time in contact, s (None: never).
+    /// The first step time with a positive normal force, s (None: never; faces touching
+    /// at rest without a force are not in contact).
     pub first_contact_s: Option<f64>,
-    /// The first time after it with the pair open, s (None: not separated).
+    /// The first step time after it with no normal force, s (None: not separated).
     pub first_separation_s: Option<f64>,
     /// Separation minus first contact (to the end where it stays closed), s.
     pub contact_duration_s: f64,
@@ -371,8 +372,9 @@ pub struct DynamicBodySummary {
 /// The contact part of a dynamic run.
 #[derive(Debug, Clone, Serialize)]
 pub struct DynamicContactSummary {
-    /// Contact unknowns of the march.
-    pub contact_unknowns: usize,
+    /// Contact unknowns of the march: 2 per slave node that projects onto its master (the
+    /// top-level `contact_unknowns` are the static model's).
+    pub march_contact_unknowns: usize,
     /// Largest active-set iteration count of a step.
     pub max_iterations: usize,
     /// Largest complementarity residual of a step (relative).
@@ -431,7 +433,9 @@ pub struct BemSummary {
     pub meshes: Vec<super::pipeline::MeshImportInfo>,
     /// Boundary unknowns.
     pub dof: usize,
-    /// Condensed contact unknowns.
+    /// Condensed contact unknowns of the static model: 2 per slave node, 2 per rigid
+    /// segment, one per free rigid-body mode of a body held only by contact (a dynamic
+    /// march's count is `dynamics.contact.march_contact_unknowns`).
     pub contact_unknowns: usize,
     /// Steps.
     pub steps: Vec<StepSummary>,
@@ -519,7 +523,7 @@ pub const UNITS: &[(&str, &str)] = &[
     ("dynamics.probes[].amplification", "1"),
     ("dynamics.setup_s", "s"),
     ("dynamics.convolution_s", "s"),
-    ("dynamics.contact.contact_unknowns", "1"),
+    ("dynamics.contact.march_contact_unknowns", "1"),
     ("dynamics.contact.max_iterations", "1"),
     ("dynamics.contact.max_residual", "1"),
     ("dynamics.contact.pairs[].friction", "1"),
@@ -614,7 +618,7 @@ fn contact_summary(
         .and_then(|d| d.history.energy.dissipation.as_deref().map(last))
         .unwrap_or(0.0);
     DynamicContactSummary {
-        contact_unknowns: c.contact_unknowns,
+        march_contact_unknowns: c.march_contact_unknowns,
         max_iterations: c.max_iterations,
         max_residual: c.max_residual,
         pairs: c

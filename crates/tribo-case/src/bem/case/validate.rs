@@ -106,14 +106,7 @@ pub(super) fn validate(
         dynamics::validate(raw.dynamics.take(), raw.probe.take(), &ctx)?
     };
     if let Some(d) = &dynamics {
-        dynamic_limits(
-            d,
-            &regions,
-            &pairs,
-            &rigid,
-            damage.is_some(),
-            compare.is_some(),
-        )?;
+        dynamic_limits(d, &regions, &pairs, &rigid, compare.is_some())?;
     }
     let title = raw.title.unwrap_or_else(|| match &template_params {
         Some(_) => "Clamp-knife-base of a harvester cutter bar (paper Sec. 7)".into(),
@@ -144,8 +137,8 @@ pub(super) fn validate(
 
 /// What the dynamic pipeline does not do yet, refused with the item named: rigid segments
 /// (guided faces: not in the dynamic contact march), with contact pairs a Runge-Kutta
-/// method (the march is multistep: an S-stage step would be a block contact problem) and
-/// `[damage]` (damage over time is computed by the linear run only), `[compare]`, body forces
+/// method (the march is multistep: an S-stage step would be a block contact problem),
+/// `[compare]`, body forces
 /// (not in the Laplace-domain BEM) and initial velocities without contact pairs (a rigid-body
 /// motion acts only through the contact it closes).
 fn dynamic_limits(
@@ -153,7 +146,6 @@ fn dynamic_limits(
     regions: &[RegionSpec],
     pairs: &[ContactPair],
     rigid: &[String],
-    damage: bool,
     compare: bool,
 ) -> CaseResult<()> {
     let refuse = |field: &str, value: &str, rule: &str| Err(bad(field, value, rule));
@@ -164,14 +156,6 @@ fn dynamic_limits(
             "dynamic contact marches with the multistep rule \"bdf2\" (a Runge-Kutta step \
              would be an S-stage block contact problem): use method = \"bdf2\" with \
              [[contact]]",
-        );
-    }
-    if !pairs.is_empty() && damage {
-        return refuse(
-            "dynamics",
-            "(with [[contact]] and [damage])",
-            "damage over time is computed by the linear dynamic run only: remove [damage] \
-             from a dynamic contact case",
         );
     }
     if !rigid.is_empty() {
