@@ -348,21 +348,37 @@ fn the_field_superposes_the_operating_bulk_stress() {
 /// `[field] points = "centres"` (FFT on the contact grid's element centres) gives the same
 /// stresses as the direct sum on uniform points placed on those centres: on 21 x 21 elements
 /// over |x|, |y| <= 1.5a the centres are the uniform points over |x|, |y| <= 1.5a (20/21).
-/// Same kernels, window narrower than the graded far field's switch: round-off only; the
-/// locations of the maxima agree to rounding of the point coordinates (1e-12 relative).
+/// With the bilinear element tractions (`edge_refinement = "none"`): same kernels, window
+/// narrower than the graded far field's switch: round-off only (1e-10); the locations of the
+/// maxima agree to rounding of the point coordinates (1e-12 relative).
 #[test]
 fn the_fft_field_on_element_centres_equals_the_direct_sum() {
+    fft_centres_against_direct_sum("edge_refinement = \"none\"\n", 1e-10);
+}
+
+/// The same with the default edge band: the band's correction is evaluated by each path's
+/// own near field (the FFT path's local window of element tents against the direct sum's),
+/// so the two agree to the band's sampling threshold (1e-4 p0 on the second level, docs/
+/// theory/HALFSPACE.md sec. 2.5), not to round-off: measured 5.8e-6 of the maxima (max
+/// principal at the surface); 2e-5 allows 3x that and fails when one path drops the band
+/// (the bilinear max principal is 1.33e9 Pa against the band's 1.59e9 on this case).
+#[test]
+fn the_fft_field_on_element_centres_equals_the_direct_sum_with_the_band() {
+    fft_centres_against_direct_sum("", 2e-5);
+}
+
+fn fft_centres_against_direct_sum(edge: &str, tolerance: f64) {
     let friction = "friction = 0.2\nsliding = true\n";
     let uniform = paper(
         friction,
         &format!(
-            "[field]\nn = [21, 21, 4]\nextent = {}\ndepth = 0.9\nmethod = \"direct\"\n",
+            "[field]\nn = [21, 21, 4]\nextent = {}\ndepth = 0.9\nmethod = \"direct\"\n{edge}",
             1.5 * 20.0 / 21.0
         ),
     );
     let centres = paper(
         friction,
-        "[field]\npoints = \"centres\"\nlayers = 4\ndepth = 0.9\n",
+        &format!("[field]\npoints = \"centres\"\nlayers = 4\ndepth = 0.9\n{edge}"),
     );
     let runs = [solve(&uniform), solve(&centres)];
     let method = |k: usize| runs[k].out.stress.as_ref().unwrap().method;
@@ -377,7 +393,10 @@ fn the_fft_field_on_element_centres_equals_the_direct_sum() {
         ("max_hydrostatic", a.max_hydrostatic, b.max_hydrostatic),
     ] {
         let (va, vb) = (la.value, lb.value);
-        assert!((va - vb).abs() <= 1e-10 * va.abs(), "{key}: {va} vs {vb}");
+        assert!(
+            (va - vb).abs() <= tolerance * va.abs(),
+            "{key}: {va} vs {vb}"
+        );
         for k in 0..3 {
             let (xa, xb) = (la.location[k], lb.location[k]);
             assert!(
