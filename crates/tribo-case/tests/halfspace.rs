@@ -358,8 +358,8 @@ fn the_fft_field_on_element_centres_equals_the_direct_sum() {
 
 /// The same with the default edge band: the band's correction is evaluated by each path's
 /// own near field (the FFT path's local window of element tents against the direct sum's),
-/// so the two agree to the band's sampling threshold (1e-4 p0 on the second level, docs/
-/// theory/HALFSPACE.md sec. 2.5), not to round-off: measured 5.8e-6 of the maxima (max
+/// so the two agree to the band's sampling threshold (1e-4 p0 on the second level,
+/// docs/theory/HALFSPACE.md sec. 2.5), not to round-off: measured 5.8e-6 of the maxima (max
 /// principal at the surface); 2e-5 allows 3x that and fails when one path drops the band
 /// (the bilinear max principal is 1.33e9 Pa against the band's 1.59e9 on this case).
 #[test]
