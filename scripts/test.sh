@@ -7,7 +7,7 @@
 #     the `tribo` binary built in step 1, Hertz, arrays, errors, threads, the stress field,
 #     damage, fatigue, the example script and notebook).
 # Needs the Rust toolchain and CPython >= 3.9 with the venv module; pip fetches maturin, numpy,
-# pytest and the optional pandas and xarray from PyPI (TRIBO_PY_MINIMAL=1 leaves the optional
+# pytest and the optional pandas, xarray and scipy (the sweep table read back as NetCDF-3) from PyPI (TRIBO_PY_MINIMAL=1 leaves the optional
 # ones out: the tests then take the dict paths). `scripts/test.sh --python` runs step 2 alone.
 # The wheel reuses step 1's compiled dependencies (the feature pins in crates/tribo-py/
 # Cargo.toml): only pyo3, numpy and tribo-py itself are compiled for it.
@@ -32,7 +32,7 @@ if [ ! -x "$venv/bin/python" ]; then
 fi
 echo "== pip install . (the wheel: maturin, crates/tribo-py)"
 start=$(date +%s)
-extras="pandas xarray"
+extras="pandas xarray scipy"
 if [ "${TRIBO_PY_MINIMAL:-}" = "1" ]; then extras=""; fi
 # shellcheck disable=SC2086
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check numpy pytest $extras
