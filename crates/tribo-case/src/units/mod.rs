@@ -56,7 +56,7 @@ impl Dim {
             ],
             Dim::Force => &[("kN", 3), ("MN", 6), ("mN", -3), ("N", 0)],
             Dim::LineForce => &[("kN/m", 3), ("MN/m", 6), ("N/mm", 3), ("N/m", 0)],
-            Dim::Angle => &[("deg", 0)],
+            Dim::Angle => &[("deg", 0), ("°", 0)],
             Dim::Density => &[("kg/m^3", 0), ("g/cm^3", 3)],
             Dim::Time => &[("ms", -3), ("us", -6), ("µs", -6), ("ns", -9), ("s", 0)],
             Dim::Frequency => &[("kHz", 3), ("MHz", 6), ("GHz", 9), ("Hz", 0)],
@@ -135,7 +135,10 @@ pub fn quantity(field: &str, value: &Value, dim: Dim) -> CaseResult<f64> {
 /// dimension and its accepted units).
 pub(crate) fn quantity_of(value: &Value, dim: Dim) -> Result<f64, String> {
     let expected = || {
-        let units: Vec<&str> = dim.units().iter().map(|u| u.0).collect();
+        let mut units: Vec<&str> = dim.units().iter().map(|u| u.0).collect();
+        if dim == Dim::Angle {
+            units.push(RADIAN);
+        }
         format!(
             "must be {}: a number in {} or a string \"<number> <unit>\" with unit one of {}",
             dim.name(),
@@ -157,6 +160,14 @@ pub(crate) fn quantity_of(value: &Value, dim: Dim) -> Result<f64, String> {
 /// (`"inf mm"`, `"NaN Pa"`) are not accepted.
 fn parse_with_unit(s: &str, dim: Dim) -> Option<f64> {
     let s = s.trim();
+    if dim == Dim::Angle {
+        if let Some(num) = s.strip_suffix(RADIAN) {
+            // Radians are not a decimal multiple of degrees: the one conversion that is not a
+            // shift of the exponent. `to_degrees` multiplies by the f64 of 180/pi, so
+            // `"0.5 rad"` is within one ulp of 0.5 * 180 / pi degrees.
+            return shifted_decimal(num.trim_end(), 0).map(f64::to_degrees);
+        }
+    }
     for &(unit, power) in dim.units() {
         if let Some(num) = s.strip_suffix(unit) {
             let num = num.trim_end();
@@ -168,6 +179,9 @@ fn parse_with_unit(s: &str, dim: Dim) -> Option<f64> {
     }
     None
 }
+
+/// The one angle unit that is not a power of ten of degrees (converted by `to_degrees`).
+const RADIAN: &str = "rad";
 
 /// The decimal literal `num` times 10^`power`, correctly rounded; None where `num` is not a
 /// finite decimal literal (digits with an optional sign, point and exponent).

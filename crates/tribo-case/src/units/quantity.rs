@@ -160,7 +160,20 @@ mod tests {
             30f64.to_bits()
         );
         assert_eq!(q::<Angle>("12.5").unwrap().si(), 12.5);
-        assert!(q::<Angle>("\"30 rad\"").unwrap_err().contains("an angle"));
+        // Radians convert by to_degrees (one ulp); the degree sign is a spelling of deg.
+        assert_eq!(
+            q::<Angle>("\"0.5 rad\"").unwrap().si().to_bits(),
+            0.5f64.to_degrees().to_bits()
+        );
+        assert!((q::<Angle>("\"0.5235987755982988 rad\"").unwrap().si() - 30.0).abs() < 1e-13);
+        assert_eq!(
+            q::<Angle>("\"30°\"").unwrap().si().to_bits(),
+            30f64.to_bits()
+        );
+        assert_eq!(q::<Angle>("\"-45 °\"").unwrap().si(), -45.0);
+        let e = q::<Angle>("\"30 grad\"").unwrap_err();
+        assert!(e.contains("an angle") && e.contains("deg, °, rad"), "{e}");
+        assert!(q::<Angle>("\"inf rad\"").is_err());
         assert_eq!(
             q::<Density>("\"7.85 g/cm^3\"").unwrap().si().to_bits(),
             7850f64.to_bits()
