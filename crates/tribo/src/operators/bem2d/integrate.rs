@@ -5,9 +5,10 @@
 //!   source point, then Gauss-Legendre with 16, 10, 6 or 4 points by distance. For an
 //!   analytic integrand whose nearest singularity is d away from a piece of length l, the
 //!   n-point error falls like rho^(-2n) with rho = 2d/l + sqrt((2d/l)^2 + 1) (the Bernstein
-//!   ellipse; Davis & Rabinowitz, *Methods of Numerical Integration*, sec. 4.6): d >= l with
-//!   16 points gives about 1e-18, d >= 2l with 10 points 1e-18, d >= 4l with 6 points 1e-14,
-//!   d >= 10 l with 4 points 1e-13. The tight near rule matters for interior stress close to
+//!   ellipse; Davis & Rabinowitz, *Methods of Numerical Integration*, sec. 4.6): d >= 0.97 l
+//!   with 16 points gives about 2e-20, d >= 1.94 l with 10 points 1e-18, d >= 3.9 l with 6
+//!   points 5e-15, d >= 9.7 l with 4 points 2e-13 (the ratios sit off the multiples of 1/4
+//!   that a uniform mesh produces, so that rounding never picks the rule: [`NEAR_RATIO`]). The tight near rule matters for interior stress close to
 //!   the boundary, where pieces of size ~d carry contributions ~h/d that cancel.
 //! * **Singular** integrals (the source is a node of the element, at local coordinate xi_s):
 //!   the element is split at xi_s and each side is integrated with the power substitution
@@ -31,7 +32,19 @@ use crate::kernels::quadrature::gauss_legendre;
 
 /// A piece is integrated directly once its distance from the source is at least this many
 /// times its length.
-pub const NEAR_RATIO: f64 = 1.0;
+///
+/// This ratio and [`RULE_RATIOS`] sit off the multiples of 1/4: on a uniform straight mesh
+/// the distance of a node from a piece is an exact multiple of 1/4 of the piece's length
+/// (quadratic elements, pieces halved), so a threshold on such a multiple would let the
+/// coordinates' rounding pick the rule, and a translated or rotated model would get other
+/// rules than the original (measured: 4e-11 of the largest operator entry with the
+/// thresholds at 1, 2, 4, 10; issue 11's translation invariance). Off the lattice, the
+/// rule is a function of the geometry alone.
+pub const NEAR_RATIO: f64 = 0.97;
+/// Distance-to-length ratios above which a piece gets 4, 6 and 10 Gauss points (16 below
+/// the last): the Bernstein-ellipse bounds (module docs) at these ratios are 2e-13, 5e-15
+/// and 1e-18, and at [`NEAR_RATIO`] with 16 points 2e-20.
+pub const RULE_RATIOS: [f64; 3] = [9.7, 3.9, 1.94];
 /// Maximum bisection depth of the adaptive rule (pieces down to 2^-40 of an element).
 pub const MAX_DEPTH: u32 = 40;
 /// Exponent of the singular power substitution.
@@ -110,11 +123,11 @@ pub(crate) fn adaptive<F: FnMut(f64, f64)>(
         return;
     }
     let r = rules();
-    let (x, w) = if d > 10.0 * len {
+    let (x, w) = if d > RULE_RATIOS[0] * len {
         &r.g4
-    } else if d > 4.0 * len {
+    } else if d > RULE_RATIOS[1] * len {
         &r.g6
-    } else if d > 2.0 * len {
+    } else if d > RULE_RATIOS[2] * len {
         &r.g10
     } else {
         &r.g16

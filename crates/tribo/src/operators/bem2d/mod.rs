@@ -21,5 +21,5 @@ pub use assemble::{assemble, RegionOperators};
 pub use geometry::{
     BemModel, BodyForce, Division, Grading, LoopItem, MeshedCurve, Region, Segment, SegmentShape,
 };
-pub use integrate::{MAX_DEPTH, NEAR_RATIO, SINGULAR_POWER};
+pub use integrate::{MAX_DEPTH, NEAR_RATIO, RULE_RATIOS, SINGULAR_POWER};
 pub use mesh::{BemMesh, Element, Node, RegionMesh, SegmentInfo};
