@@ -12,7 +12,7 @@ killed at any moment resumes where it stopped), and the table is gathered there,
     import tribo.study
     s = tribo.study.load("fig2a.toml")        # a path, a TOML text or a dict
     s = tribo.study.example("fig2a")          # or an embedded study (tribo sweep example)
-    s.points()                                # DataFrame: index, seed, the parameters
+    s.plan()                                  # DataFrame: index, seed, the parameters
     report = s.run("fig2a", jobs=2, progress=True)   # plans into fig2a/ and runs (resumable)
     s.status()                                # done, failed (with reasons), missing
     df = s.gather()                           # DataFrame; also writes results.csv/.nc
@@ -242,14 +242,20 @@ class Study:
 
     # ---- the directory -------------------------------------------------------------------
 
-    def plan(self, directory: Union[str, "_os.PathLike[str]"]) -> Any:
-        """Plans the study into ``directory`` (``tribo sweep plan -o``: ``study.toml``,
-        ``base.toml``, ``plan.json``, ``points.csv``) and binds the study to it; returns
-        :meth:`points`. A directory that holds the same study is kept with its computed
-        points; one that holds another study (or other files) raises
-        :class:`tribo.InputError` (field ``directory``)."""
-        self._dir = self._inner.plan(_os.fspath(directory))
-        return self.points()
+    def plan(
+        self,
+        directory: Union[str, "_os.PathLike[str]", None] = None,
+        as_pandas: Optional[bool] = None,
+    ) -> Any:
+        """The points, as :meth:`points` gives them (``tribo sweep plan``'s ``points.csv``):
+        a DataFrame of ``index``, ``seed`` and the parameters. With a ``directory`` the study
+        is also planned into it (``tribo sweep plan -o``: ``study.toml``, ``base.toml``,
+        ``plan.json``, ``points.csv``) and bound to it. A directory that holds the same study
+        is kept with its computed points; one that holds another study (or other files)
+        raises :class:`tribo.InputError` (field ``directory``)."""
+        if directory is not None:
+            self._dir = self._inner.plan(_os.fspath(directory))
+        return self.points(as_pandas)
 
     def _planned(self, directory: Any) -> "_tribo.StudyDir":
         if directory is not None:

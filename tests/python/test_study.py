@@ -117,7 +117,8 @@ def test_fig2a_dataframe_holds_the_csv_numbers(fig2a):
 
 def test_fig2a_points_are_points_csv(fig2a):
     root, s, _, _ = fig2a
-    pts = s.points(as_pandas=False)
+    pts = s.plan(as_pandas=False)  # no directory: the points only
+    assert s.directory == root / "py"
     lines = (root / "cli" / "points.csv").read_text().splitlines()
     assert lines[0].split(",") == ["index", "seed", "bulk.stress"] == list(pts)
     for i, line in enumerate(lines[1:]):
@@ -334,9 +335,12 @@ def test_cases_pickle():
 def test_dir_shows_the_api_only(module):
     # Tab completion lists dir(module): every public name is in __all__ or is a submodule
     # (the imports are bound to private names).
+    def submodule(obj):
+        return (isinstance(obj, types.ModuleType)
+                and obj.__name__.startswith(tribo.__name__ + "."))
+
     extra = [name for name in dir(module) if not name.startswith("_")
-             and name not in module.__all__
-             and not isinstance(getattr(module, name), types.ModuleType)]
+             and name not in module.__all__ and not submodule(getattr(module, name))]
     assert extra == []
     for name in module.__all__:
         assert getattr(module, name).__doc__, name
