@@ -154,7 +154,7 @@ def test_open_reads_a_cli_directory(fig2a):
     assert (r.done, r.skipped) == (0, 9)
 
 
-def test_resume_failures_and_progress(tmp_path):
+def test_resume_failures_and_progress(tmp_path, tribo_bin):
     s = tribo.study.load(BALLS)
     assert len(s) == 8 and s.parameters == ["contact.load", "body2.nu", "body1.radii[0]"]
     assert s.units["contact.max_pressure_Pa"] == "Pa"
@@ -168,6 +168,9 @@ def test_resume_failures_and_progress(tmp_path):
     st = s.status()
     assert st.done == [0, 1] and list(st.failed) == [2] and st.missing == [3, 4, 5, 6, 7]
     assert st.resubmit == "2-7"
+    # The command line reads the same directory the same way.
+    out = cli(tribo_bin, "sweep", "status", str(tmp_path / "b"))
+    assert "2 done, 1 failed, 5 missing" in out and "--array=2-7 " in out
     # Resumed: the done points are skipped, the failed one is tried again.
     r = s.run(jobs=2)
     assert (r.done, r.skipped, sorted(r.failed)) == (2, 2, [2, 3, 6, 7])
