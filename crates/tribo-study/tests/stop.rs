@@ -1,6 +1,7 @@
 //! `run::run_until`: a run stopped by its flag starts no point after it, writes the points in
 //! flight whole, and resumes; `slurm::write_scripts` writes the scripts and settings of
 //! `tribo sweep slurm`. (The Python package's `Study.run` and `Study.slurm` are these.)
+#![allow(clippy::expect_used)]
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use tribo_study::plan::StudyDir;
