@@ -7,8 +7,10 @@
 #     the `tribo` binary built in step 1, Hertz, arrays, errors, threads, the stress field,
 #     damage, fatigue, the example script and notebook).
 # Needs the Rust toolchain and CPython >= 3.9 with the venv module; pip fetches maturin, numpy,
-# pytest and the optional pandas, xarray and scipy (the sweep table read back as NetCDF-3) from PyPI (TRIBO_PY_MINIMAL=1 leaves the optional
-# ones out: the tests then take the dict paths). `scripts/test.sh --python` runs step 2 alone.
+# pytest and the optional pandas, xarray and scipy (the sweep table read back as NetCDF-3) and
+# dask[distributed] (the Dask example's test; about 6 s more of pip into a venv that has
+# pandas) from PyPI (TRIBO_PY_MINIMAL=1 leaves the optional ones out: the tests then take the
+# dict paths and the Dask test is skipped). `scripts/test.sh --python` runs step 2 alone.
 # The wheel reuses step 1's compiled dependencies (the feature pins in crates/tribo-py/
 # Cargo.toml): only pyo3, numpy and tribo-py itself are compiled for it.
 set -euo pipefail
@@ -32,10 +34,12 @@ if [ ! -x "$venv/bin/python" ]; then
 fi
 echo "== pip install . (the wheel: maturin, crates/tribo-py)"
 start=$(date +%s)
-extras="pandas xarray scipy"
+extras="pandas xarray scipy dask[distributed]"
 if [ "${TRIBO_PY_MINIMAL:-}" = "1" ]; then extras=""; fi
 # shellcheck disable=SC2086
+set -f  # no globbing: "dask[distributed]" is a word, not a pattern
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check numpy pytest $extras
+set +f
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check --force-reinstall --no-deps .
 echo "   installed in $(( $(date +%s) - start )) s"
 

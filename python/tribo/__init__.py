@@ -37,19 +37,31 @@ Long computations release the GIL: several threads may solve at once.
 
 from __future__ import annotations
 
-import json
-import math
-import os
-from dataclasses import dataclass
-from pathlib import Path
-from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
+# The imports are bound to private names (and the typing names exist for type checkers only,
+# the annotations being strings): `dir(tribo)` and tab completion show the API alone.
+import json as _json
+import math as _math
+import os as _os
+import typing as _typing
+from collections.abc import Mapping as _Mapping
+from dataclasses import dataclass as _dataclass
+from pathlib import Path as _Path
 
-import numpy as np
+import numpy as _np
 
 from . import _tribo
 from ._tribo import ConvergenceError, HertzContact, InputError, SolverError
 from ._field import Damage, damage, energy_criterion, stress_field, _to_field
 from . import fatigue
+from . import study
+
+if _typing.TYPE_CHECKING:
+    import os
+    from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
+
+    import numpy as np
+
+del annotations  # the __future__ feature's name: not part of the API
 
 __version__: str = _tribo.__version__
 
@@ -75,10 +87,11 @@ __all__ = [
     "normal_contact",
     "run",
     "stress_field",
+    "study",
     "tangential_contact",
 ]
 
-_INF = math.inf
+_INF = _math.inf
 
 
 def composite_modulus(E1: float, nu1: float, E2: float, nu2: float) -> float:
@@ -151,17 +164,17 @@ def _grid_array(name: str, a: Any) -> np.ndarray:
     are converted (a copy; float32 and integers up to 2**53 convert exactly); complex,
     boolean, object and string arrays are refused with a TypeError naming the argument.
     """
-    arr = np.asarray(a)
+    arr = _np.asarray(a)
     if arr.dtype.kind not in "fiu":
         raise TypeError(
             f"{name}: an array of real numbers is needed (float64 preferred), got dtype {arr.dtype}"
         )
     if arr.ndim != 2:
         raise _input_error(name, f"an array of shape (ny, nx) is needed, got shape {arr.shape}")
-    return np.ascontiguousarray(arr, dtype=np.float64)
+    return _np.ascontiguousarray(arr, dtype=_np.float64)
 
 
-@dataclass(frozen=True)
+@_dataclass(frozen=True)
 class NormalContact:
     """The solution of a normal contact problem on a grid, with its convergence record.
 
@@ -356,7 +369,7 @@ class NormalSolver:
         return f"NormalSolver(shape={self.shape}, size={self.size})"
 
 
-@dataclass(frozen=True)
+@_dataclass(frozen=True)
 class TangentialContact:
     """The solution of a tangential contact problem on a grid, with its convergence record.
 
@@ -443,7 +456,7 @@ def tangential_contact(
     return TangentialContact(**d)
 
 
-@dataclass(frozen=True)
+@_dataclass(frozen=True)
 class CoupledContact:
     """The solution of the coupled normal-tangential problem of dissimilar bodies."""
 
@@ -525,9 +538,9 @@ def coupled_contact(
 def _plain(obj: Any) -> Any:
     """Nested mappings and sequences with numpy arrays and scalars turned into lists and
     Python numbers (what the case reader takes)."""
-    if isinstance(obj, Mapping):
+    if isinstance(obj, _Mapping):
         return {k: _plain(v) for k, v in obj.items()}
-    if isinstance(obj, (np.ndarray, np.generic)):
+    if isinstance(obj, (_np.ndarray, _np.generic)):
         return obj.tolist()
     if isinstance(obj, (list, tuple)):
         return [_plain(v) for v in obj]
@@ -558,12 +571,12 @@ class Case:
         directory. Raises :class:`InputError` naming the field and the rule (the parser's
         message with line and column for a bad file), or FileNotFoundError.
         """
-        if isinstance(source, os.PathLike) or (
+        if isinstance(source, _os.PathLike) or (
             isinstance(source, str)
             and "\n" not in source
-            and (source.endswith(".toml") or os.path.isfile(source))
+            and (source.endswith(".toml") or _os.path.isfile(source))
         ):
-            path = Path(source)
+            path = _Path(source)
             text = path.read_text(encoding="utf-8")
             return cls(_tribo.Case.from_toml_text(text, str(path), str(path.parent)))
         return cls(_tribo.Case.from_toml_text(source, "<string>", None))
@@ -600,8 +613,20 @@ class Case:
         """The case's TOML text."""
         return self._inner.toml
 
+    def __reduce__(self) -> Tuple[Any, Tuple[str, str, Optional[str]]]:
+        # Pickled as its text, its name and its folder (read again on unpickling): a case
+        # crosses to another process (multiprocessing, Dask workers) and is the same case.
+        base = self._inner.base_dir
+        return (_case_from_state, (self.toml, self._inner.source,
+                                   None if base is None else str(base)))
+
     def __repr__(self) -> str:
         return f"Case(kind={self.kind!r}, title={self.title!r})"
+
+
+def _case_from_state(text: str, source: str, base_dir: Optional[str]) -> Case:
+    """A pickled :class:`Case` read back (``Case.__reduce__``)."""
+    return Case(_tribo.Case.from_toml_text(text, source, base_dir))
 
 
 class Results:
@@ -622,7 +647,7 @@ class Results:
         """The summary as nested dicts: the keys and units of ``summary.json``
         (docs/user/outputs.md), the same numbers as ``tribo run --json`` (timings aside)."""
         if self._summary is None:
-            self._summary = json.loads(self._inner.summary_json())
+            self._summary = _json.loads(self._inner.summary_json())
         return self._summary
 
     def fields(self) -> Optional[Dict[str, np.ndarray]]:
@@ -645,7 +670,7 @@ class Results:
         """Writes the files ``tribo run -o directory`` writes (CSV, VTK, PNG, summary.json)
         and returns their names (the ``outputs`` of the summary). The directory is created if
         needed; an earlier run's files in it are removed."""
-        return self._inner.write(os.fspath(directory))
+        return self._inner.write(_os.fspath(directory))
 
     def __repr__(self) -> str:
         return f"Results(case={self.case!r})"

@@ -8,17 +8,25 @@ Series with pyLife's ``WoehlerCurve`` keys; without it a dict of arrays in and a
 
 from __future__ import annotations
 
-import json
-from typing import Any, Dict, Mapping, Optional, Union
+import json as _json
+import typing as _typing
+from collections.abc import Mapping as _Mapping
 
-import numpy as np
+import numpy as _np
 
 from . import _tribo
+
+if _typing.TYPE_CHECKING:  # names for the annotations (strings): `dir()` shows the API only
+    from typing import Any, Dict, Mapping, Optional, Union
+
+    import numpy as np
 
 try:  # pandas is optional
     import pandas as _pd  # type: ignore[import-not-found]
 except ImportError:  # pragma: no cover - exercised where pandas is absent
     _pd = None
+
+del annotations  # the __future__ feature's name: not part of the API
 
 __all__ = ["WOEHLER_KEYS", "diagram", "fit", "fit_report"]
 
@@ -37,7 +45,7 @@ def _column(data: Any, names: tuple) -> Optional[np.ndarray]:
             v = data[n]
         except (KeyError, IndexError, TypeError, ValueError):
             continue
-        return np.asarray(getattr(v, "values", v))
+        return _np.asarray(getattr(v, "values", v))
     return None
 
 
@@ -53,8 +61,8 @@ def _tests(data: Any):
     if (fracture is None) == (runout is None):
         raise _input_error("data", "exactly one of the columns fracture and runout (bool)")
     flags = ~fracture.astype(bool) if fracture is not None else runout.astype(bool)
-    return (np.asarray(load, dtype=np.float64).tolist(),
-            np.asarray(cycles, dtype=np.float64).tolist(),
+    return (_np.asarray(load, dtype=_np.float64).tolist(),
+            _np.asarray(cycles, dtype=_np.float64).tolist(),
             [bool(f) for f in flags])
 
 
@@ -87,7 +95,7 @@ def fit_report(
     load, cycles, runout = _tests(data)
     text = _tribo.fatigue_fit(load, cycles, runout, str(kind),
                               None if measure is None else str(measure), float(confidence))
-    return json.loads(text)
+    return _json.loads(text)
 
 
 def fit(
@@ -153,18 +161,18 @@ def diagram(limits: Union[Mapping[str, Any], str]) -> Dict[str, Any]:
     (``tribo example fatigue-diagram``). A fitted limit (the Series of :func:`fit`) may be
     given by its ``SD``. Raises :class:`InputError` naming the key.
     """
-    if isinstance(limits, Mapping):
+    if isinstance(limits, _Mapping):
         limits = _plain(limits)
-    return json.loads(_tribo.fatigue_diagram(limits))
+    return _json.loads(_tribo.fatigue_diagram(limits))
 
 
 def _plain(obj: Any) -> Any:
     if _pd is not None and isinstance(obj, _pd.Series) and "SD" in obj.index:
         return float(obj["SD"])
-    if isinstance(obj, Mapping):
+    if isinstance(obj, _Mapping):
         if set(WOEHLER_KEYS) <= set(obj.keys()):
             return float(obj["SD"])
         return {k: _plain(v) for k, v in obj.items()}
-    if isinstance(obj, (np.ndarray, np.generic)):
+    if isinstance(obj, (_np.ndarray, _np.generic)):
         return obj.tolist()
     return obj

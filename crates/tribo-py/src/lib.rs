@@ -1,6 +1,7 @@
 //! The compiled module `tribo._tribo` of the Python package `tribo` (python/tribo/): PyO3
-//! bindings over the physics library `tribo` and the case library `tribo-case`. The typed,
-//! documented Python API is python/tribo/__init__.py; this module is its private core.
+//! bindings over the physics library `tribo`, the case library `tribo-case` and the study
+//! engine `tribo-study` (src/study.rs). The typed, documented Python API is
+//! python/tribo/__init__.py (and python/tribo/study.py); this module is its private core.
 //!
 //! Rules kept here:
 //! - no copy of the pipeline: cases run through [`tribo_case::run`], their files are written by
@@ -38,6 +39,7 @@ use tribo_case::{CaseError, Silent};
 
 mod fatigue;
 mod field;
+mod study;
 
 create_exception!(
     _tribo,
@@ -814,6 +816,8 @@ pub(crate) fn to_toml(py: Python<'_>, obj: &Bound<'_, PyAny>, path: &str) -> PyR
 struct PyCase {
     inner: tribo_case::Case,
     text: String,
+    source: String,
+    base_dir: Option<PathBuf>,
 }
 
 #[pymethods]
@@ -828,10 +832,15 @@ impl PyCase {
         source: &str,
         base_dir: Option<PathBuf>,
     ) -> PyResult<Self> {
-        let base = base_dir.unwrap_or_else(|| PathBuf::from("."));
+        let base = base_dir.clone().unwrap_or_else(|| PathBuf::from("."));
         let inner =
             tribo_case::Case::from_toml(&text, source, &base).map_err(|e| case_error(py, &e))?;
-        Ok(PyCase { inner, text })
+        Ok(PyCase {
+            inner,
+            text,
+            source: source.to_string(),
+            base_dir,
+        })
     }
 
     /// A case from nested dicts with the keys of a case file (values in SI units or strings
@@ -897,6 +906,18 @@ impl PyCase {
     #[getter]
     fn toml(&self) -> String {
         self.text.clone()
+    }
+
+    /// The name of the case in errors (its file, `<string>`, `<dict>`, `<embedded NAME>`).
+    #[getter]
+    fn source(&self) -> String {
+        self.source.clone()
+    }
+
+    /// The folder its relative paths resolve against (None: the working directory).
+    #[getter]
+    fn base_dir(&self) -> Option<PathBuf> {
+        self.base_dir.clone()
     }
 
     fn __repr__(&self) -> String {
@@ -1043,6 +1064,8 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyCase>()?;
     m.add_class::<PyResults>()?;
     m.add_class::<PyNormalSolver>()?;
+    m.add_class::<study::PyStudy>()?;
+    m.add_class::<study::PyStudyDir>()?;
     m.add_function(wrap_pyfunction!(hertz, m)?)?;
     m.add_function(wrap_pyfunction!(composite_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(normal_contact, m)?)?;
@@ -1055,6 +1078,9 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fatigue::fatigue_diagram, m)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(example_names, m)?)?;
+    m.add_function(wrap_pyfunction!(study::slurm_ranges, m)?)?;
+    m.add_function(wrap_pyfunction!(study::slurm_job_id, m)?)?;
+    m.add_function(wrap_pyfunction!(study::study_examples, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -19,7 +19,7 @@ use crate::error::{StudyError, StudyResult};
 use crate::plan::{case_table, point_name, StudyDir};
 use crate::spec::{Outputs, Study};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Instant;
 use tribo_case::{Case, Progress, Results, Silent};
 
@@ -244,6 +244,20 @@ pub fn run(
     jobs: usize,
     progress: &mut dyn Progress,
 ) -> StudyResult<RunReport> {
+    run_until(sd, selection, jobs, progress, &AtomicBool::new(false))
+}
+
+/// [`run`], stopping early once `stop` is set (by `progress`, or by another thread): no
+/// point starts after it, the points in flight finish and are written, and the report counts
+/// what was done; the rest stay missing, so a later run resumes there. The Python package's
+/// `Study.run` sets it on Ctrl-C or when its progress callback raises.
+pub fn run_until(
+    sd: &StudyDir,
+    selection: Option<&[usize]>,
+    jobs: usize,
+    progress: &mut dyn Progress,
+    stop: &AtomicBool,
+) -> StudyResult<RunReport> {
     let start = Instant::now();
     let n = sd.study.len();
     let all: Vec<usize> = match selection {
@@ -275,6 +289,9 @@ pub fn run(
             scope.spawn(move || {
                 let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build();
                 loop {
+                    if stop.load(Ordering::Relaxed) {
+                        break;
+                    }
                     let k = next.fetch_add(1, Ordering::Relaxed);
                     let Some(&i) = todo.get(k) else { break };
                     let t0 = Instant::now();

@@ -113,6 +113,37 @@ pub fn scripts(s: &Slurm, name: &str, n: usize, tribo: &Path, dir: &Path) -> (St
     (a, g)
 }
 
+/// Writes the scripts of [`scripts`] for the planned study `sd` into `DIR/slurm`, with
+/// `settings.json` (the chunk and the number of tasks, which `tribo sweep status` reads) and
+/// the folder `slurm/logs`; each file atomically. `tribo` is the binary the tasks run
+/// (absolute). Returns the paths of `array.sbatch` and `gather.sbatch`. (The files of
+/// `tribo sweep slurm`: the Python package's `Study.slurm` writes them through this.)
+pub fn write_scripts(
+    sd: &crate::plan::StudyDir,
+    s: &Slurm,
+    tribo: &Path,
+) -> crate::StudyResult<(std::path::PathBuf, std::path::PathBuf)> {
+    use crate::StudyError;
+    let n = sd.study.len();
+    let abs = std::path::absolute(&sd.dir).map_err(|e| StudyError::file(&sd.dir, e))?;
+    let (array, gather) = scripts(s, &sd.study.name, n, tribo, &abs);
+    let sdir = abs.join("slurm");
+    std::fs::create_dir_all(sdir.join("logs")).map_err(|e| StudyError::file(&sdir, e))?;
+    let settings = format!(
+        "{{\n \"chunk\": {},\n \"tasks\": {}\n}}\n",
+        s.chunk,
+        crate::run::chunks(n, s.chunk)
+    );
+    for (name, text) in [
+        ("array.sbatch", array.as_str()),
+        ("gather.sbatch", gather.as_str()),
+        ("settings.json", settings.as_str()),
+    ] {
+        tribo_io::atomic::write_atomic(&sdir, name, text.as_bytes())?;
+    }
+    Ok((sdir.join("array.sbatch"), sdir.join("gather.sbatch")))
+}
+
 /// The job id in sbatch's answer: `Submitted batch job 42` (or `--parsable`'s `42;cluster`).
 pub fn job_id(answer: &str) -> Option<u64> {
     let line = answer.lines().find(|l| !l.trim().is_empty())?.trim();
