@@ -30,6 +30,10 @@ pub const MIN_COARSE_SIDE: usize = 64;
 /// the fine iteration takes 126 iterations; 1e-6 costs 21-36 per level for 121 fine ones.
 const COARSE_TOLERANCE: f64 = 1e-3;
 
+/// A coarse-grid start: the interpolated pressure (Pa, on the fine grid) and the CG
+/// iterations of each coarse level, `(side, iterations)`, finest first.
+pub type CoarseStart = (Vec<f64>, Vec<(usize, usize)>);
+
 /// The coarse-grid start: the pressure on `problem`'s grid interpolated from the solution on
 /// the grid coarsened by 2 (itself started the same way), with the CG iterations of each
 /// coarse level (finest first); `None` where the grid cannot be coarsened (an odd side, or
@@ -38,10 +42,14 @@ const COARSE_TOLERANCE: f64 = 1e-3;
 pub fn coarse_grid_start(
     problem: &NormalContactProblem<'_>,
     params: &NormalContactParams,
-) -> Option<(Vec<f64>, Vec<(usize, usize)>)> {
+) -> Option<CoarseStart> {
     let grid = problem.grid;
     let (nx, ny) = (grid.nx(), grid.ny());
-    if nx % 2 != 0 || ny % 2 != 0 || nx / 2 < MIN_COARSE_SIDE || ny / 2 < MIN_COARSE_SIDE {
+    if !nx.is_multiple_of(2)
+        || !ny.is_multiple_of(2)
+        || nx / 2 < MIN_COARSE_SIDE
+        || ny / 2 < MIN_COARSE_SIDE
+    {
         return None;
     }
     let (cx, cy) = (nx / 2, ny / 2);
@@ -94,7 +102,7 @@ fn prolong(coarse: &[f64], cx: usize, cy: usize) -> Vec<f64> {
     // The two coarse indices and the weight of the first along one axis, for fine index i.
     let axis = |i: usize, n: usize| -> (usize, usize) {
         let k = i / 2;
-        let other = if i % 2 == 0 {
+        let other = if i.is_multiple_of(2) {
             k.saturating_sub(1)
         } else {
             (k + 1).min(n - 1)
