@@ -6,6 +6,8 @@
 # environment:
 #   TOLERANCE=1e-10   the tolerance given to both solvers (see bench/README.md for how they compare)
 #   SKIP_TAMAAS=1     run tribo only
+#   REPEAT=3          tribo solves per N (the median time is reported; default 3)
+#   TRIBO_ARGS=...    more arguments to tribo-bench (e.g. --no-coarse-start)
 #   OMP_NUM_THREADS   passed to tamaas (default 2); the PyPI wheel of tamaas 2.9.0 is built with
 #                     its sequential "cpp" backend and statically linked FFTW, so it runs on one
 #                     core whatever this says. tribo uses rayon on all cores (RAYON_NUM_THREADS).
@@ -18,6 +20,8 @@ root="$(dirname "$here")"
 venv="$here/.venv"
 tolerance="${TOLERANCE:-1e-10}"
 skip_tamaas="${SKIP_TAMAAS:-0}"
+repeat="${REPEAT:-3}"
+read -r -a tribo_args <<<"${TRIBO_ARGS:-}"
 if [ "$#" -gt 0 ]; then sizes=("$@"); else sizes=(64 128 256 512 1024); fi
 for n in "${sizes[@]}"; do
     if ! [[ "$n" =~ ^[0-9]+$ ]] || [ "$n" -lt 4 ]; then
@@ -48,7 +52,7 @@ jsonl="$work/results.jsonl"
 for n in "${sizes[@]}"; do
     echo "== N = $n" >&2
     rc=0
-    "$bench_bin" --n "$n" --tolerance "$tolerance" --pressure-out "$work/p$n.bin" >"$work/tribo$n.json" || rc=$?
+    "$bench_bin" --n "$n" --tolerance "$tolerance" --repeat "$repeat" ${tribo_args[@]+"${tribo_args[@]}"} --pressure-out "$work/p$n.bin" >"$work/tribo$n.json" || rc=$?
     if [ -s "$work/tribo$n.json" ]; then
         tail -n 1 "$work/tribo$n.json" >>"$jsonl"
     else
@@ -91,6 +95,7 @@ tamaas_version="$("$py" -c 'import tamaas; print(tamaas.__version__)' 2>/dev/nul
     echo "tribo: rayon on all cores; tamaas: PyPI wheel, sequential backend (one core), OMP_NUM_THREADS=${OMP_NUM_THREADS:-2}."
     echo "Load average (1, 5, 15 min) at the start: $load_start; at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
     echo "(other work on the machine inflates the times: compare within one run)."
+    echo "tribo: median of $repeat solves${TRIBO_ARGS:+, tribo-bench $TRIBO_ARGS}; cpu_seconds in the raw JSON (user + sys, all threads)."
     echo "Times: wall seconds of the solve alone (tribo's operator construction is apart, \"tribo operator s\"); ratio = tribo s / tamaas s."
     echo "Residuals, each code's answer under both stopping measures: min-map = max |min(p/p_max, g/u_max)|"
     echo "(tribo's); tamaas res. = sum p (g - min_contact g) / (sum p std h) (tamaas's), for tribo's pressure"

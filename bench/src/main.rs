@@ -1,11 +1,16 @@
-//! `tribo-bench --n N [--tolerance T] [--max-iterations M] [--pressure-out FILE] [--one-call]`
+//! `tribo-bench --n N [--tolerance T] [--max-iterations M] [--pressure-out FILE] [--one-call] [--repeat R] [--no-coarse-start]`
 //!
 //! Solves the paper's half-space case (docs/theory/HALFSPACE.md section 4) once with tribo's
 //! Polonsky-Keer solver and prints one line of JSON. `seconds` is the iteration
 //! (`solve_normal` with a prebuilt operator), `operator_seconds` the FFT operator's
 //! construction, which `solve_normal` does first without one; `--one-call` times
 //! `solve_normal` building its operator as one piece instead. `apply_seconds`: one FFT
-//! operator application (mean of 5, after the solve).
+//! operator application (mean of 10, after the solve). `--repeat R`: R solves on the same
+//! operator, the median of their times. `cpu_seconds` / `apply_cpu_seconds`: the same in
+//! CPU seconds (user + system, all threads; the measure on a loaded machine).
+//! `--no-coarse-start`: the fine iteration from Polonsky & Keer's uniform start;
+//! `coarse_iterations`: the CG iterations of each coarse level, `[side, iterations]`, finest
+//! first (the solve's `iterations` are the fine ones).
 //! `--pressure-out FILE` writes the pressure (f64 little-endian, x fastest) for
 //! `tamaas_case.py --evaluate`. One process per N, so that
 //! the peak memory (`VmHWM`) belongs to that N alone. `bench/halfspace.sh` runs it beside
@@ -22,6 +27,7 @@ use std::time::Instant;
 
 use serde_json::{json, Value};
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
+use tribo::solvers::normal::coarse::coarse_grid_start;
 use tribo::solvers::normal::normal_compliance_operator;
 use tribo::solvers::{solve_normal, NormalContactParams, NormalContactProblem, NormalLoading};
 use tribo::{composite_modulus, ElasticMaterial, SurfaceGrid};
@@ -40,7 +46,7 @@ const E_STAR: f64 = 1.10440e11;
 const EXTENT: f64 = 1.5;
 
 const USAGE: &str =
-    "usage: tribo-bench --n N [--tolerance T] [--max-iterations M] [--pressure-out FILE] [--one-call]";
+    "usage: tribo-bench --n N [--tolerance T] [--max-iterations M] [--pressure-out FILE] [--one-call] [--repeat R] [--no-coarse-start]";
 
 struct Args {
     n: usize,
@@ -48,6 +54,8 @@ struct Args {
     max_iterations: Option<usize>,
     pressure_out: Option<String>,
     one_call: bool,
+    repeat: usize,
+    coarse_start: bool,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -56,6 +64,8 @@ fn parse_args() -> Result<Args, String> {
     let mut max_iterations = None;
     let mut pressure_out = None;
     let mut one_call = false;
+    let mut repeat = 1;
+    let mut coarse_start = true;
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
         let (key, inline) = match arg.split_once('=') {
@@ -64,6 +74,10 @@ fn parse_args() -> Result<Args, String> {
         };
         if key == "-h" || key == "--help" {
             return Err(USAGE.to_string());
+        }
+        if key == "--no-coarse-start" {
+            coarse_start = false;
+            continue;
         }
         if key == "--one-call" {
             one_call = true;
@@ -94,6 +108,14 @@ fn parse_args() -> Result<Args, String> {
                 )
             }
             "--pressure-out" => pressure_out = Some(value()?),
+            "--repeat" => {
+                repeat = value()?
+                    .parse::<usize>()
+                    .map_err(|e| format!("--repeat: {e}"))?;
+                if repeat == 0 {
+                    return Err("--repeat must be >= 1".into());
+                }
+            }
             _ => return Err(format!("unknown argument {arg:?}\n{USAGE}")),
         }
     }
@@ -104,6 +126,8 @@ fn parse_args() -> Result<Args, String> {
         max_iterations,
         pressure_out,
         one_call,
+        repeat,
+        coarse_start,
     })
 }
 
@@ -126,6 +150,32 @@ fn rayon_threads() -> usize {
                 .map(|n| n.get())
                 .unwrap_or(1)
         })
+}
+
+/// CPU seconds (user + system, all threads) of this process so far, from /proc/self/stat
+/// (fields 14 and 15, in clock ticks of 1/100 s: the Linux USER_HZ), so that times on a
+/// loaded machine can be quoted as CPU time; None where /proc is missing.
+fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // The command name (field 2) is in parentheses and may hold spaces: split after it.
+    let rest = &stat[stat.rfind(')')? + 1..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    // rest starts at field 3 (state): utime is field 14, stime field 15.
+    let utime: f64 = fields.get(11)?.parse().ok()?;
+    let stime: f64 = fields.get(12)?.parse().ok()?;
+    Some((utime + stime) / 100.0)
+}
+
+/// The median of a non-empty list.
+fn median(values: &[f64]) -> f64 {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    let m = v.len() / 2;
+    if v.len() % 2 == 1 {
+        v[m]
+    } else {
+        0.5 * (v[m - 1] + v[m])
+    }
 }
 
 fn mean_and_std(values: &[f64]) -> (f64, f64) {
@@ -170,6 +220,7 @@ fn run(args: &Args) -> Result<Value, String> {
     if let Some(m) = args.max_iterations {
         params.max_iterations = m;
     }
+    params.coarse_start = args.coarse_start;
     let problem = NormalContactProblem {
         grid: &grid,
         initial_gap: &gap,
@@ -180,27 +231,59 @@ fn run(args: &Args) -> Result<Value, String> {
 
     // `solve_normal` without an operator = build the FFT operator (kernel spectrum) + the
     // iteration. The two are timed apart here; `--one-call` times them as one call.
-    let (operator_seconds, apply_seconds, seconds, solved) = if args.one_call {
-        let t = Instant::now();
-        let solved = solve_normal(&problem, &params, None, None);
-        (None, None, t.elapsed().as_secs_f64(), solved)
+    let cpu = || cpu_seconds().unwrap_or(f64::NAN);
+    let (operator_seconds, apply_seconds, apply_cpu_seconds, seconds, cpu_solve, solved) =
+        if args.one_call {
+            let (t, c) = (Instant::now(), cpu());
+            let solved = solve_normal(&problem, &params, None, None);
+            (
+                None,
+                None,
+                None,
+                t.elapsed().as_secs_f64(),
+                cpu() - c,
+                solved,
+            )
+        } else {
+            let t = Instant::now();
+            let operator = normal_compliance_operator(&grid, e_star);
+            let operator_seconds = t.elapsed().as_secs_f64();
+            // `--repeat R`: R solves, the medians of their wall and CPU times.
+            let (mut walls, mut cpus) = (Vec::new(), Vec::new());
+            let mut solved = None;
+            for _ in 0..args.repeat {
+                let (t, c) = (Instant::now(), cpu());
+                solved = Some(solve_normal(&problem, &params, Some(&operator), None));
+                walls.push(t.elapsed().as_secs_f64());
+                cpus.push(cpu() - c);
+            }
+            let solved = solved.ok_or("--repeat must be >= 1")?;
+            // One operator application (the FFT convolution, one forward and one inverse
+            // transform of the padded field), mean of a few, after the solve.
+            let mut workspace = operator.workspace();
+            let reps = 10;
+            let mut out = vec![0.0; grid.len()];
+            let (t, c) = (Instant::now(), cpu());
+            for _ in 0..reps {
+                operator.apply_into(&gap, &mut out, &mut workspace);
+            }
+            let apply_seconds = t.elapsed().as_secs_f64() / reps as f64;
+            let apply_cpu = (cpu() - c) / reps as f64;
+            (
+                Some(operator_seconds),
+                Some(apply_seconds),
+                Some(apply_cpu),
+                median(&walls),
+                median(&cpus),
+                solved,
+            )
+        };
+    // The coarse levels' iterations (the solve above reports the fine ones): the same
+    // coarse solves once more, outside the timing.
+    let coarse_levels = if args.coarse_start {
+        coarse_grid_start(&problem, &params).map(|(_, levels)| levels)
     } else {
-        let t = Instant::now();
-        let operator = normal_compliance_operator(&grid, e_star);
-        let operator_seconds = t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let solved = solve_normal(&problem, &params, Some(&operator), None);
-        let seconds = t.elapsed().as_secs_f64();
-        // One operator application (the FFT convolution), mean of a few, after the solve.
-        let mut workspace = operator.workspace();
-        let reps = 5;
-        let mut out = vec![0.0; grid.len()];
-        let t = Instant::now();
-        for _ in 0..reps {
-            operator.apply_into(&gap, &mut out, &mut workspace);
-        }
-        let apply_seconds = t.elapsed().as_secs_f64() / reps as f64;
-        (Some(operator_seconds), Some(apply_seconds), seconds, solved)
+        None
     };
     let sol = solved.map_err(|e| format!("solve_normal failed after {seconds:.3} s: {e}"))?;
 
@@ -260,10 +343,15 @@ fn run(args: &Args) -> Result<Value, String> {
         "seconds": seconds,
         "operator_seconds": operator_seconds,
         "apply_seconds": apply_seconds,
+        "cpu_seconds": cpu_solve,
+        "apply_cpu_seconds": apply_cpu_seconds,
+        "repeat": args.repeat,
         "setup_seconds": setup_seconds,
         "total_seconds": setup_seconds + operator_seconds.unwrap_or(0.0) + seconds,
         "threads": rayon_threads(),
         "iterations": sol.iterations,
+        "coarse_start": args.coarse_start,
+        "coarse_iterations": coarse_levels,
         "residual": sol.residual,
         "common_residual": common_residual,
         "eps_avg": eps_avg,

@@ -377,6 +377,7 @@ fn normal_params(
         tolerance,
         max_iterations,
         method,
+        ..NormalContactParams::default()
     };
     params.validate().map_err(|e| library_error(py, &e))?;
     Ok(params)

@@ -28,6 +28,9 @@ use crate::kernels::love;
 use crate::operators::{ConvolutionOperator, ConvolutionWorkspace, DenseInfluence};
 use crate::solvers::{nan_max, SolveError, SolveResult};
 
+pub mod coarse;
+mod passes;
+
 /// How the normal contact is loaded.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum NormalLoading {
@@ -80,6 +83,17 @@ pub struct NormalContactParams {
     /// The algorithm (default: the conjugate gradient).
     #[serde(default)]
     pub method: NormalMethod,
+    /// Start the conjugate gradient from the solution on the grid coarsened by 2 (itself
+    /// started the same way, down to [`coarse::MIN_COARSE_SIDE`] elements per side;
+    /// [`coarse::coarse_grid_start`]) where no initial pressure is given and both grid sides
+    /// are even: the same solution to the tolerance in fewer fine iterations. Default on.
+    #[serde(default = "coarse_start_default")]
+    pub coarse_start: bool,
+}
+
+/// Serde's default of [`NormalContactParams::coarse_start`].
+fn coarse_start_default() -> bool {
+    true
 }
 
 impl Default for NormalContactParams {
@@ -88,6 +102,7 @@ impl Default for NormalContactParams {
             tolerance: 1e-10,
             max_iterations: 10_000,
             method: NormalMethod::ConjugateGradient,
+            coarse_start: true,
         }
     }
 }
@@ -126,6 +141,14 @@ impl NormalContactParams {
     /// These parameters with another method.
     pub fn with_method(self, method: NormalMethod) -> Self {
         Self { method, ..self }
+    }
+
+    /// These parameters with the coarse-grid start on or off.
+    pub fn with_coarse_start(self, coarse_start: bool) -> Self {
+        Self {
+            coarse_start,
+            ..self
+        }
     }
 
     /// Check the parameters (tolerance finite in (0, 1), at least one iteration).
@@ -456,6 +479,12 @@ pub fn solve_normal_from(
                     &built
                 }
             };
+            // The coarse-grid start where the caller gives no start of its own.
+            let coarse = match initial_pressure {
+                None if params.coarse_start => coarse::coarse_grid_start(problem, params),
+                _ => None,
+            };
+            let initial_pressure = initial_pressure.or(coarse.as_ref().map(|(p, _)| &p[..]));
             let mut workspace = operator.workspace();
             conjugate_gradient(
                 operator,
@@ -556,14 +585,16 @@ fn conjugate_gradient(
     let mut conjugate = false;
     let mut residual;
     let mut approach;
-    // `displacement = K p` is recomputed by FFT when `fresh` is false; after a step that
-    // changes no element's contact status it is updated from `K t` instead (the update is
-    // linear then), halving the FFTs per iteration. A full recomputation every
-    // `REFRESH_INTERVAL` steps and before accepting convergence bounds the drift.
+    // One FFT product per iteration, `K t`: `displacement = K p` is updated linearly from it
+    // (`K p_new = scale (K p - step K t + K c)`, `c` the departures of the projected /
+    // re-entered points from the linear step, added by direct sums over their few sources)
+    // and recomputed by FFT only when `fresh` is false: after a step that changed more
+    // than `MAX_SPARSE_CORRECTIONS` elements' contact status, every `REFRESH_INTERVAL`
+    // steps (to bound the drift) and before accepting convergence. The element-wise work of
+    // an iteration is six fused parallel sweeps (`passes`).
     const REFRESH_INTERVAL: usize = 32;
-    // A sparse correction costs one O(N) pass; beyond a few, one FFT product is cheaper.
+    // A sparse correction costs one O(N) sweep; beyond a few, one FFT product is cheaper.
     const MAX_SPARSE_CORRECTIONS: usize = 6;
-    let mut corrections: Vec<(usize, f64)> = Vec::with_capacity(MAX_SPARSE_CORRECTIONS + 1);
     let mut fresh = false;
     let mut since_refresh = 0usize;
 
@@ -574,25 +605,20 @@ fn conjugate_gradient(
             fresh = true;
             since_refresh = 0;
         }
-        let mut n_contact = 0usize;
-        let mut gap_sum = 0.0;
-        let mut displacement_scale = 0.0f64;
-        for i in 0..n {
-            gap[i] = displacement[i] + h[i];
-            displacement_scale = nan_max(displacement_scale, displacement[i].abs());
-            if pressure[i] > 0.0 {
-                n_contact += 1;
-                gap_sum += gap[i];
-            }
-        }
+        let stats = passes::gap_sweep(&displacement, h, &pressure, &mut gap);
+        let n_contact = stats.n_contact;
         approach = match loading {
-            NormalLoading::Force(_) => gap_sum / n_contact.max(1) as f64,
+            NormalLoading::Force(_) => stats.gap_sum / n_contact.max(1) as f64,
             NormalLoading::Approach(delta) => delta,
         };
-        for g in gap.iter_mut() {
-            *g -= approach;
-        }
-        residual = complementarity_residual(&pressure, &gap, displacement_scale);
+        let norm;
+        (residual, norm) = passes::shift_sweep(
+            &mut gap,
+            &pressure,
+            approach,
+            stats.pressure_max,
+            stats.displacement_max,
+        );
         if residual <= params.tolerance {
             if since_refresh == 0 {
                 observer(iteration, residual);
@@ -615,42 +641,21 @@ fn conjugate_gradient(
         iteration += 1;
 
         // Conjugate direction on the contact set.
-        let mut norm = 0.0;
-        for i in 0..n {
-            if pressure[i] > 0.0 {
-                norm += gap[i] * gap[i];
-            }
-        }
         let beta = if conjugate { norm / norm_old } else { 0.0 };
-        for i in 0..n {
-            direction[i] = if pressure[i] > 0.0 {
-                gap[i] + beta * direction[i]
-            } else {
-                0.0
-            };
-        }
+        let (num, direction_sum) = passes::direction_sweep(&mut direction, &gap, &pressure, beta);
         norm_old = norm;
 
         operator.apply_into(&direction, &mut response, workspace);
         // Under force control the response is taken relative to its mean over the contact
-        // set (the approach adjusts to keep the load).
-        let response_mean = match loading {
+        // set (the approach adjusts to keep the load):
+        // sum (r - mean r) t = sum r t - mean r sum t.
+        let (response_sum, response_dot) = passes::response_sweep(&response, &direction, &pressure);
+        let den = match loading {
             NormalLoading::Force(_) => {
-                (0..n)
-                    .filter(|&i| pressure[i] > 0.0)
-                    .map(|i| response[i])
-                    .sum::<f64>()
-                    / n_contact as f64
+                response_dot - response_sum / n_contact as f64 * direction_sum
             }
-            NormalLoading::Approach(_) => 0.0,
+            NormalLoading::Approach(_) => response_dot,
         };
-        let (mut num, mut den) = (0.0, 0.0);
-        for i in 0..n {
-            if pressure[i] > 0.0 {
-                num += gap[i] * direction[i];
-                den += (response[i] - response_mean) * direction[i];
-            }
-        }
         if den.is_nan() || den <= 0.0 {
             return Err(Error::Numerical {
                 context: "Polonsky-Keer CG",
@@ -660,35 +665,20 @@ fn conjugate_gradient(
         }
         let step = num / den;
 
-        // Step, projection onto p >= 0, re-entry of overlapping points.
-        // `corrections` records where the new pressure departs from the linear step
-        // p - step t (projection and re-entry), for the incremental displacement update.
-        let mut overlap = false;
-        corrections.clear();
-        for i in 0..n {
-            if pressure[i] > 0.0 {
-                let p = pressure[i] - step * direction[i];
-                if p < 0.0 {
-                    pressure[i] = 0.0;
-                    if corrections.len() <= MAX_SPARSE_CORRECTIONS {
-                        corrections.push((i, -p));
-                    }
-                } else {
-                    pressure[i] = p;
-                }
-            } else if gap[i] < 0.0 {
-                pressure[i] = -step * gap[i];
-                overlap = true;
-                if corrections.len() <= MAX_SPARSE_CORRECTIONS {
-                    corrections.push((i, pressure[i]));
-                }
-            }
-        }
-        conjugate = !overlap;
+        // Step, projection onto p >= 0, re-entry of overlapping points; the corrections
+        // record where the new pressure departs from the linear step p - step t.
+        let moved = passes::step_sweep(
+            &mut pressure,
+            &direction,
+            &gap,
+            step,
+            MAX_SPARSE_CORRECTIONS,
+        );
+        conjugate = !moved.overlap;
 
         let mut scale = 1.0;
         if let NormalLoading::Force(force) = loading {
-            let total = area * pressure.iter().sum::<f64>();
+            let total = area * moved.pressure_sum;
             if total.is_nan() || total <= 0.0 {
                 return Err(Error::Numerical {
                     context: "Polonsky-Keer CG",
@@ -697,23 +687,20 @@ fn conjugate_gradient(
                 .into());
             }
             scale = force / total;
-            for p in pressure.iter_mut() {
-                *p *= scale;
-            }
         }
-        if corrections.len() > MAX_SPARSE_CORRECTIONS || since_refresh + 1 >= REFRESH_INTERVAL {
+        if moved.changes > MAX_SPARSE_CORRECTIONS || since_refresh + 1 >= REFRESH_INTERVAL {
             fresh = false;
+            passes::scale_sweep(&mut pressure, scale, None);
         } else {
             // p_new = scale (p - step t + c) with c sparse, so
-            // K p_new = scale (K p - step K t + K c), K c by direct sums over few sources.
-            for (u, r) in displacement.iter_mut().zip(&response) {
-                *u -= step * r;
-            }
-            for &(i, c) in &corrections {
-                operator.add_source(i, c, &mut displacement);
-            }
-            for u in displacement.iter_mut() {
-                *u *= scale;
+            // K p_new = scale (K p - step K t) + K (scale c), K c by direct sums.
+            passes::scale_sweep(
+                &mut pressure,
+                scale,
+                Some((&mut displacement, &response, step)),
+            );
+            for &(i, c) in &moved.corrections {
+                operator.add_source(i, scale * c, &mut displacement);
             }
             since_refresh += 1;
         }
