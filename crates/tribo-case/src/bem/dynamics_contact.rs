@@ -111,10 +111,10 @@ pub struct ContactEnergy {
     /// input work - mechanical - dissipation.
     pub balance: Vec<f64>,
     /// Strain energy U of the bodies, integrated over the field triangulation
-    /// ([`deformation_energies`]).
+    /// (docs/theory/DYNAMICS.md sec. 5.8, "The contact run").
     pub strain: Vec<f64>,
     /// Kinetic energy of the deformation: the bodies' kinetic energy less that of each
-    /// free body's mean translation ([`deformation_energies`]).
+    /// free body's mean translation (docs/theory/DYNAMICS.md sec. 5.8, "The contact run").
     pub kinetic: Vec<f64>,
     /// input work - U - K - dissipation - translational kinetic energy: 0 for an exact
     /// solution; the discretisation error (time, field quadrature) and the normal contact

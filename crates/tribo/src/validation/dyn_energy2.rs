@@ -67,6 +67,7 @@ pub(crate) struct CavityEnergies {
     /// Kinetic energy in the annulus.
     pub kinetic: Vec<f64>,
     /// The Lame strain energy of the annulus, closed form U_s(rho).
+    #[cfg_attr(not(test), allow(dead_code))]
     pub static_exact: f64,
     /// The same by the annulus' quadrature of the Lame field, U_s,h.
     pub static_quadrature: f64,
@@ -106,7 +107,14 @@ pub(crate) fn cavity_energies(setup: &CavitySetup) -> Result<CavityEnergies> {
             material,
             vec![
                 Segment::arc("outer_a", [0.0, 0.0], setup.big, 0.0, PI, setup.n_outer),
-                Segment::arc("outer_b", [0.0, 0.0], setup.big, PI, 2.0 * PI, setup.n_outer),
+                Segment::arc(
+                    "outer_b",
+                    [0.0, 0.0],
+                    setup.big,
+                    PI,
+                    2.0 * PI,
+                    setup.n_outer,
+                ),
             ],
         )
         .with_hole(vec![
@@ -184,7 +192,10 @@ pub(crate) fn cavity_energies(setup: &CavitySetup) -> Result<CavityEnergies> {
             ]
         })
         .collect();
-    let lame_eps: Vec<[f64; 3]> = lame.iter().map(|s| kernels.strain_from_stress(*s)).collect();
+    let lame_eps: Vec<[f64; 3]> = lame
+        .iter()
+        .map(|s| kernels.strain_from_stress(*s))
+        .collect();
     Ok(CavityEnergies {
         work,
         strain,
@@ -208,7 +219,8 @@ pub(crate) const ROWS_SETUP: CavitySetup = CavitySetup {
     sectors: 24,
 };
 
-/// The cavity's energy rows (module docs): at t = 8 a/c2 the strain energy of a < r < 3a
+/// The cavity's energy rows (module docs; not yet in [`super::run_all`]'s list: their
+/// tolerances await a first measured run): at t = 8 a/c2 the strain energy of a < r < 3a
 /// against the Lame value of the same quadrature, the kinetic energy there, and U + K = W
 /// at t = 1 (the P front at r = 2.7 a, inside the annulus).
 pub fn dyn_energy2_rows() -> Result<Vec<ValidationRow>> {
@@ -266,7 +278,8 @@ mod tests {
     fn annulus_quadrature_of_the_lame_energy_converges() {
         let mu = 1.0;
         let kernels_material = ElasticMaterial::new(2.5, 0.25).unwrap();
-        let kernels = crate::kernels::kelvin2d::Kelvin2d::new(&kernels_material, PlaneCondition::Strain);
+        let kernels =
+            crate::kernels::kelvin2d::Kelvin2d::new(&kernels_material, PlaneCondition::Strain);
         let exact = PI * (1.0 - 1.0 / 9.0) / (2.0 * mu);
         let mut last = f64::NAN;
         for (rings, sectors) in [(6, 24), (12, 48), (24, 96)] {
@@ -277,10 +290,17 @@ mod tests {
                     let r2 = p[0] * p[0] + p[1] * p[1];
                     let (c, s) = (p[0] / r2.sqrt(), p[1] / r2.sqrt());
                     let (srr, stt) = (-1.0 / r2, 1.0 / r2);
-                    [srr * c * c + stt * s * s, srr * s * s + stt * c * c, (srr - stt) * s * c]
+                    [
+                        srr * c * c + stt * s * s,
+                        srr * s * s + stt * c * c,
+                        (srr - stt) * s * c,
+                    ]
                 })
                 .collect();
-            let eps: Vec<[f64; 3]> = lame.iter().map(|s| kernels.strain_from_stress(*s)).collect();
+            let eps: Vec<[f64; 3]> = lame
+                .iter()
+                .map(|s| kernels.strain_from_stress(*s))
+                .collect();
             let u = EnergyMesh::new(&nodes, &triangles, 1.0)
                 .unwrap()
                 .strain_energy(&lame, &eps)
@@ -302,6 +322,7 @@ mod tests {
     /// is within 6e-4 of u_s there, sec. 5.6; U ~ u^2) and closer at 20 than at 10 (the
     /// approach); K/U_s below 2e-3 at t = 20; the balance at t = 1 within 3 %.
     #[test]
+    #[ignore = "not yet run (session 12): tolerances to be confirmed by a first run, ~1-2 min"]
     fn cavity_strain_energy_tends_to_the_lame_value() {
         let s = CavitySetup {
             big: 24.0,

@@ -26,6 +26,9 @@
 //! translation, `dW = (F^n + F^(n-1))/2 . (U^n - U^(n-1))` (trapezoidal, as the loads'),
 //! is external work of the owning body; its force enters the body's momentum.
 
+// Index loops over the components read like the formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
 use std::collections::HashMap;
 
 use faer::linalg::solvers::Solve;
@@ -110,11 +113,8 @@ pub(super) fn fixed_conditions(
                 "a rigid segment must be named once",
             ));
         }
-        let owned = model.regions.iter().flat_map(|r| r.loops.iter().flatten());
-        if !owned
-            .into_iter()
-            .any(|item| matches!(item, LoopItem::Segment(seg) if seg.name == r.segment))
-        {
+        let mut owned = model.regions.iter().flat_map(|r| r.loops.iter().flatten());
+        if !owned.any(|item| matches!(item, LoopItem::Segment(seg) if seg.name == r.segment)) {
             return Err(Error::invalid(
                 field,
                 &r.segment,
