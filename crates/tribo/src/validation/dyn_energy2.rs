@@ -274,6 +274,8 @@ mod tests {
 
     /// The Lame strain energy by the annulus quadrature converges to the closed form at
     /// second order (linear interpolation of r^-2 on graded rings, the inscribed polygon).
+    /// Measured: 2.29e-2, 5.85e-3, 1.47e-3 at 6 x 24, 12 x 48, 24 x 96 (ratios 3.9, 4.0).
+    /// Tolerances: each refinement below a third of the previous error, 2e-3 at the end.
     #[test]
     fn annulus_quadrature_of_the_lame_energy_converges() {
         let mu = 1.0;
