@@ -44,6 +44,8 @@ mod dyn_damage;
 pub use dyn_damage::dyn_damage_rows;
 pub(crate) mod dyn_energy;
 pub use dyn_energy::dyn_energy_rows;
+mod dyn_energy2;
+pub use dyn_energy2::dyn_energy2_rows;
 pub mod prob_damage;
 pub use prob_damage::prob_damage_rows;
 

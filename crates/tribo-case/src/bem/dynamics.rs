@@ -358,18 +358,9 @@ pub(crate) fn check_probes(spec: &DynamicsSpec, built: &BuiltModel) -> CaseResul
 }
 
 /// The points whose histories are convolved: the probes, then the nodes of the static
-/// field's triangulation of every sampled region (with snapshots; boundary nodes moved
-/// inwards, module docs), and the snapshot mesh over them.
-pub(crate) fn output_points(
-    case: &BemCase,
-    spec: &DynamicsSpec,
-    built: &BuiltModel,
-) -> CaseResult<(Vec<[f64; 2]>, SnapshotMesh)> {
-    output_points_with(case, spec, built, false)
-}
-
-/// [`output_points`], with the triangulation also without snapshots or `[damage]` where
-/// `always` (the linear run's domain energies).
+/// field's triangulation of every sampled region (with snapshots, `[damage]`, or where
+/// `always`: the domain energies; boundary nodes moved inwards, module docs), and the
+/// snapshot mesh over them.
 pub(crate) fn output_points_with(
     case: &BemCase,
     spec: &DynamicsSpec,

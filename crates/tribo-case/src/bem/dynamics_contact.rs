@@ -31,16 +31,16 @@ use tribo::solvers::bem2d::BemSolution;
 use super::case::dynamics::DynamicsSpec;
 use super::case::BemCase;
 use super::dynamics::{
-    check_probes, convolve_counted, output_points, probe_peaks, record, region_materials,
-    DynamicOutcome, DynamicTimings, Recovery,
+    check_probes, convolve_counted, domain_energies, output_points_with, probe_peaks, record,
+    region_materials, DynamicOutcome, DynamicTimings, Recovery,
 };
 use super::pipeline::{self, BuiltModel};
 use crate::error::{CaseError, CaseResult};
 use crate::progress::Progress;
 
-/// Whether the dynamic run of `case` marches with contact (it has contact pairs).
+/// Whether the dynamic run of `case` marches (it has contact pairs or rigid segments).
 pub fn marches(case: &BemCase, _spec: &DynamicsSpec) -> bool {
-    !case.pairs.is_empty()
+    !case.pairs.is_empty() || !case.rigid.is_empty()
 }
 
 /// The peaks and times of one contact pair over the march.
@@ -110,6 +110,16 @@ pub struct ContactEnergy {
     pub normal_contact_work: Vec<f64>,
     /// input work - mechanical - dissipation.
     pub balance: Vec<f64>,
+    /// Strain energy U of the bodies, integrated over the field triangulation
+    /// (docs/theory/DYNAMICS.md sec. 5.8, "The contact run").
+    pub strain: Vec<f64>,
+    /// Kinetic energy of the deformation: the bodies' kinetic energy less that of each
+    /// free body's mean translation (docs/theory/DYNAMICS.md sec. 5.8, "The contact run").
+    pub kinetic: Vec<f64>,
+    /// input work - U - K - dissipation - translational kinetic energy: 0 for an exact
+    /// solution; the discretisation error (time, field quadrature) and the normal contact
+    /// work otherwise.
+    pub domain_balance: Vec<f64>,
 }
 
 impl ContactEnergy {
@@ -120,6 +130,9 @@ impl ContactEnergy {
             ("translational_kinetic_J_per_m", &self.translational_kinetic),
             ("normal_contact_work_J_per_m", &self.normal_contact_work),
             ("balance_J_per_m", &self.balance),
+            ("strain_energy_J_per_m", &self.strain),
+            ("deformation_kinetic_J_per_m", &self.kinetic),
+            ("domain_balance_J_per_m", &self.domain_balance),
         ]
     }
 }
@@ -141,6 +154,8 @@ pub struct ContactOutcome {
     pub bodies: Vec<BodyState>,
     /// The energy series.
     pub energy: ContactEnergy,
+    /// Per rigid segment (`rigid`), its translation and force at every step.
+    pub rigid: Vec<super::case::rigid::RigidHistory>,
     /// The march (weights and steps), s.
     pub march_s: f64,
     /// The recovery of the probes and snapshots (0 without them), s.
@@ -229,11 +244,13 @@ pub fn run(
                 .unwrap_or([0.0; 2])
         })
         .collect();
-    let problem = DynamicContact::new(
+    let rigid = super::case::rigid::segments(case, spec)?;
+    let problem = DynamicContact::with_rigid(
         &built.model,
         &densities,
         &bcs,
         &case.pairs,
+        &rigid,
         &loads,
         &velocities,
     )
@@ -245,6 +262,9 @@ pub fn run(
                 .trim_start_matches("initial_velocity of region '")
                 .trim_end_matches('\'');
             CaseError::field(format!("dynamics.initial_velocity.{name}"), value, rule)
+        }
+        tribo::Error::InvalidParameter { field, .. } if field.starts_with("rigid_segment[") => {
+            super::case::rigid::rename_error(e, case)
         }
         _ => rename_load_error(e, &origins),
     })?;
@@ -294,10 +314,12 @@ pub fn run(
         Ok((s.contact_samples(), s.energy_sample()))
     };
     let t2 = Instant::now();
-    let (points, snapshot) = output_points(case, spec, built)?;
-    // `[damage]`: the damage triangulation is among the points (`output_points`), so the
+    // The field triangulation always: the strain and kinetic energies integrate over it.
+    let (points, snapshot) = output_points_with(case, spec, built, true)?;
+    // `[damage]`: the damage triangulation is among the points (`output_points_with`), so the
     // damage run starts with the recovery model below.
     let mut damage = None;
+    let mut domain = Vec::new();
     let (history, solves, dof) = if points.is_empty() {
         let grid = CqGrid::new(CqMethod::Bdf2, spec.time_step, spec.steps)?;
         let empty = tribo::dynamics::cq::CqSeries {
@@ -324,7 +346,7 @@ pub fn run(
         )?;
         (h, 0, dof)
     } else {
-        let bem = LaplaceBem::new(&built.model, &densities, &bcs, &points)?
+        let bem = LaplaceBem::new(&built.model, &densities, problem.conditions(), &points)?
             .with_stress_probes(&points)?;
         let ni = bem.inputs();
         if ni != problem.bem().inputs() {
@@ -340,6 +362,7 @@ pub fn run(
             data.extend(problem.boundary_inputs(step)?);
         }
         let (series, solves) = convolve_counted(&bem, &grid, &data, spec.steps, progress)?;
+        domain = domain_energies(&bem, &series, &grid, &points, &snapshot, &densities)?;
         damage = super::dynamics_damage::start(case, &snapshot, spec.probes.len(), &bem)?;
         let h = record(
             history,
@@ -361,7 +384,8 @@ pub fn run(
     let damage = damage.map(|d| d.finish(&mut history)).transpose()?;
     let recovery_s = t2.elapsed().as_secs_f64();
     let peaks = probe_peaks(&history, spec, statics)?;
-    let contact = summarise(case, &problem, &result, built)?;
+    let mut contact = summarise(case, &problem, &result, built)?;
+    deformation_energies(&problem, &result, &domain, &mut contact.energy);
     Ok(DynamicOutcome {
         history,
         method: spec.method,
@@ -489,7 +513,58 @@ fn summarise(
         pairs,
         bodies,
         energy,
+        rigid: super::case::rigid::histories(case, result),
         march_s: 0.0,
         recovery_s: 0.0,
     })
+}
+
+/// The strain energy U and the kinetic energy of the deformation K of the march at every
+/// step into `energy` (docs/theory/DYNAMICS.md sec. 5.4 "Energy", 5.8), from `domain` (the
+/// recovery's U and K_e on the field triangulation, [`domain_energies`]; empty without a
+/// recovery: the series stay empty). K_e is the kinetic energy of the convolved (elastic)
+/// velocities v_e, the rigid initial velocity v0 left out; the body's velocity is
+/// v0 + v_e and its mean (mass-weighted) velocity V = P / m from the march's momentum, so
+/// the kinetic energy relative to the mean, 1/2 int rho |v0 + v_e - V|^2, is
+/// K_e - m |V - v0|^2 / 2 (int rho v_e dA = m (V - v0): the momentum balance) for a free
+/// body, K_e for one with prescribed displacements (v0 = 0, no mean translation). The
+/// balance W - U - K - D - K_rigid, K_rigid the translational kinetic energy |P|^2 / (2 m)
+/// of the free bodies.
+fn deformation_energies(
+    problem: &DynamicContact,
+    result: &tribo::dynamics::contact::DynamicContactResult,
+    domain: &[(f64, f64)],
+    energy: &mut ContactEnergy,
+) {
+    if domain.len() != result.steps.len() {
+        return;
+    }
+    let masses = problem.body_masses();
+    let v0: Vec<[f64; 2]> = {
+        let regions = problem.region_velocities();
+        problem
+            .body_regions()
+            .iter()
+            .map(|r| r.first().map_or([0.0; 2], |&i| regions[i]))
+            .collect()
+    };
+    for (s, &(u, ke)) in result.steps.iter().zip(domain) {
+        let e = &s.energy;
+        let mut k = ke;
+        let mut k_rigid = 0.0;
+        for ((b, &m), v0) in e.bodies.iter().zip(masses).zip(&v0) {
+            if let Some(p) = b.momentum {
+                let mean = [p[0] / m, p[1] / m];
+                let d = [mean[0] - v0[0], mean[1] - v0[1]];
+                k -= 0.5 * m * (d[0] * d[0] + d[1] * d[1]);
+                k_rigid += b.translational_kinetic.unwrap_or(0.0);
+            }
+        }
+        let input = e.initial_kinetic + e.external_work;
+        energy.strain.push(u);
+        energy.kinetic.push(k);
+        energy
+            .domain_balance
+            .push(input - u - k - e.dissipation - k_rigid);
+    }
 }

@@ -345,6 +345,9 @@ pub struct DynamicsSpec {
     /// The time function of each `[[bc]]`, in their order (no `time`: the constant 1 from
     /// t = 0, i.e. a load applied suddenly at t = 0).
     pub bc_time: Vec<TimeFunction>,
+    /// The time function of each rigid segment's controls (`steps[0].rigid.<segment>.time`),
+    /// in the order of the case's `rigid` (no `time`: the constant 1 from t = 0).
+    pub rigid_time: Vec<TimeFunction>,
     /// The probes.
     pub probes: Vec<ProbeSpec>,
     /// Initial rigid-body velocity per region, (v_x, v_y) m/s (regions not listed: at rest).
@@ -375,7 +378,11 @@ pub(crate) struct DynamicsContext<'a> {
     pub regions: Vec<(String, String)>,
     /// Each `[[bc]]`'s origin (`bc[2]`) and `time` as written.
     pub bc_times: Vec<(String, Option<RawTime>)>,
-    /// Whether the case has contact pairs.
+    /// Each rigid control's origin (`steps[0].rigid.punch`) and `time` as written.
+    pub rigid_times: Vec<(String, Option<RawTime>)>,
+    /// The rigid segments (`rigid`), in order.
+    pub rigid: Vec<String>,
+    /// Whether the case marches: contact pairs or rigid segments.
     pub has_contact: bool,
     /// Number of load steps (`[[steps]]`); a dynamic case has one.
     pub load_steps: usize,
@@ -410,7 +417,12 @@ pub(crate) fn validate(
     ctx: &DynamicsContext<'_>,
 ) -> CaseResult<Option<DynamicsSpec>> {
     let Some(raw) = raw else {
-        if let Some((origin, _)) = ctx.bc_times.iter().find(|(_, t)| t.is_some()) {
+        if let Some((origin, _)) = ctx
+            .bc_times
+            .iter()
+            .chain(&ctx.rigid_times)
+            .find(|(_, t)| t.is_some())
+        {
             return Err(bad(
                 format!("{origin}.time"),
                 "(given)",
@@ -442,8 +454,9 @@ pub(crate) fn validate(
             return Err(bad(
                 "dynamics.realisation",
                 &r.written,
-                "all_at_once solves a linear problem; contact is nonlinear: use \"marching\" \
-                 or \"auto\"",
+                "all_at_once solves a linear problem without contact pairs or rigid segments \
+                 (contact is nonlinear; a rigid segment's translation is an unknown of each \
+                 step): use \"marching\" or \"auto\"",
             ))
         }
         Some(r) => resolve(r.value, ctx.has_contact),
@@ -453,6 +466,15 @@ pub(crate) fn validate(
     let mut bc_time = Vec::with_capacity(ctx.bc_times.len());
     for (origin, t) in &ctx.bc_times {
         bc_time.push(match t {
+            None => TimeFunction::constant(1.0).map_err(CaseError::from)?,
+            Some(t) => time_function(&format!("{origin}.time"), t, ctx.base_dir)?,
+        });
+    }
+    let mut rigid_time = Vec::with_capacity(ctx.rigid.len());
+    for seg in &ctx.rigid {
+        let origin = format!("steps[0].rigid.{seg}");
+        let written = ctx.rigid_times.iter().find(|(o, _)| *o == origin);
+        rigid_time.push(match written.and_then(|(_, t)| t.as_ref()) {
             None => TimeFunction::constant(1.0).map_err(CaseError::from)?,
             Some(t) => time_function(&format!("{origin}.time"), t, ctx.base_dir)?,
         });
@@ -488,6 +510,7 @@ pub(crate) fn validate(
         field_steps,
         densities,
         bc_time,
+        rigid_time,
         probes,
         initial_velocity,
         notes,

@@ -6,6 +6,7 @@
 mod conditions;
 pub mod dynamics;
 mod outline;
+pub mod rigid;
 mod schema;
 mod validate;
 

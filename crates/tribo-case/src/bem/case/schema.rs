@@ -177,6 +177,8 @@ pub(in crate::bem) struct RawControl {
     pub ux: Option<Quantity<Length>>,
     pub fy: Option<Quantity<LineForce>>,
     pub uy: Option<Quantity<Length>>,
+    /// The time function of the values (a dynamic case only).
+    pub time: Option<RawTime>,
 }
 
 #[derive(Debug, Deserialize, Serialize, Clone, Default, PartialEq)]

@@ -68,6 +68,18 @@ pub(super) fn validate(
     let (bcs, groups) = conditions::bcs(&raw.bc.take().unwrap_or_default())?;
     let pairs = pairs(&raw.contact.take().unwrap_or_default())?;
     let rigid = raw.rigid.take().unwrap_or_default();
+    let rigid_times: Vec<(String, Option<RawTime>)> = raw
+        .steps
+        .iter()
+        .flatten()
+        .enumerate()
+        .flat_map(|(k, s)| {
+            s.rigid
+                .iter()
+                .flatten()
+                .map(move |(seg, c)| (format!("steps[{k}].rigid.{seg}"), c.time.clone()))
+        })
+        .collect();
     let steps = conditions::steps(raw.steps.take(), &groups, &rigid)?;
     let options = solver(raw.solver.take())?;
     let field = field(raw.field.take())?;
@@ -97,7 +109,9 @@ pub(super) fn validate(
             densities: material_densities,
             regions: region_materials,
             bc_times,
-            has_contact: !pairs.is_empty(),
+            rigid_times,
+            rigid: rigid.clone(),
+            has_contact: !pairs.is_empty() || !rigid.is_empty(),
             load_steps: steps.len(),
             base_dir,
             locate: &locate,
@@ -135,9 +149,9 @@ pub(super) fn validate(
     })
 }
 
-/// What the dynamic pipeline does not do yet, refused with the item named: rigid segments
-/// (guided faces: not in the dynamic contact march), with contact pairs a Runge-Kutta
-/// method (the march is multistep: an S-stage step would be a block contact problem),
+/// What the dynamic pipeline does not do yet, refused with the item named: with contact
+/// pairs or rigid segments a Runge-Kutta method (the march is multistep: an S-stage step
+/// would be a block contact problem),
 /// `[compare]`, body forces
 /// (not in the Laplace-domain BEM) and initial velocities without contact pairs (a rigid-body
 /// motion acts only through the contact it closes).
@@ -158,12 +172,13 @@ fn dynamic_limits(
              [[contact]]",
         );
     }
-    if !rigid.is_empty() {
+    if !rigid.is_empty() && d.method != dynamics::Method::Bdf2 {
         return refuse(
-            "dynamics",
-            "(with rigid)",
-            "rigid (guided) segments are solved with the contact machinery: not available \
-             with [dynamics] yet",
+            "dynamics.method",
+            d.method.name(),
+            "rigid (guided) segments march with the multistep rule \"bdf2\" (their \
+             translations are unknowns of each step, as the contact tractions): use \
+             method = \"bdf2\" with rigid",
         );
     }
     if compare {

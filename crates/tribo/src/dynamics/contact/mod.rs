@@ -83,8 +83,12 @@
 mod compliance;
 pub(crate) mod reference;
 pub use reference::two_rods;
+mod rigid;
+pub use rigid::{DynamicRigid, DynamicRigidState};
 mod step;
 
+#[cfg(test)]
+mod rigid_tests;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
@@ -226,6 +230,8 @@ pub struct DynamicContactStep {
     pub residual: f64,
     /// Per pair.
     pub pairs: Vec<DynamicPairState>,
+    /// Per rigid segment (in the order given to [`DynamicContact::with_rigid`]).
+    pub rigid: Vec<DynamicRigidState>,
     /// Energy balance.
     pub energy: DynamicContactEnergy,
 }
@@ -276,6 +282,9 @@ pub struct DynamicContact {
     velocity: Vec<[f64; 2]>,
     mass: Vec<f64>,
     free: Vec<bool>,
+    /// Rigid segments and the conditions of the BEM (the rigid segments fixed).
+    rigid: Vec<rigid::RigidData>,
+    conditions: BoundaryConditions,
 }
 
 impl DynamicContact {
@@ -299,6 +308,29 @@ impl DynamicContact {
         loads: &[DynamicLoad],
         velocities: &[[f64; 2]],
     ) -> Result<Self> {
+        Self::with_rigid(model, densities, bcs, pairs, &[], loads, velocities)
+    }
+
+    /// [`DynamicContact::new`] with rigid (guided) segments `rigid` (module docs of
+    /// `rigid.rs`, docs/theory/DYNAMICS.md sec. 5.4): each a displacement boundary of the
+    /// BEM whose translation is an unknown (force control) or prescribed, both scaled by
+    /// its time function. A body with a rigid segment counts as a body with prescribed
+    /// displacements (no initial velocity, no momentum report). Errors as `new`, and
+    /// ([`Error::InvalidParameter`] naming `rigid_segment[j]`) a rigid segment that names
+    /// no segment, is a bonded interface, a contact segment or named twice, or has a
+    /// boundary condition (the condition is then given twice), or a control that is not
+    /// finite.
+    pub fn with_rigid(
+        model: &BemModel,
+        densities: &[f64],
+        bcs: &BoundaryConditions,
+        pairs: &[ContactPair],
+        rigid: &[DynamicRigid],
+        loads: &[DynamicLoad],
+        velocities: &[[f64; 2]],
+    ) -> Result<Self> {
+        let conditions = rigid::fixed_conditions(model, bcs, pairs, rigid)?;
+        let bcs = &conditions;
         let bem = LaplaceBem::new(model, densities, bcs, &[])?;
         let problem = bem.static_problem();
         let mesh = &problem.mesh;
@@ -443,6 +475,9 @@ impl DynamicContact {
             rows.push(u);
             rows.push(t);
         }
+        let (rigid, rigid_columns, rigid_rows) = rigid::rigid_maps(&bem, rigid, &body_of)?;
+        columns.extend(rigid_columns);
+        rows.extend(rigid_rows);
         Ok(Self {
             compliance: ContactCompliance { bem, columns, rows },
             npairs: pairs.len(),
@@ -454,7 +489,15 @@ impl DynamicContact {
             velocity,
             mass,
             free,
+            rigid,
+            conditions: conditions.clone(),
         })
+    }
+
+    /// The boundary conditions of [`DynamicContact::bem`]: the given ones with every rigid
+    /// segment fixed (a recovery model must be built with these).
+    pub fn conditions(&self) -> &BoundaryConditions {
+        &self.conditions
     }
 
     /// Number of contact unknowns (2 per slave node that projects onto its master).
@@ -517,6 +560,14 @@ impl DynamicContact {
                 .get(col.function)
                 .map_or(1.0, |tf| tf.value(step.time));
         }
+        if step.rigid.len() != self.rigid.len() {
+            return Err(Error::invalid(
+                "step.rigid",
+                step.rigid.len(),
+                format!("the problem has {} rigid segments", self.rigid.len()),
+            ));
+        }
+        y.extend(step.rigid.iter().flat_map(|r| r.translation));
         let mut known = vec![0.0; self.compliance.bem.inputs()];
         for (col, v) in self.compliance.columns.iter().zip(&y) {
             if *v != 0.0 {
@@ -609,6 +660,15 @@ impl DynamicContact {
         let a: Vec<f64> = (0..2 * n)
             .flat_map(|i| w0[i * cols..i * cols + 2 * n].iter().copied())
             .collect();
+        let mut rig = rigid::RigidStep::new(
+            &self.rigid,
+            &w0,
+            cols,
+            2 * n,
+            rows - 2 * self.rigid.len(),
+            2 * n + nl,
+        )?;
+        let a = rig.condensed(&w0, a);
         let friction: Vec<f64> = self.nodes.iter().map(|d| d.friction).collect();
         let rel_v = |d: &NodeData, dir: [f64; 2]| -> f64 {
             let (vs, vm) = (
@@ -658,13 +718,14 @@ impl DynamicContact {
                 .collect();
             let h = history.history()?;
             // Known part of the outputs: history + W_0 on the loads.
-            let known: Vec<f64> = (0..rows)
+            let mut known: Vec<f64> = (0..rows)
                 .map(|i| {
                     h[i] + (0..nl)
                         .map(|c| w0[i * cols + 2 * n + c] * f[c])
                         .sum::<f64>()
                 })
                 .collect();
+            let u_rigid = rig.predict(&w0, &mut known, t);
             let g_pred: Vec<f64> = self
                 .nodes
                 .iter()
@@ -689,6 +750,8 @@ impl DynamicContact {
             max_iterations = max_iterations.max(sol.iterations);
             let mut y = sol.z.clone();
             y.extend_from_slice(&f);
+            let u_rigid = rig.translations(u_rigid, &sol.z);
+            y.extend_from_slice(&u_rigid);
             let x0 = history
                 .weights()
                 .apply(0, &y)
@@ -781,6 +844,8 @@ impl DynamicContact {
                     force[col.body][k] += f[c] * col.force[k];
                 }
             }
+            let (rigid, rigid_work) = rig.record(&u_rigid, &out, &mut body_work, &mut force);
+            external += rigid_work;
             if step > 0 {
                 for b in 0..nb {
                     for k in 0..2 {
@@ -807,6 +872,7 @@ impl DynamicContact {
                 iterations: sol.iterations,
                 residual: sol.residual,
                 pairs,
+                rigid,
                 energy: DynamicContactEnergy {
                     initial_kinetic: k0,
                     external_work: external,

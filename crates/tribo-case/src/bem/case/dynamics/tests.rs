@@ -116,6 +116,8 @@ fn run_with(text: &str, contact: bool, load_steps: usize) -> CaseResult<Option<D
             .enumerate()
             .map(|(k, b)| (format!("bc[{k}]"), b.time))
             .collect(),
+        rigid_times: Vec::new(),
+        rigid: Vec::new(),
         has_contact: contact,
         load_steps,
         base_dir: Path::new(env!("CARGO_MANIFEST_DIR")),
