@@ -451,8 +451,7 @@ fn invalid_geometry_and_corrupt_meshes_exit_2() {
 
 /// Bad dynamic input (`[dynamics]`, docs/user/case-bem2d-dynamics.md): exit 2, nothing
 /// written, the error naming the item: a time step that is not positive, a density missing,
-/// a time table that is not increasing, a probe outside every body; and what the dynamic
-/// run does not do yet (a Runge-Kutta method with contact pairs), naming `dynamics.method`.
+/// a time table that is not increasing, a probe outside every body.
 #[test]
 fn bad_dynamic_input_is_refused_naming_the_item() {
     let ok = PLATE.replace(
@@ -480,9 +479,4 @@ fn bad_dynamic_input_is_refused_naming_the_item() {
         e.contains("probe[0].at") && e.contains("outside every region"),
         "{e}"
     );
-    let e = refused(
-        &(ok.replace("steps = 20\n", "steps = 20\nmethod = \"radau_iia_2\"\n")
-            + "[[contact]]\nslave = \"top\"\nmaster = \"bottom\"\nfriction = 0.1\n"),
-    );
-    assert!(e.contains("dynamics") && e.contains("contact"), "{e}");
 }

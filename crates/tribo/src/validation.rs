@@ -36,6 +36,8 @@ mod bem2d;
 pub use bem2d::bem2d_rows;
 mod dyn_contact;
 pub use dyn_contact::dyn_contact_rows;
+pub mod dyn_radau;
+pub use dyn_radau::dyn_radau_rows;
 pub mod dyn_verify;
 pub use dyn_verify::dyn_verify_rows;
 mod dyn_stress;
@@ -2207,6 +2209,7 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(damage_rows()?);
     rows.extend(bem2d_rows()?);
     rows.extend(dyn_contact_rows()?);
+    rows.extend(dyn_radau_rows()?);
     rows.extend(dyn_verify_rows()?);
     rows.extend(dyn_stress_rows()?);
     rows.extend(dyn_damage_rows()?);

@@ -2,9 +2,10 @@
 //! pairs (issue 13; docs/user/case-bem2d-dynamics.md, docs/theory/DYNAMICS.md sec. 4 and
 //! 5.4).
 //!
-//! The case marches with [`DynamicContact`] (BDF2 convolution quadrature on the condensed
+//! The case marches with [`DynamicContact`] (convolution quadrature on the condensed
 //! contact compliance, one static-like active-set contact problem per step, Coulomb friction
-//! of each pair): every `[[bc]]` scaled by its own time function on its segments (as the
+//! of each pair; BDF2, or Radau IIA with one block problem for the S stage tractions per
+//! step, docs/theory/DYNAMICS.md sec. 5.10): every `[[bc]]` scaled by its own time function on its segments (as the
 //! linear run), the rigid initial velocity of a region as a closing gap. Each step gives the
 //! pairs' contact length, forces and stick/slip extents and the energy balance.
 //!
@@ -12,8 +13,8 @@
 //! contact unknowns. The bodies are linear, so the boundary data of every step (the loads
 //! at their factors and the marched contact tractions, [`DynamicContact::boundary_inputs`])
 //! are convolved afterwards, all steps at once, through the Laplace-domain BEM with the
-//! probes and snapshot points (the same BDF2 rule, contour and time step as the march: the
-//! same discrete convolution), plus the rigid motion `v0 t` of each region. This costs one
+//! probes and snapshot points (the same rule, contour and time step as the march: the
+//! same discrete convolution; for Radau IIA the data of every stage), plus the rigid motion `v0 t` of each region. This costs one
 //! more set of Laplace-domain solves (as many as the march's weights) and is skipped where
 //! there are neither probes nor snapshots; the march itself carries only the contact
 //! unknowns.
@@ -22,7 +23,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 use tribo::dynamics::contact::{DynamicContact, DynamicContactParams, DynamicLoad};
-use tribo::dynamics::cq::{CqGrid, CqMethod};
+use tribo::dynamics::cq::CqGrid;
 use tribo::dynamics::history::{DynamicHistory, EnergyTerms};
 use tribo::dynamics::laplace::LaplaceBem;
 use tribo::solvers::bem2d::contact::ContactOptions;
@@ -31,8 +32,8 @@ use tribo::solvers::bem2d::BemSolution;
 use super::case::dynamics::DynamicsSpec;
 use super::case::BemCase;
 use super::dynamics::{
-    check_probes, convolve_counted, domain_energies, output_points_with, probe_peaks, record,
-    region_materials, DynamicOutcome, DynamicTimings, Recovery,
+    check_probes, convolve_counted, cq_method, domain_energies, output_points_with, probe_peaks,
+    record, region_materials, DynamicOutcome, DynamicTimings, Recovery,
 };
 use super::pipeline::{self, BuiltModel};
 use crate::error::{CaseError, CaseResult};
@@ -272,7 +273,7 @@ pub fn run(
 
     // The march, one progress tick per step.
     let params = DynamicContactParams {
-        method: CqMethod::Bdf2,
+        method: cq_method(spec.method),
         options: ContactOptions {
             max_iterations: case.options.max_iterations,
             tolerance: case.options.tolerance,
@@ -290,7 +291,8 @@ pub fn run(
         Some(spec.steps as u64 + 1),
     );
     let t1 = Instant::now();
-    let result = problem.march(&params, &mut |s| progress.advance(s.step as u64 + 1))?;
+    let sampled = problem.march_samples(&params, &mut |s| progress.advance(s.step as u64 + 1))?;
+    let result = &sampled.result;
     progress.finish();
     let march_s = t1.elapsed().as_secs_f64();
 
@@ -321,7 +323,7 @@ pub fn run(
     let mut damage = None;
     let mut domain = Vec::new();
     let (history, solves, dof) = if points.is_empty() {
-        let grid = CqGrid::new(CqMethod::Bdf2, spec.time_step, spec.steps)?;
+        let grid = CqGrid::new(params.method, spec.time_step, spec.steps)?;
         let empty = tribo::dynamics::cq::CqSeries {
             grid,
             times: grid.sample_times(),
@@ -356,9 +358,9 @@ pub fn run(
                 "the recovery model's inputs differ from the march's",
             ));
         }
-        let grid = CqGrid::new(CqMethod::Bdf2, spec.time_step, spec.steps)?;
+        let grid = CqGrid::new(params.method, spec.time_step, spec.steps)?;
         let mut data = Vec::with_capacity(grid.samples() * ni);
-        for step in &result.steps {
+        for step in &sampled.samples {
             data.extend(problem.boundary_inputs(step)?);
         }
         let (series, solves) = convolve_counted(&bem, &grid, &data, spec.steps, progress)?;
@@ -384,8 +386,8 @@ pub fn run(
     let damage = damage.map(|d| d.finish(&mut history)).transpose()?;
     let recovery_s = t2.elapsed().as_secs_f64();
     let peaks = probe_peaks(&history, spec, statics)?;
-    let mut contact = summarise(case, &problem, &result, built)?;
-    deformation_energies(&problem, &result, &domain, &mut contact.energy);
+    let mut contact = summarise(case, &problem, result, built)?;
+    deformation_energies(&problem, result, &domain, &mut contact.energy);
     Ok(DynamicOutcome {
         history,
         method: spec.method,

@@ -149,10 +149,9 @@ pub(super) fn validate(
     })
 }
 
-/// What the dynamic pipeline does not do yet, refused with the item named: with contact
-/// pairs or rigid segments a Runge-Kutta method (the march is multistep: an S-stage step
-/// would be a block contact problem),
-/// `[compare]`, body forces
+/// What the dynamic pipeline does not do yet, refused with the item named: rigid segments
+/// with a Runge-Kutta method (the Radau march has no rigid-segment columns), `[compare]`,
+/// body forces
 /// (not in the Laplace-domain BEM) and initial velocities without contact pairs (a rigid-body
 /// motion acts only through the contact it closes).
 fn dynamic_limits(
@@ -163,15 +162,6 @@ fn dynamic_limits(
     compare: bool,
 ) -> CaseResult<()> {
     let refuse = |field: &str, value: &str, rule: &str| Err(bad(field, value, rule));
-    if !pairs.is_empty() && d.method != dynamics::Method::Bdf2 {
-        return refuse(
-            "dynamics.method",
-            d.method.name(),
-            "dynamic contact marches with the multistep rule \"bdf2\" (a Runge-Kutta step \
-             would be an S-stage block contact problem): use method = \"bdf2\" with \
-             [[contact]]",
-        );
-    }
     if !rigid.is_empty() && d.method != dynamics::Method::Bdf2 {
         return refuse(
             "dynamics.method",

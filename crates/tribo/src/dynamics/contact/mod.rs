@@ -39,6 +39,9 @@
 //! stick; [`crate::solvers::bem2d::contact`], "Solver"). Unlike the static problem, `W_0` is
 //! regular for bodies held only by contact: inertia holds them.
 //!
+//! Radau IIA (2 or 3 stages) marches the stage values instead: each step one block contact
+//! problem for the S stage tractions (module `radau`, docs/theory/DYNAMICS.md sec. 5.10).
+//!
 //! # Rigid initial velocity
 //!
 //! A body moving with the uniform velocity v0 carries no stress (`u = v0 t` solves the
@@ -81,12 +84,17 @@
 #![allow(clippy::needless_range_loop)]
 
 mod compliance;
+mod radau;
+mod radau_step;
 pub(crate) mod reference;
+pub use radau::SampledMarch;
 pub use reference::two_rods;
 mod rigid;
 pub use rigid::{DynamicRigid, DynamicRigidState};
 mod step;
 
+#[cfg(test)]
+mod radau_tests;
 #[cfg(test)]
 mod rigid_tests;
 #[cfg(test)]
@@ -123,8 +131,8 @@ pub struct DynamicLoad {
 /// The time discretisation and solver settings of a march.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DynamicContactParams {
-    /// CQ method: [`CqMethod::Bdf1`] or [`CqMethod::Bdf2`] (a Runge-Kutta step would be an
-    /// S-stage block contact problem: not supported).
+    /// CQ method: [`CqMethod::Bdf1`], [`CqMethod::Bdf2`] or Radau IIA (each step an S-stage
+    /// block contact problem: [`DynamicContact::march_samples`]).
     pub method: CqMethod,
     /// Time step, s (> 0).
     pub dt: f64,
@@ -593,6 +601,9 @@ impl DynamicContact {
     /// Bytes the march allocates for the weights (with their contour spectra) and the
     /// history; None where the size overflows or the parameters are invalid.
     pub fn memory_estimate(&self, params: &DynamicContactParams) -> Option<usize> {
+        if params.method.is_runge_kutta() {
+            return self.stage_memory_estimate(params);
+        }
         let (rows, cols) = self.weight_shape();
         let count = params.steps.checked_add(1)?;
         let w = weights_memory_estimate(params.method, cols, rows, count, &params.cq)?;
@@ -601,7 +612,10 @@ impl DynamicContact {
 
     /// Marches `params.steps` steps; `observer` sees every step as it is solved (progress).
     ///
-    /// Errors: a Runge-Kutta method, a time step that is not positive, zero steps
+    /// Radau IIA marches by S-stage block steps ([`DynamicContact::march_samples`], which
+    /// also keeps the stages).
+    ///
+    /// Errors: a time step that is not positive, zero steps
     /// ([`Error::InvalidParameter`]); [`Error::OutOfMemory`] where the estimate exceeds
     /// `params.memory_limit` or an allocation fails; the Laplace-domain solves' errors; a
     /// step whose active set does not converge ([`Error::NotConverged`] with the
@@ -612,12 +626,8 @@ impl DynamicContact {
         observer: &mut dyn FnMut(&DynamicContactStep),
     ) -> Result<DynamicContactResult> {
         if params.method.is_runge_kutta() {
-            return Err(Error::invalid(
-                "method",
-                params.method.name(),
-                "dynamic contact marches with a multistep method (bdf1, bdf2): a Runge-Kutta \
-                 step would be an S-stage block contact problem",
-            ));
+            // Radau IIA: S-stage block steps (radau.rs).
+            return self.march_samples(params, observer).map(|m| m.result);
         }
         if !(params.dt.is_finite() && params.dt > 0.0) {
             return Err(Error::invalid(

@@ -76,7 +76,7 @@ fn rod_impact_matches_the_characteristics_solution() {
 /// pressed at x = 0 by the pressure 1 times a smooth ramp over 0.5 (t_x = 1 on the face
 /// with outward normal -x), the far end on rollers (u_x = 0). `bonded`: the halves joined
 /// by a bonded interface; else in frictional contact (f = 2) at x = 1.
-fn split_column(bonded: bool) -> (BemModel, BoundaryConditions) {
+pub(super) fn split_column(bonded: bool) -> (BemModel, BoundaryConditions) {
     let m = ElasticMaterial::new(1.0, 0.25).unwrap();
     let (w, nx, ny) = (0.25, 6, 2);
     let a = Region::new(
@@ -201,7 +201,7 @@ fn sticking_contact_marches_as_the_bonded_linear_response() {
 /// (2 x 1, bottom fixed), E = 1, nu = 0.3, f = 0.3 (the different lateral expansion of the
 /// block and the base gives shear tractions and slip zones at the block's edges), as a
 /// static problem or a dynamic one (rho = 1) with the displacement ramped smoothly.
-fn block_on_base() -> (BemModel, BoundaryConditions, ContactPair) {
+pub(super) fn block_on_base() -> (BemModel, BoundaryConditions, ContactPair) {
     let m = ElasticMaterial::new(1.0, 0.3).unwrap();
     let base = Region::new(
         "base",

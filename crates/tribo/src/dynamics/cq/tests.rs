@@ -685,3 +685,94 @@ fn history_cost_100_unknowns_1000_steps() {
          history {t_march:.2} s ({acc:.3})"
     );
 }
+
+// ---------------------------------------------------------------------------------------
+// Runge-Kutta marching (block weights and stage history) on scalar closed forms
+
+/// `x = R(d/dt) y` marched with the block weights of a Runge-Kutta method (S x S stage
+/// blocks, [`CqHistory`] over the stage vectors) for `y = t^6` to `t = 2`, the largest
+/// error at the step ends (the last stages) against `exact`. Contour: L = 4 M frequencies
+/// and lambda^L = 1e-14 (the floor of [`observed_orders`]).
+fn rk_marched_error(
+    r: impl Fn(C64) -> C64 + Sync,
+    method: CqMethod,
+    steps: usize,
+    exact: impl Fn(f64) -> f64,
+) -> f64 {
+    let dt = 2.0 / steps as f64;
+    let p = CqParams {
+        contour_decay: 1e-14,
+        frequencies: Some(4 * steps),
+    };
+    let w = cq_weights(&Scalar(r), method, dt, steps, &p).unwrap();
+    assert_eq!((w.rows(), w.cols()), (method.stages(), method.stages()));
+    let mut h = CqHistory::new(w);
+    let c = method.nodes();
+    let mut worst = 0.0f64;
+    for n in 0..steps {
+        let y: Vec<f64> = c.iter().map(|ci| ((n as f64 + ci) * dt).powi(6)).collect();
+        let x = h.advance(&y).unwrap();
+        let t = (n + 1) as f64 * dt;
+        worst = worst.max((x[method.stages() - 1] - exact(t)).abs());
+    }
+    worst
+}
+
+/// The block marching weights of Radau IIA (what the contact march uses) converge at the
+/// orders Lubich & Ostermann (1993) give for a transfer function bounded by |s|^(-mu) in
+/// the right half-plane: min(p, q + 1 + mu), p = 2S - 1 the classical order, q = S the stage
+/// order. (1) The delayed integral `R = exp(-s tau)/s`, tau = 0.5 (mu = 1: the classical
+/// orders 3 and 5), exact `(t - tau)^7/7` for t > tau; (2) the half integral
+/// `R = s^(-1/2)` (mu = 1/2: 3 and 4.5), exact `Gamma(7)/Gamma(7.5) t^6.5`. Measured:
+/// see the printed errors and orders (docs/theory/DYNAMICS.md sec. 5.10). Asserted: the
+/// last two halvings within 0.3 of the expected order (a weight block transposed, a wrong
+/// stage ordering or a history shifted by one step loses one order or more).
+#[test]
+fn radau_marching_weights_converge_at_the_runge_kutta_orders() {
+    let tau = 0.5;
+    let delay = move |s: C64| (-s * tau).exp() / s;
+    let delay_exact = move |t: f64| {
+        if t > tau {
+            (t - tau).powi(7) / 7.0
+        } else {
+            0.0
+        }
+    };
+    let half = |s: C64| 1.0 / s.sqrt();
+    // Gamma(7.5) = 6.5 * 5.5 * ... * 0.5 * sqrt(pi).
+    let g75 = (0..7).map(|k| 0.5 + k as f64).product::<f64>() * std::f64::consts::PI.sqrt();
+    let half_exact = move |t: f64| 720.0 / g75 * t.powf(6.5);
+    for (method, steps, delay_order, half_order) in [
+        (CqMethod::RadauIia2, [10usize, 20, 40, 80], 3.0, 3.0),
+        (CqMethod::RadauIia3, [5, 10, 20, 40], 5.0, 4.5),
+    ] {
+        for (name, expected, errors) in [
+            (
+                "delay",
+                delay_order,
+                steps
+                    .iter()
+                    .map(|&m| rk_marched_error(delay, method, m, delay_exact))
+                    .collect::<Vec<_>>(),
+            ),
+            (
+                "half integral",
+                half_order,
+                steps
+                    .iter()
+                    .map(|&m| rk_marched_error(half, method, m, half_exact))
+                    .collect::<Vec<_>>(),
+            ),
+        ] {
+            let orders: Vec<f64> = errors.windows(2).map(|e| (e[0] / e[1]).log2()).collect();
+            let shown: Vec<String> = errors.iter().map(|e| format!("{e:.3e}")).collect();
+            eprintln!("{method:?} {name}: errors {shown:?}, orders {orders:.2?}");
+            for o in &orders[1..] {
+                assert!(
+                    (o - expected).abs() < 0.3,
+                    "{method:?} {name}: errors {errors:?}, orders {orders:?}"
+                );
+            }
+        }
+    }
+}
