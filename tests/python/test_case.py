@@ -29,7 +29,8 @@ GMSH_CASE = ROOT / "crates" / "tribo-cli" / "examples" / "gmsh" / "hertz-cylinde
 # clamp 28 s, the dynamic cavity and column minutes, the dynamic contact rod impact 8 s and
 # clamp-knife-base impact 40 s) with TRIBO_PY_SLOW=1.
 CHEAP = ["roller-shaft", "roller-shaft-normal", "roller-shaft-approach", "roller-shaft-bending",
-         "sphere-on-flat", "steel-on-cast-iron", "crowned-roller", "height-map"]
+         "sphere-on-flat", "steel-on-cast-iron", "crowned-roller", "height-map",
+         "roller-shaft-probabilistic"]
 SLOW = ["roller-shaft-sec6", "clamp-knife-base", "cavity", "column", "rod-impact",
         "clamp-knife-base-impact"]
 NOT_RUN = ["fatigue-diagram"]  # the input of `tribo fatigue diagram`, not of `tribo run`

@@ -34,6 +34,12 @@ pub const EXAMPLES: &[Example] = &[
         text: include_str!("../examples/cases/roller-shaft-sec6.toml"),
     },
     Example {
+        name: "roller-shaft-probabilistic",
+        description: "the roller on the shaft with a random intensity limit: distributions of \
+                      V, Psi and psi_max from one field, P(psi_max >= 1)",
+        text: include_str!("../examples/cases/roller-shaft-probabilistic.toml"),
+    },
+    Example {
         name: "roller-shaft-approach",
         description: "the same under approach control, delta = 2.723e-5 m",
         text: include_str!("../examples/cases/roller-shaft-approach.toml"),

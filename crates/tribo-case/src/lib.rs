@@ -33,6 +33,7 @@ pub mod fatigue;
 pub mod halfspace;
 pub mod memory;
 pub mod pipeline;
+pub mod probabilistic;
 pub mod progress;
 mod schema;
 pub mod summary;

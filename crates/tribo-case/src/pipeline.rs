@@ -195,6 +195,9 @@ pub struct DamageCriterion {
     pub box_faces: Vec<BoxFace>,
     /// The note on stderr and in the summary when `box_faces` is not empty.
     pub box_note: Option<String>,
+    /// The distributions of V, Psi and psi_max when the limit is random
+    /// (`[damage.probabilistic]`).
+    pub probabilistic: Option<crate::probabilistic::CriterionDistribution>,
 }
 
 /// The note of a dangerous region (psi >= 1) that reaches the faces `faces` of the field box:
@@ -1118,6 +1121,12 @@ pub fn stage_costs(
     let damage = case.damage.as_ref().map(|d| {
         let criteria = d.criteria.len().max(1) as f64;
         let mut seconds = points * criteria * DAMAGE_SECONDS / cores;
+        // [damage.probabilistic]: one pass of the dangerous-region routine per probability
+        // and random limit.
+        if let Some(p) = &d.probabilistic {
+            let passes = (p.limits.len() * p.all_probabilities().len()) as f64;
+            seconds += points * passes * DAMAGE_SECONDS / cores;
+        }
         // The limiting state is a second run of the contact and the field.
         if d.limit_load.is_some() {
             seconds += field.seconds;
@@ -1240,6 +1249,17 @@ pub fn damage(
                 case, st, c, p0, &mesh, &limit, *quantity, progress,
             )?),
         };
+        let probabilistic = match &spec.probabilistic {
+            None => None,
+            Some(p) => crate::probabilistic::evaluate(
+                p,
+                &quantity.name(),
+                *quantity,
+                &mesh,
+                &st.field.stress,
+                &st.material,
+            )?,
+        };
         criteria.push(DamageCriterion {
             assessment: DamageAssessment {
                 name: quantity.name(),
@@ -1253,6 +1273,7 @@ pub fn damage(
             window_note,
             box_faces,
             box_note,
+            probabilistic,
         });
     }
     let study = match &spec.study {

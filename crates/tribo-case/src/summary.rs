@@ -183,6 +183,28 @@ pub const UNITS: &[(&str, &str)] = &[
     ),
     ("damage.criteria[].cycles.average", "s"),
     ("damage.criteria[].cycles.node_time_integral_max", "s"),
+    (
+        "damage.criteria[].probabilistic.phi_max",
+        "damage.criteria[].unit",
+    ),
+    (
+        "damage.criteria[].probabilistic.probability_psi_max_ge_1",
+        "1",
+    ),
+    (
+        "damage.criteria[].probabilistic.points[].exceedance_probability",
+        "1",
+    ),
+    (
+        "damage.criteria[].probabilistic.points[].limit",
+        "damage.criteria[].unit",
+    ),
+    ("damage.criteria[].probabilistic.points[].volume", "m^3"),
+    (
+        "damage.criteria[].probabilistic.points[].damageability",
+        "m^3",
+    ),
+    ("damage.criteria[].probabilistic.points[].psi_max", "1"),
     ("damage.field_volume", "m^3"),
     ("damage.p0", "Pa"),
     ("damage.limit_load", "N"),
@@ -631,6 +653,10 @@ impl Summary {
             "damage" if path.starts_with("damage.study") => {
                 self.damage.as_ref().is_some_and(|d| d.study.is_some())
             }
+            "damage" if path.starts_with("damage.criteria[].probabilistic") => self
+                .damage
+                .as_ref()
+                .is_some_and(|d| d.criteria.iter().any(|c| c.probabilistic.is_some())),
             "damage" if path.starts_with("damage.criteria[].cycle") => self
                 .damage
                 .as_ref()
@@ -925,6 +951,9 @@ pub struct DamageCriterionSummary {
     /// The note that says so, as on stderr.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub box_note: Option<String>,
+    /// The distributions of V, Psi and psi_max of a random limit (`[damage.probabilistic]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub probabilistic: Option<crate::probabilistic::ProbabilisticSummary>,
 }
 
 /// One sigma_b / p0 of the Sec. 6 study: changes against the loading n, %.
@@ -1004,6 +1033,10 @@ impl DamageSummary {
                     box_faces: c.box_faces.iter().map(|f| f.name()).collect(),
                     box_note: c.box_note.clone(),
                     cycles: c.cycle.as_ref().map(|c| c.1),
+                    probabilistic: c
+                        .probabilistic
+                        .as_ref()
+                        .map(crate::probabilistic::ProbabilisticSummary::new),
                 }
             })
             .collect();
@@ -1054,6 +1087,9 @@ impl DamageSummary {
             v.extend([c.limit, c.psi_max, c.volume, c.damageability]);
             v.extend(c.psi_max_location);
             v.extend(c.average);
+            if let Some(p) = &c.probabilistic {
+                v.extend(p.scalars());
+            }
             if let (Some(one), Some(n)) = (&c.cycle, &c.cycles) {
                 v.extend([
                     one.period,

@@ -409,6 +409,7 @@ fn halfspace_reference_documents_exactly_the_accepted_keys() {
     let sec6 = example("roller-shaft-sec6");
     let crowned = example("crowned-roller");
     let map = example("height-map");
+    let prob = example("roller-shaft-probabilistic");
     let run = ["run", "-", "--dry-run", "--quiet"];
     check_schema(
         &doc,
@@ -427,6 +428,24 @@ fn halfspace_reference_documents_exactly_the_accepted_keys() {
             ("damage.cycle", &sec6, Probe::Insert("damage.cycle")),
             ("damage.study", &sec6, Probe::Insert("damage.study")),
             ("damage.energy", &roller, Probe::Insert("damage.energy")),
+            (
+                "damage.probabilistic",
+                &prob,
+                Probe::Insert("damage.probabilistic"),
+            ),
+            (
+                "<distribution>",
+                &prob,
+                Probe::Insert("damage.probabilistic.limits.sigma_int"),
+            ),
+            (
+                "<distribution>.truncate",
+                &prob,
+                Probe::Replace(
+                    "damage.probabilistic.limits.sigma_int.truncate",
+                    "{ low = 1e9, zz_probe = 1 }",
+                ),
+            ),
         ],
     );
 }

@@ -147,6 +147,16 @@ fn tables_are_identical_for_any_jobs_and_chunking() {
         let p0: f64 = row(i)[8].parse().unwrap();
         // 16 x 16 elements over 1.5 a: the peak within 10 % of Hertz.
         assert!((p_max / p0 - 1.0).abs() < 0.1, "point {i}: {p_max} vs {p0}");
+        // Counts are written as integers (the summary's integer), not as floats (2.1e1).
+        let iterations = row(i)[9];
+        assert!(
+            !iterations.is_empty() && iterations.bytes().all(|b| b.is_ascii_digit()),
+            "point {i}: iterations {iterations:?}"
+        );
+        assert_eq!(
+            row(i)[9].parse::<u64>().unwrap(),
+            v_iterations(&a.join(format!("points/{i:06}/summary.json")))
+        );
     }
     // A point's case.toml reruns as a case: the same summary numbers through `tribo run`.
     let out = tmp.path().join("rerun");
@@ -643,4 +653,11 @@ mod nc {
         }
         File { dims, vars }
     }
+}
+
+/// `contact.iterations` of a point's summary.json.
+fn v_iterations(path: &std::path::Path) -> u64 {
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    v["contact"]["iterations"].as_u64().unwrap()
 }

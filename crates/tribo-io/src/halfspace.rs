@@ -97,6 +97,13 @@ pub fn files(out: &Outcome, plots: bool) -> Vec<String> {
         if d.study.is_some() {
             f.extend(STUDY_FILES.iter().map(|f| f.to_string()));
         }
+        if d.criteria.iter().any(|c| c.probabilistic.is_some()) {
+            f.extend(
+                crate::probabilistic::PROBABILISTIC_FILES
+                    .iter()
+                    .map(|f| f.to_string()),
+            );
+        }
     }
     if !plots {
         f.retain(|name| !name.ends_with(".png"));
@@ -318,6 +325,9 @@ pub fn write_halfspace(
     }
     if let Some(study) = summary.damage.as_ref().and_then(|d| d.study.as_ref()) {
         write_atomic(dir, STUDY_FILES[0], crate::csv::study(study).as_bytes())?;
+    }
+    if let Some(d) = &out.damage {
+        crate::probabilistic::write_case_probabilistic(dir, d, opts)?;
     }
     #[cfg(feature = "png")]
     if plots {

@@ -59,17 +59,7 @@ pub fn write_probabilistic(
     dimension: usize,
     opts: &WriteOptions,
 ) -> IoResult<Vec<String>> {
-    let finite = result.points.iter().all(|p| {
-        [p.probability, p.limit, p.volume, p.damageability, p.psi_max]
-            .iter()
-            .all(|v| v.is_finite())
-    }) && result.probability_psi_max_ge_1.is_finite();
-    if !finite {
-        return Err(IoError::NonFinite {
-            what: PROBABILISTIC_FILES[0].into(),
-            detail: "a result is not finite (refusing to write a non-finite number)".into(),
-        });
-    }
+    check_finite_result(name, result)?;
     let mut files = Vec::new();
     #[cfg(feature = "png")]
     if opts.draws_plots() {
@@ -87,6 +77,54 @@ pub fn write_probabilistic(
     )?;
     files.insert(0, PROBABILISTIC_FILES[0].to_string());
     Ok(files)
+}
+
+/// Writes `probabilistic.csv` (every criterion with a random limit, in the case's order;
+/// the limits share one unit, a rule of the case) and `probabilistic.png` (the first such
+/// criterion's curves) of a half-space run's damage; nothing without a random limit.
+pub fn write_case_probabilistic(
+    dir: &Path,
+    damage: &tribo_case::pipeline::Damage,
+    opts: &WriteOptions,
+) -> IoResult<Vec<String>> {
+    let entries: Vec<(&str, &str, &ProbabilisticDamage)> = damage
+        .criteria
+        .iter()
+        .filter_map(|c| {
+            let p = c.probabilistic.as_ref()?;
+            Some((c.assessment.name.as_str(), c.assessment.unit, &p.result))
+        })
+        .collect();
+    let Some(&(name, unit, first)) = entries.first() else {
+        return Ok(Vec::new());
+    };
+    let mut files = write_probabilistic(dir, name, unit, first, 3, opts)?;
+    if entries.len() > 1 {
+        for (n, _, r) in &entries[1..] {
+            check_finite_result(n, r)?;
+        }
+        write_atomic(dir, PROBABILISTIC_FILES[0], csv(&entries, 3).as_bytes())?;
+    }
+    files.dedup();
+    Ok(files)
+}
+
+fn check_finite_result(name: &str, result: &ProbabilisticDamage) -> IoResult<()> {
+    let finite = result.points.iter().all(|p| {
+        [p.probability, p.limit, p.volume, p.damageability, p.psi_max]
+            .iter()
+            .all(|v| v.is_finite())
+    }) && result.probability_psi_max_ge_1.is_finite();
+    if finite {
+        Ok(())
+    } else {
+        Err(IoError::NonFinite {
+            what: PROBABILISTIC_FILES[0].into(),
+            detail: format!(
+                "a result of {name} is not finite (refusing to write a non-finite number)"
+            ),
+        })
+    }
 }
 
 #[cfg(test)]

@@ -183,6 +183,12 @@ pub fn set(root: &mut toml::Table, path: &KeyPath, value: toml::Value) -> Result
 /// The number at `path` in a JSON document (a run's summary): booleans as 0/1; `None` where
 /// the path does not resolve or holds no number.
 pub fn get_number(root: &serde_json::Value, path: &KeyPath) -> Option<f64> {
+    get_typed_number(root, path).map(|(x, _)| x)
+}
+
+/// [`get_number`] with whether the value is an integer in `summary.json` (a count: iterations,
+/// elements, passes; a boolean counts as one).
+pub fn get_typed_number(root: &serde_json::Value, path: &KeyPath) -> Option<(f64, bool)> {
     let mut v = root;
     for seg in &path.segments {
         v = v.get(&seg.name)?;
@@ -192,8 +198,8 @@ pub fn get_number(root: &serde_json::Value, path: &KeyPath) -> Option<f64> {
         }
     }
     match v {
-        serde_json::Value::Number(n) => n.as_f64(),
-        serde_json::Value::Bool(b) => Some(f64::from(u8::from(*b))),
+        serde_json::Value::Number(n) => Some((n.as_f64()?, n.is_i64() || n.is_u64())),
+        serde_json::Value::Bool(b) => Some((f64::from(u8::from(*b)), true)),
         _ => None,
     }
 }

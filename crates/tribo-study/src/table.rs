@@ -19,6 +19,9 @@ pub struct Table {
     pub parameters: Vec<Vec<toml::Value>>,
     /// Per point: the collected numbers (NaN where the point has none).
     pub collected: Vec<Vec<f64>>,
+    /// Per collected column: every value present is an integer in the points' `summary.json`
+    /// (a count: iterations, elements), written as an integer in `results.csv`.
+    pub integer: Vec<bool>,
     /// Per point: `ok`, `failed: <reason>` or `missing`.
     pub status: Vec<String>,
 }
@@ -48,6 +51,7 @@ pub fn gather(sd: &StudyDir) -> StudyResult<Table> {
     let mut parameters = Vec::with_capacity(n);
     let mut collected = Vec::with_capacity(n);
     let mut status = Vec::with_capacity(n);
+    let mut integer = vec![true; study.collect.len()];
     for (i, s) in st.iter().enumerate() {
         parameters.push(
             (0..study.parameters.len())
@@ -65,9 +69,10 @@ pub fn gather(sd: &StudyDir) -> StudyResult<Table> {
                         dir: sd.dir.clone(),
                         detail: format!("{}: {e}", path.display()),
                     })?;
-                for (c, x) in study.collect.iter().zip(row.iter_mut()) {
-                    if let Some(v) = crate::path::get_number(&json, &c.key) {
+                for (j, (c, x)) in study.collect.iter().zip(row.iter_mut()).enumerate() {
+                    if let Some((v, is_integer)) = crate::path::get_typed_number(&json, &c.key) {
                         *x = v;
+                        integer[j] &= is_integer;
                     }
                 }
                 status.push("ok".to_string());
@@ -81,12 +86,14 @@ pub fn gather(sd: &StudyDir) -> StudyResult<Table> {
         columns,
         parameters,
         collected,
+        integer,
         status,
     })
 }
 
-/// The text of `results.csv`: numbers in Rust's shortest round-trip form, an empty cell
-/// where a point has no number.
+/// The text of `results.csv`: numbers in Rust's shortest round-trip form, counts (a column
+/// whose values are all integers in `summary.json`) as integers (`21`, not `2.1e1`), an empty
+/// cell where a point has no number.
 pub fn csv(sd: &StudyDir, t: &Table) -> String {
     let mut s = t
         .columns
@@ -101,9 +108,13 @@ pub fn csv(sd: &StudyDir, t: &Table) -> String {
             s.push(',');
             s.push_str(&cell(v));
         }
-        for x in &t.collected[i] {
+        for (j, x) in t.collected[i].iter().enumerate() {
             s.push(',');
-            if !x.is_nan() {
+            if x.is_nan() {
+            } else if t.integer.get(j).copied().unwrap_or(false) && x.abs() < 9.0e15 {
+                // An integer of summary.json, exact in f64 below 2^53.
+                s.push_str(&format!("{}", *x as i64));
+            } else {
                 s.push_str(&format!("{:e}", x + 0.0));
             }
         }

@@ -244,6 +244,8 @@ pub struct DamageSpec {
     pub study: Option<StudySpec>,
     /// Accumulation over a load cycle (`[damage.cycle]`), (23), (24), (36).
     pub cycle: Option<CycleSpec>,
+    /// Random limits and the distributions of V, Psi and psi_max (`[damage.probabilistic]`).
+    pub probabilistic: Option<crate::probabilistic::ProbabilisticSpec>,
 }
 
 /// The load history of one cycle.

@@ -270,6 +270,8 @@ pub(super) struct RawDamage {
     pub study: Option<RawStudy>,
     pub cycle: Option<RawCycle>,
     pub energy: Option<RawEnergy>,
+    /// Random limits (`[damage.probabilistic]`), hand-parsed by [`crate::probabilistic`].
+    pub probabilistic: Option<toml::Table>,
 }
 
 #[derive(Debug, Deserialize)]

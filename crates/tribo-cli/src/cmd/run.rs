@@ -134,6 +134,15 @@ fn half_space(case: &HalfSpaceCase, args: &RunArgs) -> CliResult<u8> {
                     mib(d.bytes)
                 ))?;
             }
+            if let Some(p) = case.damage.as_ref().and_then(|d| d.probabilistic.as_ref()) {
+                let names: Vec<&str> = p.limits.iter().map(|(n, _)| n.as_str()).collect();
+                term::outln(&format!(
+                    "probabilistic damage: random limits of {}, {} probabilities each \
+                     (probabilistic.csv, probabilistic.png)",
+                    names.join(", "),
+                    p.all_probabilities().len()
+                ))?;
+            }
         }
         return Ok(EXIT_OK);
     }

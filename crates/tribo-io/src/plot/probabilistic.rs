@@ -26,13 +26,19 @@ pub fn exceedance(
         .titled(&title, (FAMILY, title_size(&title, 20.0, 1200)))
         .map_err(e)?;
     let (left, right) = root.split_horizontally(600);
-    let unit = if dimension == 2 { "m^2" } else { "m^3" };
+    // Plotted in mm^3 (mm^2 in 2D): dangerous volumes are small fractions of a mm^3, whose
+    // ticks in m^3 would all read 0.
+    let (unit, scale) = if dimension == 2 {
+        ("mm^2", 1e6)
+    } else {
+        ("mm^3", 1e9)
+    };
 
     let vol: Vec<(f64, f64)> = r
         .points
         .iter()
         .filter(|p| p.volume > 0.0)
-        .map(|p| (p.volume, p.probability))
+        .map(|p| (p.volume * scale, p.probability))
         .collect();
     let v1 = vol.iter().map(|p| p.0).fold(0.0f64, f64::max);
     let v1 = if v1 > 0.0 { v1 * 1.05 } else { 1.0 };

@@ -25,7 +25,11 @@ pub(super) fn damage_spec(
         Some(c) => c.0.clone(),
     };
     let defaults = default_limits(&d, loading)?;
-    let mut criteria = criteria(&names, &d, &defaults)?;
+    let probabilistic = match &d.probabilistic {
+        None => None,
+        Some(t) => Some(crate::probabilistic::parse(t, &named_quantities(&names))?),
+    };
+    let mut criteria = criteria(&names, &d, &defaults, probabilistic.as_ref())?;
     if let Some(e) = &d.energy {
         criteria.push(energy(e)?);
     }
@@ -42,7 +46,21 @@ pub(super) fn damage_spec(
         limit_load: defaults.limit_load,
         study,
         cycle,
+        probabilistic,
     })
+}
+
+/// The criteria's names with their quantities (an unknown name is refused by [`criteria`]
+/// with the list of known ones; here it is skipped).
+fn named_quantities(names: &[String]) -> Vec<(String, DamageQuantity)> {
+    let vocabulary = damage_vocabulary();
+    names
+        .iter()
+        .filter_map(|n| {
+            let q = vocabulary.iter().find(|q| &q.name() == n)?;
+            Some((n.clone(), *q))
+        })
+        .collect()
 }
 
 /// The default limits of the criteria without their own: at most one of `limit_load`
@@ -97,6 +115,7 @@ fn criteria(
     names: &[String],
     d: &RawDamage,
     defaults: &Defaults,
+    probabilistic: Option<&crate::probabilistic::ProbabilisticSpec>,
 ) -> CaseResult<Vec<(DamageQuantity, LimitSource)>> {
     let vocabulary = damage_vocabulary();
     let empty = toml::Table::new();
@@ -127,7 +146,12 @@ fn criteria(
                 "is named twice",
             ));
         }
-        let source = limit_source(name, quantity, limits.get(name), defaults)?;
+        let median = probabilistic.and_then(|p| p.median_limit(name, quantity));
+        let source = match (limits.get(name), median) {
+            // A random limit without a given one: the deterministic result at its median.
+            (None, Some(m)) => LimitSource::Given(m),
+            (given, _) => limit_source(name, quantity, given, defaults)?,
+        };
         criteria.push((quantity, source));
     }
     Ok(criteria)
