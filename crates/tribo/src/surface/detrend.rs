@@ -67,10 +67,10 @@ pub fn detrend_polynomial(t: &Topography, degree: usize) -> Result<Detrended> {
     let mut g = vec![0.0; m * m];
     let mut r = vec![0.0; m];
     let mut phi = vec![0.0; m];
-    for j in 0..ny {
-        for i in 0..nx {
+    for (j, pyj) in py.iter().enumerate() {
+        for (i, pxi) in px.iter().enumerate() {
             for (p, &(a, b)) in phi.iter_mut().zip(&terms) {
-                *p = px[i][a] * py[j][b];
+                *p = pxi[a] * pyj[b];
             }
             let h = t.at(i, j);
             for k in 0..m {
