@@ -14,6 +14,8 @@
 //! - [`pipeline`] and [`bem::pipeline`]: the runs, reporting to a [`Progress`];
 //! - [`summary`]: the summary of a half-space run (`summary.json`), a pure function of the
 //!   case and its results; [`bem::summary`] likewise for a 2D case;
+//! - [`topography`]: readers of measured topographies (ISO 25178-72 X3P, ASCII/CSV grids,
+//!   numpy `.npy`) into grids that [`tribo::surface`] detrends, resamples and analyses;
 //! - [`derived`]: the quantities the outputs show beside the results (the Hertz back-effect
 //!   curve, the Cattaneo-Mindlin traction, the stress field's derived arrays);
 //! - [`error`]: [`CaseError`], the errors of all of these.
@@ -37,6 +39,7 @@ pub mod probabilistic;
 pub mod progress;
 mod schema;
 pub mod summary;
+pub mod topography;
 pub mod units;
 
 pub use error::{CaseError, CaseResult};

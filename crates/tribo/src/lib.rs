@@ -38,6 +38,7 @@ pub mod material;
 pub mod operators;
 pub mod solvers;
 pub mod stats;
+pub mod surface;
 pub mod validation;
 
 pub use error::{Error, Result};

@@ -50,6 +50,8 @@ mod dyn_energy2;
 pub use dyn_energy2::dyn_energy2_rows;
 pub mod prob_damage;
 pub use prob_damage::prob_damage_rows;
+pub mod rough;
+pub use rough::rough_rows;
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -2215,5 +2217,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(dyn_damage_rows()?);
     rows.extend(dyn_energy_rows()?);
     rows.extend(prob_damage_rows()?);
+    rows.extend(rough_rows()?);
     Ok(rows)
 }
