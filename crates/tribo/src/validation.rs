@@ -46,6 +46,8 @@ pub(crate) mod dyn_energy;
 pub use dyn_energy::dyn_energy_rows;
 pub mod prob_damage;
 pub use prob_damage::prob_damage_rows;
+pub mod periodic;
+pub use periodic::periodic_rows;
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -2210,5 +2212,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(dyn_damage_rows()?);
     rows.extend(dyn_energy_rows()?);
     rows.extend(prob_damage_rows()?);
+    rows.extend(periodic_rows()?);
     Ok(rows)
 }
