@@ -4,9 +4,9 @@
 //! On a grid of `nx x ny` elements that repeats with the periods `Lx = nx dx`, `Ly = ny dy`,
 //! a discrete convolution `u_i = sum_j K(i - j) t_j` is diagonal in the discrete Fourier
 //! basis: `u^(k) = K^(k) t^(k)` at the grid frequencies `q = 2 pi (kx / Lx, ky / Ly)`. The
-//! surface Green's functions of the half-space are, in Fourier space (Johnson 1985 eqs.
-//! (2.19), (3.25), (8.?); derived for Boussinesq and Cerruti by transforming `1/r`,
-//! `x_i x_j / r^3` and `x / r^2`; docs/theory/HALFSPACE.md 7.1):
+//! surface Green's functions of the half-space (Boussinesq and Cerruti, Johnson 1985 sec. 3.2)
+//! are, in Fourier space (transforming `1/r`, `x_i x_j / r^3` and `x / r^2`; derivation in
+//! docs/theory/HALFSPACE.md 7.1):
 //!
 //! ```text
 //! normal:      u_z^ = 2 / (E* |q|) p^
@@ -70,7 +70,7 @@ pub enum PeriodicKernel {
 }
 
 /// One of the Fourier multipliers the surface Green's functions are made of (module docs),
-/// in m (`1/|q|`, `q_i q_j / |q|^3`) or m (`q_i / |q|^2`).
+/// each in m (an inverse wavenumber).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Multiplier {
     /// `1 / |q|`.

@@ -48,7 +48,7 @@ fn solve_periodic(
     )?)
 }
 
-/// Westergaard's solution (Johnson 1985 eqs. (13.5), (13.6)) for the wavy surface
+/// Westergaard's solution (Westergaard 1939; Johnson 1985 sec. 13.2) for the wavy surface
 /// `h = Delta (1 - cos(2 pi x / lambda))`: full contact at `p* = pi E* Delta / lambda`; below
 /// it the contact half-width `a` follows `p_mean = p* sin^2(pi a / lambda)` and
 /// `p(x) = 2 p_mean cos(pi x / lambda) sqrt(sin^2(pi a / lambda) - sin^2(pi x / lambda)) /
@@ -141,8 +141,8 @@ pub fn bisinusoid_hertz_case(n: usize, p_mean: f64) -> Result<(f64, f64)> {
 /// The sinusoidal shear `q_x = q0 cos(2 pi x / lambda)` on a `32 x 8` grid through the
 /// spectral periodic tangential and coupling operators: (max |u_x - closed form| / amplitude,
 /// max |u_z - closed form| / amplitude, max |u| under a uniform shear / the sinusoid's
-/// amplitude). Closed forms (docs/theory/HALFSPACE.md 7.1, plane strain of Johnson 1985 sec.
-/// 2.6): `u_x = sum_b (1 - nu_b)/(G_b k) q0 cos(kx)`, `u_z = 2 pi c q0 sin(kx) / k` with the
+/// amplitude). Closed forms (docs/theory/HALFSPACE.md 7.1, plane strain of Johnson 1985 ch.
+/// 2): `u_x = sum_b (1 - nu_b)/(G_b k) q0 cos(kx)`, `u_z = 2 pi c q0 sin(kx) / k` with the
 /// coupling coefficient c.
 pub fn sinusoidal_shear_case() -> Result<(f64, f64, f64)> {
     let grid = SurfaceGrid::centred(32, 8, 0.5 * WAVELENGTH, 0.125 * WAVELENGTH)?;
@@ -182,7 +182,7 @@ pub fn sinusoidal_shear_case() -> Result<(f64, f64, f64)> {
 /// The rows (module docs).
 pub fn periodic_rows() -> Result<Vec<ValidationRow>> {
     let mut rows = Vec::new();
-    let source_w = "Westergaard 1939; Johnson 1985 sec. 13.2 eqs. (13.5)-(13.6)";
+    let source_w = "Westergaard 1939; Johnson 1985 sec. 13.2";
     let levels = [127usize, 255, 511];
     let mut results = Vec::new();
     for &nx in &levels {
@@ -292,7 +292,7 @@ pub fn periodic_rows() -> Result<Vec<ValidationRow>> {
     ));
 
     let (ex, ez, rigid) = sinusoidal_shear_case()?;
-    let source_t = "Cerruti in Fourier space, Johnson 1985 sec. 2.6 (docs/theory/HALFSPACE.md 7.1)";
+    let source_t = "Cerruti in Fourier space (docs/theory/HALFSPACE.md 7.1)";
     // One grid mode through the spectral kernels: round-off (1e-12).
     rows.push(ValidationRow::new(
         "sinusoidal shear q0 cos(kx), 32 x 8 (periodic, spectral tangential kernel)",
