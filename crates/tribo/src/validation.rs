@@ -52,6 +52,8 @@ pub mod prob_damage;
 pub use prob_damage::prob_damage_rows;
 pub mod rough;
 pub use rough::rough_rows;
+pub mod periodic;
+pub use periodic::periodic_rows;
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -2218,5 +2220,6 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(dyn_energy_rows()?);
     rows.extend(prob_damage_rows()?);
     rows.extend(rough_rows()?);
+    rows.extend(periodic_rows()?);
     Ok(rows)
 }

@@ -1166,3 +1166,246 @@ mod tests {
         assert!((e.distortional - distortional).abs() < 1e-10 * distortional);
     }
 }
+
+/// The mean-mode convention of [`stress_field_periodic_pressure`]: a uniform pressure `p` on
+/// a periodic half-space, whose lateral displacement is periodic and so has zero mean strain
+/// (laterally constrained, uniaxial strain): `sigma_zz = -p`,
+/// `sigma_xx = sigma_yy = -nu p / (1 - nu)` at every depth (docs/theory/HALFSPACE.md 7.4).
+pub fn periodic_mean_stress(mean_pressure: f64, poisson_ratio: f64) -> StressTensor {
+    let lateral = -poisson_ratio / (1.0 - poisson_ratio) * mean_pressure;
+    StressTensor {
+        xx: lateral,
+        yy: lateral,
+        zz: -mean_pressure,
+        xy: 0.0,
+        yz: 0.0,
+        xz: 0.0,
+    }
+}
+
+/// The subsurface stress field of a periodic surface pressure (the window of `grid` is one
+/// period; the pressure is sampled at element centres, Pa) at the element centres (x, y) and
+/// the depths `depths` (m, >= 0), by FFT per depth (docs/theory/HALFSPACE.md 7.4): for a
+/// pressure mode `p^ exp(i q.x)`, `k = |q|`, in the frame (xi along q, eta across it) the
+/// plane-strain solution of a sinusoidal pressure `p cos(kx)` (Johnson 1985 ch. 2; from the
+/// Airy function `(A + B k z) e^{-kz} cos(kx)`, derivation in docs/theory/HALFSPACE.md 7.4):
+///
+/// ```text
+/// sigma_xixi = -(1 - k z) e^{-kz} p^,   sigma_zz = -(1 + k z) e^{-kz} p^,
+/// tau_xiz = i k z e^{-kz} p^,           sigma_etaeta = nu (sigma_xixi + sigma_zz) = -2 nu e^{-kz} p^,
+/// ```
+///
+/// rotated to x, y with `(c, s) = q / k`; the mean mode by [`periodic_mean_stress`]. The
+/// pressure is treated as the band-limited field through its samples (the spectral
+/// convention; Nyquist bins of the components odd in q are dropped, as a real field must).
+///
+/// Errors: [`Error::InvalidParameter`] for a pressure of the wrong length or non-finite, a
+/// negative or non-finite depth, or `poisson_ratio` outside (-1, 0.5).
+pub fn stress_field_periodic_pressure(
+    grid: &SurfaceGrid,
+    pressure: &[f64],
+    depths: &[f64],
+    poisson_ratio: f64,
+) -> Result<StressField> {
+    use crate::kernels::periodic::signed_frequency;
+    use crate::operators::ConvolutionOperator;
+    use realfft::num_complex::Complex;
+
+    if pressure.len() != grid.len() || pressure.iter().any(|p| !p.is_finite()) {
+        return Err(Error::invalid(
+            "pressure",
+            format!("{} values", pressure.len()),
+            "must hold one finite value per element (Pa)",
+        ));
+    }
+    if let Some(z) = depths.iter().find(|z| !(z.is_finite() && **z >= 0.0)) {
+        return Err(Error::invalid("depths", *z, "must be finite and >= 0 (m)"));
+    }
+    if !(poisson_ratio > -1.0 && poisson_ratio < 0.5) {
+        return Err(Error::invalid(
+            "poisson_ratio",
+            poisson_ratio,
+            "must be in (-1, 0.5)",
+        ));
+    }
+    let (nx, ny) = (grid.nx(), grid.ny());
+    let bins_x = nx / 2 + 1;
+    let (lx, ly) = (nx as f64 * grid.dx(), ny as f64 * grid.dy());
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let mean_pressure = pressure.iter().sum::<f64>() / pressure.len() as f64;
+    let nu = poisson_ratio;
+    let x: Vec<f64> = (0..nx).map(|i| grid.x(i)).collect();
+    let y: Vec<f64> = (0..ny).map(|j| grid.y(j)).collect();
+    let field_grid = FieldGrid {
+        x,
+        y,
+        z: depths.to_vec(),
+    };
+    let mut stress = vec![StressTensor::ZERO; field_grid.len()];
+    let mean = periodic_mean_stress(mean_pressure, nu);
+    for (iz, &z) in depths.iter().enumerate() {
+        // Six transfer spectra at this depth: xx, yy, zz, xy (real), xz, yz (imaginary).
+        let mut spectra = vec![vec![Complex::new(0.0, 0.0); bins_x * ny]; 6];
+        for kx in 0..bins_x {
+            let qx = two_pi * kx as f64 / lx;
+            let nyquist_x = nx.is_multiple_of(2) && 2 * kx == nx;
+            for ky in 0..ny {
+                if kx == 0 && ky == 0 {
+                    continue;
+                }
+                let qy = two_pi * signed_frequency(ky, ny) as f64 / ly;
+                let nyquist_y = ny.is_multiple_of(2) && 2 * ky == ny;
+                let k = (qx * qx + qy * qy).sqrt();
+                let (c, s) = (qx / k, qy / k);
+                let decay = (-k * z).exp();
+                let xixi = -(1.0 - k * z) * decay;
+                let zz = -(1.0 + k * z) * decay;
+                let etaeta = -2.0 * nu * decay;
+                let xiz = k * z * decay;
+                let i = kx * ny + ky;
+                spectra[0][i] = Complex::new(c * c * xixi + s * s * etaeta, 0.0);
+                spectra[1][i] = Complex::new(s * s * xixi + c * c * etaeta, 0.0);
+                spectra[2][i] = Complex::new(zz, 0.0);
+                if !(nyquist_x || nyquist_y) {
+                    spectra[3][i] = Complex::new(c * s * (xixi - etaeta), 0.0);
+                }
+                if !nyquist_x {
+                    spectra[4][i] = Complex::new(0.0, c * xiz);
+                }
+                if !nyquist_y {
+                    spectra[5][i] = Complex::new(0.0, s * xiz);
+                }
+            }
+        }
+        let components: Vec<Vec<f64>> = spectra
+            .iter()
+            .map(|spectrum| ConvolutionOperator::periodic(grid, spectrum).apply(pressure))
+            .collect();
+        let layer = &mut stress[iz * nx * ny..(iz + 1) * nx * ny];
+        for (i, s) in layer.iter_mut().enumerate() {
+            *s = StressTensor {
+                xx: mean.xx + components[0][i],
+                yy: mean.yy + components[1][i],
+                zz: mean.zz + components[2][i],
+                xy: components[3][i],
+                xz: components[4][i],
+                yz: components[5][i],
+            };
+        }
+    }
+    Ok(StressField {
+        grid: field_grid,
+        stress,
+    })
+}
+
+/// The damage measures (21), (22), (24) of a periodic stress field
+/// ([`stress_field_periodic_pressure`]): psi of `limit` at every point, and the dangerous
+/// region (V, Psi, psi_max) on the field's box of points (one period wide, the depths as
+/// given), [`crate::analysis::damage::assess`] on the mesh of its grid.
+pub fn periodic_damage(
+    field: &StressField,
+    material: &ElasticMaterial,
+    limit: &crate::analysis::damage::Limit,
+    execution: crate::analysis::damage::Execution,
+) -> Result<crate::analysis::damage::DamageAssessment> {
+    let mesh = crate::analysis::damage::DamageMesh::from_field_grid(&field.grid)?;
+    crate::analysis::damage::assess(&mesh, &field.stress, material, limit, execution)
+}
+
+#[cfg(test)]
+mod periodic_field_tests {
+    use super::*;
+    use crate::analysis::damage::{DamageQuantity, Execution, Limit, TensorKind};
+
+    #[test]
+    fn uniform_pressure_gives_the_laterally_constrained_state() {
+        let grid = SurfaceGrid::centred(8, 6, 1.0e-3, 1.0e-3).unwrap();
+        let p = 2.0e8;
+        let field =
+            stress_field_periodic_pressure(&grid, &vec![p; 48], &[0.0, 1e-4, 1e-3], 0.3).unwrap();
+        for s in &field.stress {
+            assert!((s.zz + p).abs() < 1e-6 * p);
+            assert!((s.xx + 0.3 / 0.7 * p).abs() < 1e-6 * p);
+            assert!((s.yy - s.xx).abs() < 1e-6 * p);
+            assert!(s.xy.abs() + s.xz.abs() + s.yz.abs() < 1e-6 * p);
+        }
+    }
+
+    #[test]
+    fn sinusoidal_pressure_matches_johnson_closed_form() {
+        // p = p0 cos(k x) along x, then the same along y (rotation): Johnson 1985 ch. 2,
+        // sigma_x = -p0 (1 - kz) e^{-kz} cos kx, sigma_z = -p0 (1 + kz) e^{-kz} cos kx,
+        // tau_xz = -p0 kz e^{-kz} sin kx, sigma_y = -2 nu p0 e^{-kz} cos kx (plane strain).
+        // One grid mode: round-off (1e-12 of p0).
+        let nu = 0.3;
+        let p0 = 1.0e8;
+        let grid = SurfaceGrid::centred(32, 16, 0.5e-3, 0.25e-3).unwrap();
+        let k = 2.0 * std::f64::consts::PI / 1.0e-3;
+        let depths = [0.0, 5e-5, 2e-4, 6e-4];
+        for along_y in [false, true] {
+            let (grid, k) = if along_y {
+                (SurfaceGrid::centred(16, 32, 0.25e-3, 0.5e-3).unwrap(), k)
+            } else {
+                (grid, k)
+            };
+            let pressure = grid.sample(|x, y| p0 * (k * if along_y { y } else { x }).cos());
+            let field = stress_field_periodic_pressure(&grid, &pressure, &depths, nu).unwrap();
+            let (nx, ny) = (grid.nx(), grid.ny());
+            for (iz, &z) in depths.iter().enumerate() {
+                let e = (-k * z).exp();
+                for iy in 0..ny {
+                    for ix in 0..nx {
+                        let s = field.stress[field.grid.index(ix, iy, iz)];
+                        let t = if along_y { grid.y(iy) } else { grid.x(ix) };
+                        let (c, sn) = ((k * t).cos(), (k * t).sin());
+                        let along = -p0 * (1.0 - k * z) * e * c;
+                        let across = -2.0 * nu * p0 * e * c;
+                        let shear = -p0 * k * z * e * sn;
+                        let (sxx, syy, sxz, syz) = if along_y {
+                            (across, along, 0.0, shear)
+                        } else {
+                            (along, across, shear, 0.0)
+                        };
+                        let tol = 1e-12 * p0 * 10.0;
+                        assert!((s.xx - sxx).abs() < tol, "xx {} vs {sxx}", s.xx);
+                        assert!((s.yy - syy).abs() < tol, "yy {} vs {syy}", s.yy);
+                        assert!((s.zz + p0 * (1.0 + k * z) * e * c).abs() < tol);
+                        assert!((s.xz - sxz).abs() < tol, "xz {} vs {sxz}", s.xz);
+                        assert!((s.yz - syz).abs() < tol, "yz {} vs {syz}", s.yz);
+                        assert!(s.xy.abs() < tol);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn damage_of_a_uniform_periodic_field_is_the_closed_form() {
+        // Uniform pressure: sigma_int = p (1 - 2 nu) / (1 - nu) everywhere (the von Mises
+        // stress of sigma_zz = -p, sigma_xx = sigma_yy = -nu p / (1 - nu)); with the limit
+        // 0.8 sigma_int, psi = 1.25 at every point, the dangerous region is the whole box:
+        // V = Lx' Ly' depth over the points' box, Psi = 1.25 V (linear interpolation of a
+        // constant is exact: 1e-12).
+        let nu = 0.3;
+        let p = 1.0e8;
+        let grid = SurfaceGrid::centred(8, 8, 1.0e-3, 1.0e-3).unwrap();
+        let depths = [0.0, 2e-4, 5e-4];
+        let field = stress_field_periodic_pressure(&grid, &vec![p; 64], &depths, nu).unwrap();
+        let intensity = p * (1.0 - 2.0 * nu) / (1.0 - nu);
+        let limit = Limit::new(
+            DamageQuantity::Intensity {
+                tensor: TensorKind::Stress,
+            },
+            0.8 * intensity,
+        )
+        .unwrap();
+        let material = ElasticMaterial::new(2.1e11, nu).unwrap();
+        let a = periodic_damage(&field, &material, &limit, Execution::Serial).unwrap();
+        let width = grid.x(7) - grid.x(0);
+        let volume = width * width * 5e-4;
+        assert!((a.region.psi_max - 1.25).abs() < 1e-12);
+        assert!((a.region.volume - volume).abs() < 1e-12 * volume);
+        assert!((a.region.damageability - 1.25 * volume).abs() < 1e-12 * volume);
+    }
+}

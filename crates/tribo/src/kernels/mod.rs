@@ -7,6 +7,7 @@ pub mod hamilton;
 pub mod hertz;
 pub mod kelvin2d;
 pub mod love;
+pub mod periodic;
 pub(crate) mod quadrature;
 pub mod subsurface;
 pub mod tent;

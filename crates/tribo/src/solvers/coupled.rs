@@ -14,6 +14,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::grid::SurfaceGrid;
 use crate::kernels::love;
+use crate::kernels::periodic::{multiplier_table, Multiplier, PeriodicKernel};
 use crate::material::ElasticMaterial;
 use crate::operators::ConvolutionOperator;
 use crate::solvers::normal::{
@@ -26,6 +27,7 @@ use crate::solvers::tangential::{
 };
 use crate::solvers::tangential_free::{solve_tangential_free, TangentialBlockOperator};
 use crate::solvers::{nan_max, SolveError, SolveResult};
+use realfft::num_complex::Complex;
 
 /// Dundurs' second constant beta = [(1 - 2 nu1)/G1 - (1 - 2 nu2)/G2] /
 /// (2 [(1 - nu1)/G1 + (1 - nu2)/G2]) (Johnson 1985 eq. (5.4b)); 0 for equal materials.
@@ -63,6 +65,30 @@ pub fn coupling_operator(
         c * (cos * love::rectangle_integral_h_x(x, y, hx, hy)
             + sin * love::rectangle_integral_h_y(x, y, hx, hy))
     })
+}
+
+/// The periodic coupling operator along `angle` on `grid` (the window is one period), m/Pa:
+/// the Fourier transform of [`coupling_operator`]'s kernel, `c [cos H_x + sin H_y]` with
+/// `FT[x / r^2] = -2 pi i qx / |q|^2` (docs/theory/HALFSPACE.md 7.1), element-integrated or
+/// spectral ([`PeriodicKernel`]).
+pub fn coupling_operator_periodic(
+    grid: &SurfaceGrid,
+    body1: &ElasticMaterial,
+    body2: &ElasticMaterial,
+    angle: f64,
+    kernel: PeriodicKernel,
+) -> ConvolutionOperator {
+    let c = coupling_coefficient(body1, body2);
+    let (sin, cos) = crate::solvers::tangential::direction(angle);
+    let x = multiplier_table(grid, kernel, Multiplier::XOverSquare);
+    let y = multiplier_table(grid, kernel, Multiplier::YOverSquare);
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let spectrum: Vec<Complex<f64>> = x
+        .iter()
+        .zip(&y)
+        .map(|(mx, my)| Complex::new(0.0, -two_pi * c * (cos * mx + sin * my)))
+        .collect();
+    ConvolutionOperator::periodic(grid, &spectrum)
 }
 
 /// The coupled solution with its record.

@@ -25,6 +25,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::grid::SurfaceGrid;
 use crate::kernels::love;
+use crate::kernels::periodic::{multiplier_table, Multiplier, PeriodicKernel};
 use crate::operators::{ConvolutionOperator, ConvolutionWorkspace, DenseInfluence};
 use crate::solvers::{nan_max, SolveError, SolveResult};
 
@@ -229,6 +230,29 @@ pub fn normal_compliance_operator(
 ) -> ConvolutionOperator {
     // Love's F is even in both offsets on a regular grid.
     ConvolutionOperator::new_even(grid, normal_compliance_kernel(grid, composite_modulus))
+}
+
+/// The periodic compliance operator of the normal problem on `grid`, whose window is one
+/// period: the discrete Fourier coefficients `2 / (E* |q|)` of the surface Green's function
+/// (Johnson 1985 eq. (3.25) transformed; docs/theory/HALFSPACE.md 7.1), element-integrated
+/// and summed over the aliases ([`PeriodicKernel::ElementIntegrated`], the default) or at the
+/// grid frequencies ([`PeriodicKernel::Spectral`], Tamaas's), m/Pa, zero mean mode. With it,
+/// [`solve_normal`] takes the force `F_N = p_mean Lx Ly` (the mean pressure times the period
+/// area), measures the approach from the mean plane of the deformed surface, and does not
+/// refuse contact at the window's border. Approach control is refused (the mean displacement
+/// of a periodic half-space is unbounded).
+pub fn normal_compliance_operator_periodic(
+    grid: &SurfaceGrid,
+    composite_modulus: f64,
+    kernel: PeriodicKernel,
+) -> ConvolutionOperator {
+    let c = 2.0 / composite_modulus;
+    let spectrum: Vec<realfft::num_complex::Complex<f64>> =
+        multiplier_table(grid, kernel, Multiplier::InverseNorm)
+            .into_iter()
+            .map(|m| realfft::num_complex::Complex::new(c * m, 0.0))
+            .collect();
+    ConvolutionOperator::periodic(grid, &spectrum)
 }
 
 /// The complementarity residual of a pressure / gap pair (dimensionless):
@@ -463,9 +487,13 @@ pub fn solve_normal_from(
             .into());
         }
     }
+    let periodic = operator.is_some_and(|op| op.is_periodic());
+    if periodic {
+        refuse_on_periodic(problem, params)?;
+    }
     let mut silent = |_: usize, _: f64| {};
     let observer = observer.unwrap_or(&mut silent);
-    match params.method {
+    let result = match params.method {
         NormalMethod::ActiveSet => active_set(problem, params, observer),
         NormalMethod::ConjugateGradient => {
             let built;
@@ -496,7 +524,41 @@ pub fn solve_normal_from(
                 observer,
             )
         }
+    };
+    match result {
+        // A periodic grid has no border: the window check does not apply.
+        Err(SolveError {
+            kind: Error::ContactReachesWindow { .. },
+            output: Some(solution),
+        }) if periodic => Ok(*solution),
+        other => other,
     }
+}
+
+/// What a periodic operator cannot do: approach control (the mean displacement of a periodic
+/// half-space is unbounded, so the approach is measured from the mean plane and only the
+/// force defines the load) and the dense active set (its matrix is the non-periodic one).
+fn refuse_on_periodic(
+    problem: &NormalContactProblem<'_>,
+    params: &NormalContactParams,
+) -> Result<()> {
+    if let NormalLoading::Approach(d) = problem.loading {
+        return Err(Error::invalid(
+            "contact.approach",
+            d,
+            "approach control is not defined on a periodic grid (the mean displacement of a \
+             periodic half-space is unbounded): prescribe the force, the mean pressure times \
+             the period area (N)",
+        ));
+    }
+    if params.method == NormalMethod::ActiveSet {
+        return Err(Error::invalid(
+            "solver.method",
+            params.method.name(),
+            "the dense active set has no periodic form: use \"cg\" with a periodic operator",
+        ));
+    }
+    Ok(())
 }
 
 /// A caller-built operator must be the problem's: same grid, and the diagonal of
@@ -512,6 +574,32 @@ fn check_operator(
             format!("{} x {} grid", operator.grid().nx(), operator.grid().ny()),
             "must be built on the problem's grid (normal_compliance_operator)",
         ));
+    }
+    if let Some(coefficient) = operator.periodic_coefficient(1, 0) {
+        // A periodic operator: its coefficient at the first x frequency must be 2/E* times
+        // one of the two kernels' multipliers (computed the same way, so equal to round-off).
+        let matches = [PeriodicKernel::ElementIntegrated, PeriodicKernel::Spectral]
+            .iter()
+            .any(|&kernel| {
+                let expected = 2.0 / problem.composite_modulus
+                    * crate::kernels::periodic::multiplier_at(
+                        problem.grid,
+                        kernel,
+                        Multiplier::InverseNorm,
+                        1,
+                        0,
+                    );
+                (coefficient.re - expected).abs() <= 1e-12 * expected.abs() && coefficient.im == 0.0
+            });
+        if !matches {
+            return Err(Error::invalid(
+                "operator",
+                format!("periodic coefficient {:e} m/Pa", coefficient.re),
+                "must be the periodic normal compliance of the problem's composite modulus \
+                 (normal_compliance_operator_periodic)",
+            ));
+        }
+        return Ok(());
     }
     let diagonal = normal_compliance_kernel(problem.grid, problem.composite_modulus)(0, 0);
     if operator.diagonal() != diagonal {

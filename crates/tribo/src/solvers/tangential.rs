@@ -44,9 +44,11 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::grid::SurfaceGrid;
 use crate::kernels::love;
+use crate::kernels::periodic::{multiplier_table, Multiplier, PeriodicKernel};
 use crate::material::ElasticMaterial;
 use crate::operators::{ConvolutionOperator, ConvolutionWorkspace};
 use crate::solvers::{nan_max, SolveError, SolveResult};
+use realfft::num_complex::Complex;
 
 /// How the tangential contact is loaded.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -258,6 +260,45 @@ pub fn tangential_compliance_operator(
     })
 }
 
+/// The periodic combined tangential compliance along the direction `angle` on `grid` (the
+/// window is one period), m/Pa: per body the Fourier-space Cerruti compliances
+/// `C_xx^ = (1/G)(1/|q| - nu qx^2/|q|^3)`, `C_yy^ = (1/G)(1/|q| - nu qy^2/|q|^3)`,
+/// `C_xy^ = -(nu/G) qx qy/|q|^3` (docs/theory/HALFSPACE.md 7.1), combined as
+/// `cos^2 C_xx + sin^2 C_yy + 2 sin cos C_xy` and summed over the two bodies; the kernel
+/// element-integrated or spectral ([`PeriodicKernel`]), zero mean mode (a uniform shear
+/// moves the surface rigidly: the displacement is measured from its mean).
+pub fn tangential_compliance_operator_periodic(
+    grid: &SurfaceGrid,
+    body1: &ElasticMaterial,
+    body2: &ElasticMaterial,
+    angle: f64,
+    kernel: PeriodicKernel,
+) -> ConvolutionOperator {
+    let (sin, cos) = direction(angle);
+    let (inv_g, nu_g) = [body1, body2].iter().fold((0.0, 0.0), |(a, b), m| {
+        (
+            a + 1.0 / m.shear_modulus(),
+            b + m.poisson_ratio() / m.shear_modulus(),
+        )
+    });
+    let inverse = multiplier_table(grid, kernel, Multiplier::InverseNorm);
+    let xx = multiplier_table(grid, kernel, Multiplier::XxOverCube);
+    let yy = multiplier_table(grid, kernel, Multiplier::YyOverCube);
+    let xy = multiplier_table(grid, kernel, Multiplier::XyOverCube);
+    let spectrum: Vec<Complex<f64>> = (0..inverse.len())
+        .map(|i| {
+            let c_xx = inv_g * inverse[i] - nu_g * xx[i];
+            let c_yy = inv_g * inverse[i] - nu_g * yy[i];
+            let c_xy = -nu_g * xy[i];
+            Complex::new(
+                cos * cos * c_xx + sin * sin * c_yy + 2.0 * sin * cos * c_xy,
+                0.0,
+            )
+        })
+        .collect();
+    ConvolutionOperator::periodic(grid, &spectrum)
+}
+
 /// The input rules of the tangential problem (lengths, finite values, friction, the force
 /// below f F_N, the offset), shared with [`crate::solvers::tangential_free`].
 pub(crate) fn validate_problem(
@@ -412,6 +453,10 @@ fn check_operator(
             format!("{} x {} grid", operator.grid().nx(), operator.grid().ny()),
             "must be built on the problem's grid (tangential_compliance_operator)",
         ));
+    }
+    if operator.is_periodic() {
+        // tangential_compliance_operator_periodic: its diagonal is not Love's.
+        return Ok(());
     }
     let (even, odd) = compliance_parts(
         &[problem.body1, problem.body2],

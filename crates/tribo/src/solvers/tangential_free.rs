@@ -52,6 +52,7 @@
 use crate::error::Error;
 use crate::grid::SurfaceGrid;
 use crate::kernels::love;
+use crate::kernels::periodic::{multiplier_table, Multiplier, PeriodicKernel};
 use crate::material::ElasticMaterial;
 use crate::operators::{ConvolutionOperator, ConvolutionWorkspace};
 use crate::solvers::tangential::{
@@ -60,6 +61,7 @@ use crate::solvers::tangential::{
 };
 use crate::solvers::{nan_max, SolveError, SolveResult};
 use rayon::prelude::*;
+use realfft::num_complex::Complex;
 
 /// The 2 x 2 block tangential compliance of two bodies on a grid: C_xx, C_yy (even in both
 /// offsets) and C_xy = C_yx (odd in both), m/Pa.
@@ -110,6 +112,41 @@ impl TangentialBlockOperator {
             yy: build(1, false),
             xy: build(2, true),
             bodies,
+        }
+    }
+
+    /// The periodic operator for `body1`, `body2` on `grid` (the window is one period): the
+    /// Fourier-space Cerruti compliances of
+    /// [`crate::solvers::tangential::tangential_compliance_operator_periodic`], block by
+    /// block (`C_xx`, `C_yy`, `C_xy`).
+    pub fn new_periodic(
+        grid: &SurfaceGrid,
+        body1: &ElasticMaterial,
+        body2: &ElasticMaterial,
+        kernel: PeriodicKernel,
+    ) -> Self {
+        let (inv_g, nu_g) = [body1, body2].iter().fold((0.0, 0.0), |(a, b), m| {
+            (
+                a + 1.0 / m.shear_modulus(),
+                b + m.poisson_ratio() / m.shear_modulus(),
+            )
+        });
+        let inverse = multiplier_table(grid, kernel, Multiplier::InverseNorm);
+        let build = |which: Option<Multiplier>, a: f64, b: f64| {
+            let other = which.map(|w| multiplier_table(grid, kernel, w));
+            let spectrum: Vec<Complex<f64>> = (0..inverse.len())
+                .map(|i| {
+                    let extra = other.as_ref().map_or(0.0, |o| o[i]);
+                    Complex::new(a * inverse[i] + b * extra, 0.0)
+                })
+                .collect();
+            ConvolutionOperator::periodic(grid, &spectrum)
+        };
+        Self {
+            xx: build(Some(Multiplier::XxOverCube), inv_g, -nu_g),
+            yy: build(Some(Multiplier::YyOverCube), inv_g, -nu_g),
+            xy: build(Some(Multiplier::XyOverCube), 0.0, -nu_g),
+            bodies: [*body1, *body2],
         }
     }
 
