@@ -318,10 +318,15 @@ extent = 1.5
         assert!(
             matches!(parse(&deg).unwrap().body2.shape, Shape::Radii { angle, .. } if angle == 30f64.to_radians())
         );
-        let e = err(&deg.replace("30 deg", "30 rad"));
+        let e = err(&deg.replace("30 deg", "30 grad"));
         assert!(
-            e.starts_with("body2.angle_deg = \"30 rad\": must be an angle"),
+            e.starts_with("body2.angle_deg = \"30 grad\": must be an angle"),
             "{e}"
+        );
+        // Radians are accepted (to_degrees, then to_radians: within 2 ulp of the radians).
+        let rad = deg.replace("30 deg", "0.5235987755982988 rad");
+        assert!(
+            matches!(parse(&rad).unwrap().body2.shape, Shape::Radii { angle, .. } if (angle - 30f64.to_radians()).abs() < 1e-15)
         );
         let big = PAPER.replace("n = 21", "n = 128") + "[solver]\nmethod = \"active_set\"\n";
         assert!(err(&big).starts_with("solver.method"));
