@@ -2,7 +2,8 @@
 # Runs one study locally (`tribo sweep run`) and through the single-node SLURM
 # (`tribo sweep slurm --submit`), gathers both and compares the results tables byte for byte.
 # Exit 0 only if every gathered table (results.csv and the columnar file beside it) is
-# bit-identical; 1 if they differ or a point failed; 2 on bad usage.
+# bit-identical; 1 if they differ or a point failed; 2 on bad usage; 75 if the SLURM jobs
+# never started within the wait limit (the machine's SLURM, not the study).
 #
 # Usage: scripts/slurm/check-sweep.sh STUDY [--jobs N] [--chunk K] [--keep]
 #   STUDY   a study file, or the name of one in examples/studies/ (NAME or NAME.toml)
@@ -81,10 +82,16 @@ partition=$(sinfo -h -o '%R' | head -n 1)
     --cpus-per-task 1 --chunk "$CHUNK" | tee "$WORK/submit.txt"
 # The local SLURM runs only what this script submitted: wait until its queue is empty.
 limit=${TRIBO_SLURM_WAIT:-1800}
+ran=0
 while [ -n "$(squeue -h 2>/dev/null)" ]; do
+    if [ -n "$(squeue -h -t RUNNING 2>/dev/null)" ]; then ran=1; fi
     if [ $(( $(date +%s) - tb )) -gt "$limit" ]; then
         echo "check-sweep.sh: the SLURM jobs did not finish in $limit s" >&2
         squeue >&2 || true
+        scancel --user="$(id -un)" >/dev/null 2>&1 || true
+        # Never started (a node down, a partition that does not schedule): the machine's
+        # SLURM, not the study; exit 75 (EX_TEMPFAIL) so that CI can tell it from a mismatch.
+        if [ "$ran" = 0 ]; then exit 75; fi
         exit 1
     fi
     sleep 2
