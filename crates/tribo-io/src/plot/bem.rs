@@ -279,13 +279,19 @@ pub struct Line {
 
 /// The default palette.
 pub fn palette(k: usize) -> RGBColor {
-    const P: [RGBColor; 6] = [
+    // Ten distinct colours (matplotlib's tab10 order, grey last): a plot of up to ten lines
+    // repeats none (energy.png of a contact run has eight).
+    const P: [RGBColor; 10] = [
         RGBColor(31, 119, 180),
         RGBColor(214, 39, 40),
         RGBColor(44, 160, 44),
         RGBColor(148, 103, 189),
         RGBColor(255, 127, 14),
         RGBColor(23, 190, 207),
+        RGBColor(140, 86, 75),
+        RGBColor(227, 119, 194),
+        RGBColor(188, 189, 34),
+        RGBColor(127, 127, 127),
     ];
     P[k % P.len()]
 }

@@ -228,12 +228,16 @@ fn energy_panels(h: &DynamicHistory, t: &[f64], columns: &[(&str, &[f64])]) -> V
             b.0 = "W - U - K - D".into();
         }
     }
+    let mut domain_balance: Vec<(String, Vec<f64>)> = Vec::new();
     for (name, v) in columns {
         if v.len() != t.len() {
             continue;
         }
         if name.starts_with("balance") {
             balance.get_or_insert(("W - (U + K) - D".into(), v.to_vec()));
+        } else if name.starts_with("domain_balance") {
+            // A balance: drawn in the balance panel on its own scale, not among the energies.
+            domain_balance.push((energy_label(name), v.to_vec()));
         } else {
             series.push((energy_label(name), v.to_vec()));
         }
@@ -276,15 +280,22 @@ fn energy_panels(h: &DynamicHistory, t: &[f64], columns: &[(&str, &[f64])]) -> V
             .map(|v| if v.abs() < 1e-12 * largest { 0.0 } else { v });
         let mut l = line(label.clone(), t, shown, e.1, 0);
         l.colour = plotters::style::RGBColor(0, 0, 0);
-        let (lo, hi) = l
-            .points
+        let mut balance_lines = vec![l];
+        // The contact run's balance over the domain's U and K (energy.csv
+        // domain_balance_J_per_m) beside the march's.
+        for (k, (name, v)) in domain_balance.iter().enumerate() {
+            balance_lines.push(line(name.clone(), t, v.iter().copied(), e.1, k + 1));
+        }
+        let (lo, hi) = balance_lines
             .iter()
-            .fold((0.0_f64, 0.0_f64), |(a, b), p| (a.min(p.1), b.max(p.1)));
-        let room = headroom(t, legend_top(lo, hi, 1));
+            .flat_map(|l| l.points.iter().map(|p| p.1))
+            .fold((0.0_f64, 0.0_f64), |(a, b), y| (a.min(y), b.max(y)));
+        let n = balance_lines.len();
+        balance_lines.push(headroom(t, legend_top(lo, hi, n)));
         panels.push((
             format!("Energy balance {label} (0 for an exact solution)"),
             format!("energy, {}", e.0),
-            vec![l, room],
+            balance_lines,
             None,
         ));
     }
