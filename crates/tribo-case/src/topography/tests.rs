@@ -112,6 +112,18 @@ fn x3p_errors_name_the_file_and_the_problem() {
     assert!(error("profile.x3p", &o).contains("FeatureType = PRF"));
     assert!(error("absolute_x.x3p", &o).contains("CX/AxisType = A"));
     assert!(error("bad_dtype.x3p", &o).contains("DataType = Q"));
+    // grid_d.x3p with one bit of the first height flipped after its MD5 was taken, and with
+    // md5checksum.hex of a different main.xml (make_fixtures.py, checksum_fixtures).
+    let s = error("bad_md5_data.x3p", &o);
+    assert!(
+        s.contains("MD5 checksum of bindata/data.bin") && s.contains("corrupt"),
+        "{s}"
+    );
+    let s = error("bad_md5_main.x3p", &o);
+    assert!(
+        s.contains("MD5 checksum of main.xml") && s.contains("md5checksum.hex"),
+        "{s}"
+    );
     let tiny = ReadOptions {
         max_bytes: 100,
         ..ReadOptions::default()

@@ -19,8 +19,12 @@
 //! - `Record3/DataLink/ValidPointsLink` (optional): one bit per point, least significant bit
 //!   first, set where the point is valid; NaN values of F and D data are invalid too.
 //!
-//! The MD5 checksums of the archive are not verified. The zip archive is read with the crate
-//! `zip` (deflate decompression only), the XML with `roxmltree`.
+//! The MD5 checksums are verified where the file gives them (ISO 25178-72: `md5checksum.hex`,
+//! the checksum of `main.xml`, named by `Record4/ChecksumFile`; `DataLink/MD5ChecksumPointData`
+//! and `MD5ChecksumValidPoints`, those of the binary entries): a mismatch is an error naming
+//! the entry (the file is corrupt); an absent or empty checksum is not (writers differ). The
+//! zip archive is read with the crate `zip` (deflate decompression only; it checks each
+//! entry's CRC-32 too), the XML with `roxmltree`, MD5 with `md-5`.
 
 use super::TopographyResult;
 use super::{checked_points, resolve_spacing, Measured, ReadOptions, TopographyError};
@@ -41,6 +45,14 @@ pub fn read(path: &Path, options: &ReadOptions) -> TopographyResult<Measured> {
         ))
     })?;
     let xml = entry(path, &mut archive, "main.xml", 64 << 20)?;
+    if archive.index_for_name("md5checksum.hex").is_some() {
+        let sums = entry(path, &mut archive, "md5checksum.hex", 4096)?;
+        // "<32 hex digits> *main.xml": the first word is the checksum.
+        let sums = String::from_utf8_lossy(&sums);
+        if let Some(want) = sums.split_whitespace().next() {
+            verify_md5(path, "main.xml", &xml, want, "md5checksum.hex")?;
+        }
+    }
     let xml = String::from_utf8(xml).map_err(|_| err("main.xml is not UTF-8 text".into()))?;
     let doc = Document::parse(&xml).map_err(|e| err(format!("main.xml does not parse: {e}")))?;
     let root = doc.root_element();
@@ -120,6 +132,15 @@ pub fn read(path: &Path, options: &ReadOptions) -> TopographyResult<Measured> {
             "DataLink/PointDataLink",
         )?;
         let data = entry(path, &mut archive, &data_path, n * size)?;
+        if let Some(want) = optional_text(link, "MD5ChecksumPointData") {
+            verify_md5(
+                path,
+                &data_path,
+                &data,
+                &want,
+                "DataLink/MD5ChecksumPointData",
+            )?;
+        }
         if data.len() != n * size {
             return Err(err(format!(
                 "{data_path} has {} bytes, expected SizeX * SizeY * {size} = {nx} * {ny} * {size} \
@@ -140,6 +161,15 @@ pub fn read(path: &Path, options: &ReadOptions) -> TopographyResult<Measured> {
         if let Some(valid) = link.children().find(|c| is(c, "ValidPointsLink")) {
             let valid_path = text(path, valid, "DataLink/ValidPointsLink")?;
             let bits = entry(path, &mut archive, &valid_path, n.div_ceil(8))?;
+            if let Some(want) = optional_text(link, "MD5ChecksumValidPoints") {
+                verify_md5(
+                    path,
+                    &valid_path,
+                    &bits,
+                    &want,
+                    "DataLink/MD5ChecksumValidPoints",
+                )?;
+            }
             if bits.len() != n.div_ceil(8) {
                 return Err(err(format!(
                     "{valid_path} has {} bytes, expected one bit per point: {}",
@@ -197,6 +227,39 @@ pub fn read(path: &Path, options: &ReadOptions) -> TopographyResult<Measured> {
         heights,
         path: path.to_path_buf(),
     })
+}
+
+/// The trimmed text of `node`'s child element `name`, or None where it is absent or empty.
+fn optional_text(node: Node, name: &str) -> Option<String> {
+    let t = node.children().find(|c| is(c, name))?.text()?.trim();
+    (!t.is_empty()).then(|| t.to_string())
+}
+
+/// Checks that the MD5 digest of `bytes` (the archive entry `name`) is the hexadecimal `want`
+/// (given by `source`), case-insensitively.
+fn verify_md5(
+    path: &Path,
+    name: &str,
+    bytes: &[u8],
+    want: &str,
+    source: &str,
+) -> TopographyResult<()> {
+    use md5::{Digest, Md5};
+    let got: String = Md5::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    if got.eq_ignore_ascii_case(want) {
+        Ok(())
+    } else {
+        Err(TopographyError::new(
+            path,
+            format!(
+                "the MD5 checksum of {name} is {got}, but {source} says {want}: the file is \
+                 corrupt (or was changed after it was written)"
+            ),
+        ))
+    }
 }
 
 /// The bytes of the archive's entry `name`, refusing more than `limit` bytes.

@@ -121,6 +121,22 @@ def x3p_fixtures():
         whole = f.read()
     with open("truncated.x3p", "wb") as f:
         f.write(whole[: len(whole) // 2])
+    checksum_fixtures()
+
+
+def checksum_fixtures():
+    """grid_d.x3p with a corrupted checksum: of the point data (one height changed after the
+    MD5 was taken) and of main.xml (md5checksum.hex of another text), from grid_d.x3p's
+    entries."""
+    with zipfile.ZipFile("grid_d.x3p") as z:
+        xml, data = z.read("main.xml"), z.read("bindata/data.bin")
+    corrupt = bytearray(data)
+    corrupt[0] ^= 0x01  # the first height's lowest mantissa bit
+    write_x3p("bad_md5_data.x3p", xml, {"bindata/data.bin": bytes(corrupt)})
+    with zipfile.ZipFile("bad_md5_main.x3p", "w", zipfile.ZIP_DEFLATED) as z:
+        z.writestr("main.xml", xml)
+        z.writestr("md5checksum.hex", f"{hashlib.md5(xml + b' ').hexdigest()} *main.xml\n")
+        z.writestr("bindata/data.bin", data)
 
 
 def npy_fixtures():
