@@ -64,7 +64,7 @@ pub fn write_probabilistic(
     #[cfg(feature = "png")]
     if opts.draws_plots() {
         crate::atomic::draw_atomic(dir, PROBABILISTIC_FILES[1], |p| {
-            crate::plot::probabilistic::exceedance(p, name, result, dimension)
+            crate::plot::probabilistic::exceedance(p, &[(name, result)], dimension)
         })?;
         files.push(PROBABILISTIC_FILES[1].to_string());
     }
@@ -80,7 +80,7 @@ pub fn write_probabilistic(
 }
 
 /// Writes `probabilistic.csv` (every criterion with a random limit, in the case's order;
-/// the limits share one unit, a rule of the case) and `probabilistic.png` (the first such
+/// the limits share one unit, a rule of the case) and `probabilistic.png` (every such
 /// criterion's curves) of a half-space run's damage; nothing without a random limit.
 pub fn write_case_probabilistic(
     dir: &Path,
@@ -95,17 +95,25 @@ pub fn write_case_probabilistic(
             Some((c.assessment.name.as_str(), c.assessment.unit, &p.result))
         })
         .collect();
-    let Some(&(name, unit, first)) = entries.first() else {
+    if entries.is_empty() {
         return Ok(Vec::new());
-    };
-    let mut files = write_probabilistic(dir, name, unit, first, 3, opts)?;
-    if entries.len() > 1 {
-        for (n, _, r) in &entries[1..] {
-            check_finite_result(n, r)?;
-        }
-        write_atomic(dir, PROBABILISTIC_FILES[0], csv(&entries, 3).as_bytes())?;
     }
-    files.dedup();
+    for (n, _, r) in &entries {
+        check_finite_result(n, r)?;
+    }
+    let mut files = vec![PROBABILISTIC_FILES[0].to_string()];
+    #[cfg(feature = "png")]
+    if opts.draws_plots() {
+        let drawn: Vec<(&str, &ProbabilisticDamage)> =
+            entries.iter().map(|(n, _, r)| (*n, *r)).collect();
+        crate::atomic::draw_atomic(dir, PROBABILISTIC_FILES[1], |p| {
+            crate::plot::probabilistic::exceedance(p, &drawn, 3)
+        })?;
+        files.push(PROBABILISTIC_FILES[1].to_string());
+    }
+    #[cfg(not(feature = "png"))]
+    let _ = opts;
+    write_atomic(dir, PROBABILISTIC_FILES[0], csv(&entries, 3).as_bytes())?;
     Ok(files)
 }
 
@@ -189,6 +197,35 @@ mod tests {
         std::fs::create_dir_all(&d2).unwrap();
         assert!(write_probabilistic(&d2, "q", "Pa", &bad, 2, &WriteOptions::default()).is_err());
         assert!(!d2.join("probabilistic.csv").exists());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// Two criteria in one plot (the case writer's path): the PNG is drawn with both curves
+    /// and a legend (TRIBO_KEEP_PLOTS=DIR keeps it for a look).
+    #[cfg(feature = "png")]
+    #[test]
+    fn draws_several_criteria_in_one_plot() {
+        let dir = std::env::temp_dir().join(format!("tribo-io-prob2-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let r = result();
+        let mut r2 = r.clone();
+        for p in &mut r2.points {
+            p.volume *= 0.5;
+            p.psi_max *= 0.8;
+        }
+        r2.probability_psi_max_ge_1 *= 0.5;
+        let path = dir.join("probabilistic.png");
+        crate::plot::probabilistic::exceedance(&path, &[("sigma_xx+", &r), ("tau_max", &r2)], 2)
+            .unwrap();
+        assert!(std::fs::metadata(&path).unwrap().len() > 10_000);
+        if let Ok(keep) = std::env::var("TRIBO_KEEP_PLOTS") {
+            std::fs::copy(
+                &path,
+                std::path::Path::new(&keep).join("probabilistic-two.png"),
+            )
+            .unwrap();
+        }
+        assert!(crate::plot::probabilistic::exceedance(&path, &[], 2).is_err());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

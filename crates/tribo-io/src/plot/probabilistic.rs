@@ -1,27 +1,41 @@
 //! The plot of a probabilistic damage result: the exceedance curves P(V >= v) and
-//! P(psi_max >= x), side by side, with psi_max = 1 and P(psi_max >= 1) marked.
+//! P(psi_max >= x), side by side, one curve per criterion with a random limit, with
+//! psi_max = 1 and each P(psi_max >= 1) marked.
 
+use super::bem::palette;
 use super::canvas::Canvas;
 use super::style::*;
 use plotters::prelude::*;
 use std::path::Path;
 use tribo::analysis::damage::probabilistic::ProbabilisticDamage;
 
-/// Draws `probabilistic.png`: left, P(V >= v) against v (the points with V > 0); right,
-/// P(psi_max >= x) against x, with the dashed line x = 1 and the level P(psi_max >= 1).
+/// Draws `probabilistic.png` of one or more criteria (`entries`: name and result, drawn in
+/// the palette's colours with a legend where there are several): left, P(V >= v) against v
+/// (the points with V > 0); right, P(psi_max >= x) against x, with the dashed line x = 1 and
+/// a circle at each P(psi_max >= 1) (the first criterion's level dashed).
 pub fn exceedance(
     path: &Path,
-    name: &str,
-    r: &ProbabilisticDamage,
+    entries: &[(&str, &ProbabilisticDamage)],
     dimension: usize,
 ) -> Result<(), String> {
+    let Some(&(name, first)) = entries.first() else {
+        return Err("no probabilistic result to draw".into());
+    };
     register_font()?;
     let root = Canvas::new(path, (1200, 560)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
-    let title = format!(
-        "{name}: random limit, P(psi_max >= 1) = {:.4}",
-        r.probability_psi_max_ge_1
-    );
+    let title = if entries.len() == 1 {
+        format!(
+            "{name}: random limit, P(psi_max >= 1) = {:.4}",
+            first.probability_psi_max_ge_1
+        )
+    } else {
+        let parts: Vec<String> = entries
+            .iter()
+            .map(|(n, r)| format!("{n} {:.4}", r.probability_psi_max_ge_1))
+            .collect();
+        format!("random limits, P(psi_max >= 1): {}", parts.join(", "))
+    };
     let root = root
         .titled(&title, (FAMILY, title_size(&title, 20.0, 1200)))
         .map_err(e)?;
@@ -33,14 +47,19 @@ pub fn exceedance(
     } else {
         ("mm^3", 1e9)
     };
+    let labels: Vec<&str> = entries.iter().map(|(n, _)| *n).collect();
 
-    let vol: Vec<(f64, f64)> = r
-        .points
+    let vols: Vec<Vec<(f64, f64)>> = entries
         .iter()
-        .filter(|p| p.volume > 0.0)
-        .map(|p| (p.volume * scale, p.probability))
+        .map(|(_, r)| {
+            r.points
+                .iter()
+                .filter(|p| p.volume > 0.0)
+                .map(|p| (p.volume * scale, p.probability))
+                .collect()
+        })
         .collect();
-    let v1 = vol.iter().map(|p| p.0).fold(0.0f64, f64::max);
+    let v1 = vols.iter().flatten().map(|p| p.0).fold(0.0f64, f64::max);
     let v1 = if v1 > 0.0 { v1 * 1.05 } else { 1.0 };
     let mut chart = ChartBuilder::on(&left)
         .margin(20)
@@ -54,21 +73,34 @@ pub fn exceedance(
         "P(V >= v)",
         15,
     )?;
-    let blue = RGBColor(31, 119, 180);
-    chart
-        .draw_series(LineSeries::new(vol.iter().copied(), blue.stroke_width(2)))
-        .map_err(e)?;
-    chart
-        .draw_series(vol.iter().map(|&p| Circle::new(p, 3, blue.filled())))
-        .map_err(e)?;
+    for (k, vol) in vols.iter().enumerate() {
+        let c = palette(k);
+        chart
+            .draw_series(LineSeries::new(vol.iter().copied(), c.stroke_width(2)))
+            .map_err(e)?
+            .label(labels[k])
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
+        chart
+            .draw_series(vol.iter().map(|&p| Circle::new(p, 3, c.filled())))
+            .map_err(e)?;
+    }
+    if entries.len() > 1 {
+        let pts: Vec<(f64, f64)> = vols.iter().flatten().copied().collect();
+        legend_avoiding(&mut chart, &pts, &labels)?;
+    }
 
-    let psi: Vec<(f64, f64)> = r
-        .points
+    let psis: Vec<Vec<(f64, f64)>> = entries
         .iter()
-        .map(|p| (p.psi_max, p.probability))
+        .map(|(_, r)| {
+            r.points
+                .iter()
+                .map(|p| (p.psi_max, p.probability))
+                .collect()
+        })
         .collect();
-    let (x0, x1) = psi
+    let (x0, x1) = psis
         .iter()
+        .flatten()
         .fold((1.0f64, 1.0f64), |(a, b), p| (a.min(p.0), b.max(p.0)));
     let pad = 0.05 * (x1 - x0).max(1e-3);
     let (x0, x1) = (x0 - pad, x1 + pad);
@@ -84,14 +116,26 @@ pub fn exceedance(
         "P(psi_max >= x)",
         15,
     )?;
-    let red = RGBColor(214, 39, 40);
-    chart
-        .draw_series(LineSeries::new(psi.iter().copied(), red.stroke_width(2)))
-        .map_err(e)?;
-    chart
-        .draw_series(psi.iter().map(|&p| Circle::new(p, 3, red.filled())))
-        .map_err(e)?;
-    let pf = r.probability_psi_max_ge_1;
+    // The first criterion keeps the single-criterion plot's red.
+    let colour = |k: usize| {
+        if entries.len() == 1 {
+            RGBColor(214, 39, 40)
+        } else {
+            palette(k)
+        }
+    };
+    for (k, psi) in psis.iter().enumerate() {
+        let c = colour(k);
+        chart
+            .draw_series(LineSeries::new(psi.iter().copied(), c.stroke_width(2)))
+            .map_err(e)?
+            .label(labels[k])
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
+        chart
+            .draw_series(psi.iter().map(|&p| Circle::new(p, 3, c.filled())))
+            .map_err(e)?;
+    }
+    let pf = first.probability_psi_max_ge_1;
     let n = 30;
     chart
         .draw_series((0..n).step_by(2).map(|k| {
@@ -108,8 +152,16 @@ pub fn exceedance(
         }))
         .map_err(e)?;
     chart
-        .draw_series([Circle::new((1.0, pf), 6, BLACK.stroke_width(2))])
+        .draw_series(
+            entries.iter().map(|(_, r)| {
+                Circle::new((1.0, r.probability_psi_max_ge_1), 6, BLACK.stroke_width(2))
+            }),
+        )
         .map_err(e)?;
+    if entries.len() > 1 {
+        let pts: Vec<(f64, f64)> = psis.iter().flatten().copied().collect();
+        legend_avoiding(&mut chart, &pts, &labels)?;
+    }
     root.present().map_err(e)?;
     Ok(())
 }
