@@ -196,6 +196,7 @@ pub(crate) fn surface_generate<'py>(
 /// a dict as [`surface_moments`] returns.
 #[pyfunction]
 #[pyo3(signature = (rolloff, powerlaw_start, cutoff, hurst, anisotropy, shape=None, size=None))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn spectrum_moments<'py>(
     py: Python<'py>,
     rolloff: f64,

@@ -3,6 +3,8 @@
 //! same constants on `tribo.surface.self_affine`). A change of the generator, of its random
 //! numbers or of the layout fails both; update the constants in both files together, and
 //! only for a deliberate change of the surfaces (a seed then names another surface).
+// Tests may unwrap: a panic here is a failed test (workspace lints deny it in library code).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::f64::consts::PI;
 use tribo::surface::{generate, GenerateParams, Method, Normalization, PowerSpectrum};
