@@ -344,6 +344,14 @@ def test_read_the_x3p_fixtures():
     assert "spacing" in str(e.value) and "c_f8.npy" in str(e.value)
     t = surface.read(FIXTURES / "c_f8.npy", spacing=(0.5e-6, 0.25e-6))
     np.testing.assert_allclose(t.heights, exact, rtol=0, atol=1e-22)
+    t = surface.read(FIXTURES / "c_i4_nm.npy", spacing=(0.5e-6, 0.25e-6), height_unit=1e-9)
+    np.testing.assert_allclose(t.heights, exact, rtol=0, atol=1e-20)
+    # ASCII grids: tribo's header (spacing in um and nm, heights in um) and Gwyddion's export
+    # header (the real size and the value unit), both carrying the spacing.
+    for name, tol in (("tribo_header.txt", 1e-20), ("gwyddion.txt", 1e-22)):
+        t = surface.read(FIXTURES / name)
+        assert t.spacing == pytest.approx((0.5e-6, 0.25e-6), rel=1e-12), name
+        np.testing.assert_allclose(t.heights, exact, rtol=0, atol=tol)
 
 
 @pytest.mark.parametrize("name, needle", [("truncated.x3p", "not a readable X3P archive"),
