@@ -376,6 +376,8 @@ GOOD = dict(shape=(32, 32), size=1e-3, hurst=0.8, powerlaw_start=2e4, cutoff=1e5
     (dict(rms_slope=0.1), "rms_height"),
     (dict(rms_height=-1.0), "rms_height"),
     (dict(shape=(1, 32)), "shape"),
+    (dict(shape=(2**31, 2**31)), "shape"),
+    (dict(shape=(2**20, 2**20)), "shape"),
     (dict(size=(1e-3, -1.0)), "size"),
     (dict(method="gauss"), "method"),
     (dict(anisotropy=(1.0, 0.0)), "anisotropy[1]"),

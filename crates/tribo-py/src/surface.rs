@@ -175,6 +175,7 @@ pub(crate) fn surface_generate<'py>(
         }
     };
     let spectrum = spectrum(py, rolloff, powerlaw_start, cutoff, hurst, anisotropy)?;
+    check_memory(py, shape)?;
     let params = GenerateParams {
         nx: shape.1,
         ny: shape.0,
@@ -188,6 +189,34 @@ pub(crate) fn surface_generate<'py>(
         .detach(|| generate(&params))
         .map_err(|e| renamed(py, e))?;
     heights_array(py, t)
+}
+
+/// Refuses a grid whose generation cannot get its memory (24 bytes per point: the transform
+/// and the heights), before the generator's O(n) pass over the modes: a mistyped shape is an
+/// immediate [`crate::InputError`] naming `shape`, not minutes of work before the library's
+/// own out-of-memory error.
+fn check_memory(py: Python<'_>, shape: (usize, usize)) -> PyResult<()> {
+    let bytes = shape
+        .0
+        .checked_mul(shape.1)
+        .and_then(|n| n.checked_mul(24))
+        .filter(|&b| {
+            let mut probe: Vec<u8> = Vec::new();
+            probe.try_reserve_exact(b).is_ok()
+        });
+    match bytes {
+        Some(_) => Ok(()),
+        None => Err(input_error(
+            py,
+            format!(
+                "shape = {shape:?}: the surface needs 24 bytes per point, more memory than can \
+                 be allocated"
+            ),
+            "shape",
+            &format!("{shape:?}"),
+            "a grid whose memory (24 bytes per point) can be allocated",
+        )),
+    }
 }
 
 /// The spectral moments of the continuous spectrum (closed forms) with the plateau `C_r = 1`
