@@ -18,6 +18,12 @@ Quick start::
                              composite_modulus=115e9, load=100.0)
     r.pressure.max(), r.residual
 
+    t = tribo.surface.self_affine((128, 128), size=(1e-3, 1e-3), hurst=0.8,
+                                  powerlaw_start=2e4, cutoff=2e5, rms_slope=0.1, seed=1)
+    rough = tribo.normal_contact(t.gap(), size=t.size, composite_modulus=115e9,
+                                 mean_pressure=50e6, periodic=True)
+    rough.contact_fraction                  # real over nominal contact area
+
     field = tribo.stress_field(r, E=210e9, nu=0.3, x=x, y=[0.0], z=x[x >= 0])
     field["von_mises"]                      # an xarray.Dataset (dims z, y, x; units in attrs)
     tribo.damage(field, {"sigma_int": 0.5e9})["sigma_int"].volume   # V (22), m^3
@@ -54,6 +60,7 @@ from ._tribo import ConvergenceError, HertzContact, InputError, SolverError
 from ._field import Damage, damage, energy_criterion, stress_field, _to_field
 from . import fatigue
 from . import study
+from . import surface
 
 if _typing.TYPE_CHECKING:
     import os
@@ -88,6 +95,7 @@ __all__ = [
     "run",
     "stress_field",
     "study",
+    "surface",
     "tangential_contact",
 ]
 
@@ -205,6 +213,12 @@ class NormalContact:
     """Wall time of the solve inside the library, s (the rest of the call is Python's)."""
     size: Optional[Tuple[float, float]] = None
     """The window (Lx, Ly), m (what :func:`stress_field` needs with the pressure)."""
+    displacement: Optional[np.ndarray] = None
+    """Combined elastic displacement of the surfaces u_z1 + u_z2 = gap - h + approach at
+    element centres, m (None for the normal solution inside :class:`CoupledContact` and
+    :meth:`Results.fields`). Periodic: measured from its mean plane (zero mean)."""
+    periodic: bool = False
+    """Whether the window was one period of a periodic surface."""
 
     @property
     def max_pressure(self) -> float:
@@ -212,9 +226,43 @@ class NormalContact:
         return float(self.pressure.max())
 
     @property
+    def mean_pressure(self) -> float:
+        """The normal force over the window's area, F / (Lx Ly), Pa (periodic: the nominal
+        pressure)."""
+        if self.size is None:
+            raise _input_error("size", "the window is not known")
+        return self.normal_load / (self.size[0] * self.size[1])
+
+    @property
+    def contact_fraction(self) -> float:
+        """The fraction of the window in contact, A / (Lx Ly) (periodic: the real over the
+        nominal contact area)."""
+        return float(self.contact_elements) / float(self.pressure.size)
+
+    @property
     def contact(self) -> np.ndarray:
         """The contact mask (pressure > 0), bool, shape (ny, nx)."""
         return self.pressure > 0.0
+
+
+def _periodic_load(
+    load: Optional[float],
+    mean_pressure: Optional[float],
+    size: Tuple[float, float],
+    periodic: bool,
+) -> Optional[float]:
+    """The force (N) of a solve given its ``load`` or ``mean_pressure`` (periodic only: the
+    force per period is the mean pressure times the period area Lx Ly)."""
+    if mean_pressure is None:
+        return None if load is None else float(load)
+    if not periodic:
+        raise _input_error("mean_pressure",
+                           "only for periodic=True (give the load, N, on a finite window)",
+                           mean_pressure)
+    if load is not None:
+        raise _input_error("mean_pressure", "give exactly one of load (N) and mean_pressure (Pa)",
+                           mean_pressure)
+    return float(mean_pressure) * size[0] * size[1]
 
 
 def normal_contact(
@@ -224,10 +272,13 @@ def normal_contact(
     composite_modulus: float,
     load: Optional[float] = None,
     approach: Optional[float] = None,
+    mean_pressure: Optional[float] = None,
     tolerance: float = 1e-10,
     max_iterations: int = 10_000,
     method: str = "cg",
     initial_pressure: Any = None,
+    periodic: bool = False,
+    kernel: str = "element",
 ) -> NormalContact:
     """Normal contact of two elastic half-spaces with unknown contact area on a grid.
 
@@ -255,9 +306,19 @@ def normal_contact(
     values set to 0; under force control scaled to the load). Same solution to the
     tolerance, fewer iterations when the guess is near it; ``method="active_set"`` ignores it.
 
+    ``periodic=True``: the window is one period of a periodic surface (a rough flat on a
+    flat, Westergaard's wavy surface; docs/theory/HALFSPACE.md 7): contact may reach the
+    window's border, the load is the force per period, given as ``load`` (N) or as
+    ``mean_pressure`` (Pa; the force is ``mean_pressure * Lx * Ly``), approach control and the
+    active set are refused (the mean displacement of a periodic half-space is unbounded: the
+    ``approach`` reported is measured from the mean plane of the deformed surface).
+    ``kernel``: ``"element"`` (the default: the periodic sum of Love's element influence, the
+    discretisation of the non-periodic solver) or ``"spectral"`` (the continuous multiplier
+    ``2 / (E* |q|)`` at the grid frequencies, Tamaas's: compare with Tamaas like with like).
+
     Raises :class:`InputError` for bad input (also when the contact reaches the window's
-    border or there is no contact), :class:`ConvergenceError` (with ``.residual``) at the
-    iteration limit. The GIL is released during the solve.
+    border of a non-periodic solve or there is no contact), :class:`ConvergenceError` (with
+    ``.residual``) at the iteration limit. The GIL is released during the solve.
     """
     g = _grid_array("gap", gap)
     size = (float(size[0]), float(size[1]))
@@ -265,14 +326,16 @@ def normal_contact(
         g,
         size,
         float(composite_modulus),
-        None if load is None else float(load),
+        _periodic_load(load, mean_pressure, size, bool(periodic)),
         None if approach is None else float(approach),
         float(tolerance),
         int(max_iterations),
         str(method),
         _guess(initial_pressure, g.shape),
+        bool(periodic),
+        str(kernel),
     )
-    return NormalContact(**d, size=size)
+    return NormalContact(**d, size=size, periodic=bool(periodic))
 
 
 def _guess(initial_pressure: Any, shape: Tuple[int, ...]) -> Optional[np.ndarray]:
@@ -292,10 +355,11 @@ class NormalSolver:
     operator built once and reused (a load sweep, many surfaces of one size).
 
     ``shape = (ny, nx)`` elements over ``size = (Lx, Ly)`` (m), ``composite_modulus`` E*
-    (Pa); ``tolerance``, ``max_iterations`` and ``method`` as in :func:`normal_contact`.
+    (Pa); ``tolerance``, ``max_iterations``, ``method``, ``periodic`` and ``kernel`` as in
+    :func:`normal_contact`.
     """
 
-    __slots__ = ("_inner", "shape", "size")
+    __slots__ = ("_inner", "shape", "size", "periodic")
 
     def __init__(
         self,
@@ -306,11 +370,15 @@ class NormalSolver:
         tolerance: float = 1e-10,
         max_iterations: int = 10_000,
         method: str = "cg",
+        periodic: bool = False,
+        kernel: str = "element",
     ) -> None:
         self.shape: Tuple[int, int] = (int(shape[0]), int(shape[1]))
         """The grid's shape (ny, nx)."""
         self.size: Tuple[float, float] = (float(size[0]), float(size[1]))
-        """The window (Lx, Ly), m."""
+        """The window (Lx, Ly), m (periodic: the period)."""
+        self.periodic: bool = bool(periodic)
+        """Whether the window is one period of a periodic surface."""
         self._inner = _tribo.NormalSolver(
             self.shape,
             self.size,
@@ -318,6 +386,8 @@ class NormalSolver:
             float(tolerance),
             int(max_iterations),
             str(method),
+            self.periodic,
+            str(kernel),
         )
 
     def solve(
@@ -326,19 +396,21 @@ class NormalSolver:
         *,
         load: Optional[float] = None,
         approach: Optional[float] = None,
+        mean_pressure: Optional[float] = None,
         initial_pressure: Any = None,
     ) -> NormalContact:
         """One solve: the gap (m, shape (ny, nx); converted as in :func:`normal_contact`)
-        under exactly one of ``load`` (N) and ``approach`` (m), from ``initial_pressure``
-        (Pa or a :class:`NormalContact`: a warm start, as in :func:`normal_contact`)."""
+        under exactly one of ``load`` (N), ``approach`` (m) and (periodic) ``mean_pressure``
+        (Pa), from ``initial_pressure`` (Pa or a :class:`NormalContact`: a warm start, as in
+        :func:`normal_contact`)."""
         g = _grid_array("gap", gap)
         d = self._inner.solve(
             g,
-            None if load is None else float(load),
+            _periodic_load(load, mean_pressure, self.size, self.periodic),
             None if approach is None else float(approach),
             _guess(initial_pressure, g.shape),
         )
-        return NormalContact(**d, size=self.size)
+        return NormalContact(**d, size=self.size, periodic=self.periodic)
 
     def load_path(
         self,
@@ -346,27 +418,36 @@ class NormalSolver:
         *,
         loads: Optional[Sequence[float]] = None,
         approaches: Optional[Sequence[float]] = None,
+        mean_pressures: Optional[Sequence[float]] = None,
         warm_start: bool = True,
     ) -> Iterator[NormalContact]:
         """The solutions along a load sequence, one at a time (a generator): exactly one of
-        ``loads`` (N) and ``approaches`` (m). The gap is converted once; with ``warm_start``
-        each solve starts from the previous solution's pressure (same solutions to the
-        tolerance, fewer iterations)."""
-        if (loads is None) == (approaches is None):
-            raise _input_error("loads", "give exactly one of loads (N) and approaches (m)")
+        ``loads`` (N), ``approaches`` (m) and (periodic) ``mean_pressures`` (Pa). The gap is
+        converted once; with ``warm_start`` each solve starts from the previous solution's
+        pressure (same solutions to the tolerance, fewer iterations)."""
+        given = [v is not None for v in (loads, approaches, mean_pressures)]
+        if sum(given) != 1:
+            raise _input_error("loads", "give exactly one of loads (N), approaches (m) and "
+                               "mean_pressures (Pa)")
         g = _grid_array("gap", gap)
         previous = None
-        steps = [(float(f), None) for f in loads] if loads is not None else [
-            (None, float(d)) for d in approaches  # type: ignore[union-attr]
-        ]
+        if approaches is not None:
+            steps = [(None, float(d)) for d in approaches]
+        elif loads is not None:
+            steps = [(float(f), None) for f in loads]
+        else:
+            steps = [(_periodic_load(None, float(p), self.size, self.periodic), None)
+                     for p in mean_pressures]  # type: ignore[union-attr]
         for f, d in steps:
-            r = NormalContact(**self._inner.solve(g, f, d, previous), size=self.size)
+            r = NormalContact(**self._inner.solve(g, f, d, previous), size=self.size,
+                              periodic=self.periodic)
             if warm_start:
                 previous = r.pressure
             yield r
 
     def __repr__(self) -> str:
-        return f"NormalSolver(shape={self.shape}, size={self.size})"
+        periodic = ", periodic=True" if self.periodic else ""
+        return f"NormalSolver(shape={self.shape}, size={self.size}{periodic})"
 
 
 @_dataclass(frozen=True)
@@ -417,6 +498,8 @@ def tangential_contact(
     tolerance: float = 1e-10,
     max_iterations: int = 10_000,
     direction: str = "parallel",
+    periodic: bool = False,
+    kernel: str = "element",
 ) -> TangentialContact:
     """Tangential contact with Coulomb friction (the paper's (8)) under a given pressure.
 
@@ -435,6 +518,11 @@ def tangential_contact(
     opposite to the traction in each slipping element; the stick zone and the traction
     then differ from Cattaneo-Mindlin's by the Poisson-ratio effect, docs/theory/HALFSPACE.md).
 
+    ``periodic=True``: the window is one period (the periodic Cerruti compliances with the
+    ``kernel`` of :func:`normal_contact`; a uniform shear moves the surface rigidly, so the
+    displacements are measured from their mean), for the pressure of a periodic
+    :func:`normal_contact`; ``tangential_load`` is the force per period (N).
+
     Raises :class:`InputError` (e.g. ``tangential_load`` at or above f F_N) and
     :class:`ConvergenceError` as :func:`normal_contact` does. The GIL is released.
     """
@@ -452,6 +540,8 @@ def tangential_contact(
         float(tolerance),
         int(max_iterations),
         direction == "free",
+        bool(periodic),
+        str(kernel),
     )
     return TangentialContact(**d)
 

@@ -83,6 +83,8 @@ class NormalSolver:
         tolerance: float = ...,
         max_iterations: int = ...,
         method: str = ...,
+        periodic: bool = ...,
+        kernel: str = ...,
     ) -> None: ...
     def solve(
         self,
@@ -117,6 +119,8 @@ def normal_contact(
     max_iterations: int = ...,
     method: str = ...,
     initial_pressure: Optional[npt.NDArray[np.float64]] = ...,
+    periodic: bool = ...,
+    kernel: str = ...,
 ) -> Dict[str, Any]: ...
 def tangential_contact(
     pressure: npt.NDArray[np.float64],
@@ -129,6 +133,8 @@ def tangential_contact(
     tolerance: float = ...,
     max_iterations: int = ...,
     free: bool = ...,
+    periodic: bool = ...,
+    kernel: str = ...,
 ) -> Dict[str, Any]: ...
 def coupled_contact(
     gap: npt.NDArray[np.float64],
@@ -248,3 +254,55 @@ class StudyDir:
 def slurm_ranges(ids: Sequence[int]) -> str: ...
 def slurm_job_id(answer: str) -> Optional[int]: ...
 def study_examples() -> List[Tuple[str, str]]: ...
+
+# Rough surfaces (python/tribo/surface.py; crates/tribo-py/src/surface.rs)
+def surface_generate(
+    shape: Tuple[int, int],
+    size: Tuple[float, float],
+    rolloff: float,
+    powerlaw_start: float,
+    cutoff: float,
+    hurst: float,
+    anisotropy: Tuple[float, float],
+    rms_height: Optional[float],
+    rms_slope: Optional[float],
+    method: str,
+    seed: int,
+) -> npt.NDArray[np.float64]: ...
+def spectrum_moments(
+    rolloff: float,
+    powerlaw_start: float,
+    cutoff: float,
+    hurst: float,
+    anisotropy: Tuple[float, float],
+    shape: Optional[Tuple[int, int]] = ...,
+    size: Optional[Tuple[float, float]] = ...,
+) -> Dict[str, Dict[str, Optional[float]]]: ...
+def surface_statistics(
+    heights: npt.NDArray[np.float64], spacing: Tuple[float, float]
+) -> Dict[str, Optional[float]]: ...
+def surface_psd(
+    heights: npt.NDArray[np.float64], spacing: Tuple[float, float]
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.uint64]]: ...
+def surface_fit_power_law(
+    q: Sequence[float], psd: Sequence[float], modes: Sequence[int], q_min: float, q_max: float
+) -> Dict[str, Any]: ...
+def surface_autocorrelation(
+    heights: npt.NDArray[np.float64], spacing: Tuple[float, float]
+) -> npt.NDArray[np.float64]: ...
+def surface_detrend(
+    heights: npt.NDArray[np.float64], spacing: Tuple[float, float], degree: int
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], List[float]]: ...
+def surface_resample(
+    heights: npt.NDArray[np.float64],
+    spacing: Tuple[float, float],
+    shape: Tuple[int, int],
+    new_spacing: Tuple[float, float],
+    periodic: bool,
+) -> npt.NDArray[np.float64]: ...
+def surface_read(
+    path: str,
+    spacing: Optional[Tuple[float, float]] = ...,
+    height_unit: float = ...,
+    keep_invalid: bool = ...,
+) -> Tuple[npt.NDArray[np.float64], Tuple[float, float], int]: ...

@@ -24,22 +24,25 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use std::path::PathBuf;
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
+use tribo::kernels::periodic::PeriodicKernel;
 use tribo::operators::ConvolutionOperator;
 use tribo::solvers::coupled::{solve_coupled, CoupledParams, CoupledProblem, TangentialModel};
 use tribo::solvers::normal::{
-    normal_compliance_operator, solve_normal_from, NormalContactParams, NormalContactProblem,
-    NormalContactSolution, NormalLoading, NormalMethod,
+    normal_compliance_operator, normal_compliance_operator_periodic, solve_normal_from,
+    NormalContactParams, NormalContactProblem, NormalContactSolution, NormalLoading, NormalMethod,
 };
 use tribo::solvers::tangential::{
-    solve_tangential, TangentialLoading, TangentialParams, TangentialProblem, TangentialSolution,
+    solve_tangential, tangential_compliance_operator_periodic, TangentialLoading, TangentialParams,
+    TangentialProblem, TangentialSolution,
 };
-use tribo::solvers::tangential_free::solve_tangential_free;
+use tribo::solvers::tangential_free::{solve_tangential_free, TangentialBlockOperator};
 use tribo::SurfaceGrid;
 use tribo_case::{CaseError, Silent};
 
 mod fatigue;
 mod field;
 mod study;
+mod surface;
 
 create_exception!(
     _tribo,
@@ -383,6 +386,31 @@ fn normal_params(
     Ok(params)
 }
 
+/// The periodic kernel of `periodic=True` solves: `None` for a non-periodic solve, else the
+/// kernel named by `kernel` ("element" (or "element_integrated"): the periodic sum of Love's
+/// element influence, the default; "spectral": the continuous multiplier at the grid
+/// frequencies, Tamaas's; docs/theory/HALFSPACE.md 7.1).
+fn periodic_kernel(
+    py: Python<'_>,
+    periodic: bool,
+    kernel: &str,
+) -> PyResult<Option<PeriodicKernel>> {
+    let k = match kernel {
+        "element" | "element_integrated" => PeriodicKernel::ElementIntegrated,
+        "spectral" => PeriodicKernel::Spectral,
+        other => {
+            return Err(input_error(
+                py,
+                format!("kernel = {other:?}: one of \"element\", \"spectral\""),
+                "kernel",
+                other,
+                "one of \"element\", \"spectral\"",
+            ))
+        }
+    };
+    Ok(periodic.then_some(k))
+}
+
 /// One normal solve on `grid` with the gap read in place and the interpreter released; the
 /// result dict carries `solve_time_s`, the solve's own wall time.
 #[allow(clippy::too_many_arguments)]
@@ -446,7 +474,16 @@ fn normal_solve<'py>(
     });
     match solved {
         Ok(s) => {
+            // The combined elastic displacement u_z1 + u_z2 = g - h + delta (the paper's (16)
+            // solved for u), m.
+            let displacement: Vec<f64> = s
+                .gap
+                .iter()
+                .zip(initial_gap)
+                .map(|(g, h)| g - h + s.approach)
+                .collect();
             let d = normal_dict(py, s, grid)?;
+            d.set_item("displacement", grid_array(py, displacement, grid)?)?;
             d.set_item("solve_time_s", seconds)?;
             Ok(d)
         }
@@ -458,9 +495,12 @@ fn normal_solve<'py>(
 /// 1999 or the dense active set): `gap` the initial separation (m) at element centres,
 /// shape (ny, nx), C-contiguous float64 (read in place, not copied); the window
 /// `size = (Lx, Ly)` (m) centred on the origin; the composite modulus (Pa); exactly one of
-/// `load` (N) and `approach` (m). Returns a dict (see python/tribo/__init__.py).
+/// `load` (N) and `approach` (m). `periodic`: the window is one period of a periodic surface
+/// ([`normal_compliance_operator_periodic`] with the kernel named by `kernel`,
+/// [`periodic_kernel`]; force control only, `load` the mean pressure times the period area).
+/// Returns a dict (see python/tribo/__init__.py).
 #[pyfunction]
-#[pyo3(signature = (gap, size, composite_modulus, load=None, approach=None, tolerance=1e-10, max_iterations=10_000, method="cg", initial_pressure=None))]
+#[pyo3(signature = (gap, size, composite_modulus, load=None, approach=None, tolerance=1e-10, max_iterations=10_000, method="cg", initial_pressure=None, periodic=false, kernel="element"))]
 #[allow(clippy::too_many_arguments)]
 fn normal_contact<'py>(
     py: Python<'py>,
@@ -473,12 +513,16 @@ fn normal_contact<'py>(
     max_iterations: usize,
     method: &str,
     initial_pressure: Option<PyReadonlyArray2<'py, f64>>,
+    periodic: bool,
+    kernel: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let shape = gap.shape().to_vec();
     let grid = SurfaceGrid::centred(shape[1], shape[0], 0.5 * size.0, 0.5 * size.1)
         .map_err(|e| library_error(py, &e))?;
     let loading = normal_loading(py, load, approach)?;
     let params = normal_params(py, tolerance, max_iterations, method)?;
+    refuse_on_periodic(py, periodic, method, approach)?;
+    let operator = periodic_operator(py, &grid, composite_modulus, periodic, kernel)?;
     normal_solve(
         py,
         &grid,
@@ -486,9 +530,79 @@ fn normal_contact<'py>(
         composite_modulus,
         loading,
         &params,
-        None,
+        operator.as_ref(),
         initial_pressure.as_ref(),
     )
+}
+
+/// The periodic normal compliance operator of a `periodic` solve (None otherwise), built with
+/// the interpreter released; the composite modulus checked first (the operator divides by
+/// it).
+fn periodic_operator(
+    py: Python<'_>,
+    grid: &SurfaceGrid,
+    composite_modulus: f64,
+    periodic: bool,
+    kernel: &str,
+) -> PyResult<Option<ConvolutionOperator>> {
+    let Some(kernel) = periodic_kernel(py, periodic, kernel)? else {
+        return Ok(None);
+    };
+    check_composite_modulus(py, composite_modulus)?;
+    Ok(Some(py.detach(|| {
+        normal_compliance_operator_periodic(grid, composite_modulus, kernel)
+    })))
+}
+
+/// What a periodic normal solve cannot take, refused with the Python argument named: the
+/// approach (the mean displacement of a periodic half-space is unbounded) and the dense
+/// active set (its matrix is the non-periodic one).
+fn refuse_on_periodic(
+    py: Python<'_>,
+    periodic: bool,
+    method: &str,
+    approach: Option<f64>,
+) -> PyResult<()> {
+    if !periodic {
+        return Ok(());
+    }
+    if let Some(d) = approach {
+        return Err(input_error(
+            py,
+            format!(
+                "approach = {d}: approach control is not defined on a periodic grid (the mean \
+                 displacement of a periodic half-space is unbounded): give the load (N) or the \
+                 mean pressure (Pa)"
+            ),
+            "approach",
+            &d.to_string(),
+            "force control only on a periodic grid",
+        ));
+    }
+    if method == "active_set" {
+        return Err(input_error(
+            py,
+            "method = \"active_set\": the dense active set has no periodic form: use \"cg\"".into(),
+            "method",
+            method,
+            "\"cg\" on a periodic grid",
+        ));
+    }
+    Ok(())
+}
+
+/// The composite modulus must be finite and > 0 (Pa).
+fn check_composite_modulus(py: Python<'_>, composite_modulus: f64) -> PyResult<()> {
+    if composite_modulus.is_finite() && composite_modulus > 0.0 {
+        return Ok(());
+    }
+    Err(input_error(
+        py,
+        format!("composite_modulus = {composite_modulus}: must be finite and > 0 (Pa)"),
+        "composite_modulus",
+        &composite_modulus.to_string(),
+        "finite and > 0 (Pa)",
+    ))
 }
 
 /// A normal contact solver for many solves on one grid and one composite modulus: the FFT
@@ -505,9 +619,10 @@ struct PyNormalSolver {
 impl PyNormalSolver {
     /// A solver on the grid of `shape = (ny, nx)` elements over `size = (Lx, Ly)` (m) for
     /// the composite modulus (Pa), with the tolerance, iteration limit and method of every
-    /// solve.
+    /// solve; `periodic` with `kernel` as in [`normal_contact`].
     #[new]
-    #[pyo3(signature = (shape, size, composite_modulus, tolerance=1e-10, max_iterations=10_000, method="cg"))]
+    #[pyo3(signature = (shape, size, composite_modulus, tolerance=1e-10, max_iterations=10_000, method="cg", periodic=false, kernel="element"))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         shape: (usize, usize),
@@ -516,20 +631,18 @@ impl PyNormalSolver {
         tolerance: f64,
         max_iterations: usize,
         method: &str,
+        periodic: bool,
+        kernel: &str,
     ) -> PyResult<Self> {
         let grid = SurfaceGrid::centred(shape.1, shape.0, 0.5 * size.0, 0.5 * size.1)
             .map_err(|e| library_error(py, &e))?;
-        if !(composite_modulus.is_finite() && composite_modulus > 0.0) {
-            return Err(input_error(
-                py,
-                format!("composite_modulus = {composite_modulus}: must be finite and > 0 (Pa)"),
-                "composite_modulus",
-                &composite_modulus.to_string(),
-                "finite and > 0 (Pa)",
-            ));
-        }
+        check_composite_modulus(py, composite_modulus)?;
         let params = normal_params(py, tolerance, max_iterations, method)?;
-        let operator = py.detach(|| normal_compliance_operator(&grid, composite_modulus));
+        refuse_on_periodic(py, periodic, method, None)?;
+        let operator = match periodic_operator(py, &grid, composite_modulus, periodic, kernel)? {
+            Some(op) => op,
+            None => py.detach(|| normal_compliance_operator(&grid, composite_modulus)),
+        };
         Ok(PyNormalSolver {
             grid,
             composite_modulus,
@@ -551,6 +664,12 @@ impl PyNormalSolver {
         initial_pressure: Option<PyReadonlyArray2<'py, f64>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let loading = normal_loading(py, load, approach)?;
+        refuse_on_periodic(
+            py,
+            self.operator.is_periodic(),
+            self.params.method.name(),
+            approach,
+        )?;
         normal_solve(
             py,
             &self.grid,
@@ -593,9 +712,11 @@ fn tangential_dict<'py>(
 /// (N) along `angle` (rad from x), or full sliding (q = f p along `angle`) with `sliding`.
 /// Materials: Young's moduli (Pa) and Poisson's ratios of both bodies. `free`: the traction
 /// direction free (the full 2D problem, [`solve_tangential_free`]) instead of parallel to the
-/// load.
+/// load. `periodic`: the window is one period (the periodic Cerruti compliances,
+/// [`tangential_compliance_operator_periodic`] or [`TangentialBlockOperator::new_periodic`],
+/// with the kernel named by `kernel`, [`periodic_kernel`]).
 #[pyfunction]
-#[pyo3(signature = (pressure, size, friction, materials, tangential_load=None, sliding=false, angle=0.0, tolerance=1e-10, max_iterations=10_000, free=false))]
+#[pyo3(signature = (pressure, size, friction, materials, tangential_load=None, sliding=false, angle=0.0, tolerance=1e-10, max_iterations=10_000, free=false, periodic=false, kernel="element"))]
 #[allow(clippy::too_many_arguments)]
 fn tangential_contact<'py>(
     py: Python<'py>,
@@ -609,7 +730,10 @@ fn tangential_contact<'py>(
     tolerance: f64,
     max_iterations: usize,
     free: bool,
+    periodic: bool,
+    kernel: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let kernel = periodic_kernel(py, periodic, kernel)?;
     let lib = |e: &tribo::Error| library_error(py, e);
     let shape = pressure.shape().to_vec();
     let grid = SurfaceGrid::centred(shape[1], shape[0], 0.5 * size.0, 0.5 * size.1)
@@ -643,10 +767,19 @@ fn tangential_contact<'py>(
     };
     let (solved, seconds) = py.detach(|| {
         let start = std::time::Instant::now();
-        let solved = if free {
-            solve_tangential_free(&problem, &params, None, None)
-        } else {
-            solve_tangential(&problem, &params, None, None)
+        // The periodic operators are built here (the non-periodic ones by the solvers);
+        // their build is part of the solve's time, as the solvers' own is.
+        let solved = match (free, kernel) {
+            (true, Some(k)) => {
+                let op = TangentialBlockOperator::new_periodic(&grid, &body1, &body2, k);
+                solve_tangential_free(&problem, &params, Some(&op), None)
+            }
+            (true, None) => solve_tangential_free(&problem, &params, None, None),
+            (false, Some(k)) => {
+                let op = tangential_compliance_operator_periodic(&grid, &body1, &body2, angle, k);
+                solve_tangential(&problem, &params, Some(&op), None)
+            }
+            (false, None) => solve_tangential(&problem, &params, None, None),
         };
         (solved, start.elapsed().as_secs_f64())
     });
@@ -1082,6 +1215,15 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::slurm_ranges, m)?)?;
     m.add_function(wrap_pyfunction!(study::slurm_job_id, m)?)?;
     m.add_function(wrap_pyfunction!(study::study_examples, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::surface_generate, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::spectrum_moments, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::surface_statistics, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::surface_psd, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::surface_fit_power_law, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::surface_autocorrelation, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::surface_detrend, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::surface_resample, m)?)?;
+    m.add_function(wrap_pyfunction!(surface::surface_read, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
