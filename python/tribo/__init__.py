@@ -48,7 +48,6 @@ from __future__ import annotations
 import json as _json
 import math as _math
 import os as _os
-import typing as _typing
 from collections.abc import Mapping as _Mapping
 from dataclasses import dataclass as _dataclass
 from pathlib import Path as _Path
@@ -59,14 +58,14 @@ from . import _tribo
 from ._tribo import ConvergenceError, HertzContact, InputError, SolverError
 from ._field import Damage, damage, energy_criterion, stress_field, _to_field
 from . import fatigue
-from . import study
 from . import surface
 
-if _typing.TYPE_CHECKING:
-    import os
-    from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
+# The names of the annotations (strings, PEP 563) are bound for real, so that
+# typing.get_type_hints() resolves them; `__dir__` below keeps them out of dir(tribo).
+import os
+from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
-    import numpy as np
+import numpy as np
 
 del annotations  # the __future__ feature's name: not part of the API
 
@@ -781,3 +780,13 @@ def run(case: Case) -> Results:
 def examples() -> List[str]:
     """The names of the embedded example cases (``tribo example``)."""
     return list(_tribo.example_names())
+
+
+# Imported last: tribo.study annotates with Case, defined above.
+from . import study  # noqa: E402
+
+
+def __dir__() -> List[str]:
+    # Tab completion and dir() list the API alone; the typing names above are real module
+    # attributes so that typing.get_type_hints() resolves the (string) annotations.
+    return sorted(__all__)

@@ -9,17 +9,17 @@ Series with pyLife's ``WoehlerCurve`` keys; without it a dict of arrays in and a
 from __future__ import annotations
 
 import json as _json
-import typing as _typing
 from collections.abc import Mapping as _Mapping
 
 import numpy as _np
 
 from . import _tribo
 
-if _typing.TYPE_CHECKING:  # names for the annotations (strings): `dir()` shows the API only
-    from typing import Any, Dict, Mapping, Optional, Union
+# Names for the annotations (strings), bound for real so that typing.get_type_hints()
+# resolves them; `__dir__` keeps them out of dir().
+from typing import Any, Dict, List, Mapping, Optional, Union
 
-    import numpy as np
+import numpy as np
 
 try:  # pandas is optional
     import pandas as _pd  # type: ignore[import-not-found]
@@ -176,3 +176,9 @@ def _plain(obj: Any) -> Any:
     if isinstance(obj, (_np.ndarray, _np.generic)):
         return obj.tolist()
     return obj
+
+
+def __dir__() -> List[str]:
+    # Tab completion and dir() list the API alone; the typing names above are real module
+    # attributes so that typing.get_type_hints() resolves the (string) annotations.
+    return sorted(__all__)

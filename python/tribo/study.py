@@ -35,7 +35,6 @@ import shutil as _shutil
 import subprocess as _subprocess
 import sys as _sys
 import time as _time
-import typing as _typing
 from collections.abc import Mapping as _Mapping
 from dataclasses import dataclass as _dataclass
 from pathlib import Path as _Path
@@ -44,10 +43,11 @@ import numpy as _np
 
 from . import _tribo
 
-if _typing.TYPE_CHECKING:
-    from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+# Bound for real (typing.get_type_hints resolves the string annotations); `__dir__` keeps
+# them out of dir(). tribo/__init__.py imports this module after defining Case.
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-    from . import Case
+from . import Case
 
 del annotations  # the __future__ feature's name: not part of the API
 
@@ -234,8 +234,6 @@ class Study:
         """Point ``index``'s case (the base case with the point's parameters set), e.g. to
         run one point alone with :func:`tribo.run`. Raises :class:`tribo.InputError` when
         the point's parameters make an invalid case."""
-        from . import Case
-
         text = self._inner.case_toml(int(index))
         base = str(self._inner.base_dir) or None
         return Case(_tribo.Case.from_toml_text(text, f"{self.name} point {int(index):06}", base))
@@ -438,3 +436,9 @@ def open(directory: Union[str, "_os.PathLike[str]"]) -> Study:  # noqa: A001 (as
     :meth:`Study.status` and :meth:`Study.gather` read it."""
     sd = _tribo.StudyDir.open(_os.fspath(directory))
     return Study(sd.study, sd)
+
+
+def __dir__() -> List[str]:
+    # Tab completion and dir() list the API alone; the typing names above are real module
+    # attributes so that typing.get_type_hints() resolves the (string) annotations.
+    return sorted(__all__)

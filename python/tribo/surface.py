@@ -34,7 +34,6 @@ from __future__ import annotations
 
 import math as _math
 import os as _os
-import typing as _typing
 from dataclasses import dataclass as _dataclass
 
 import numpy as _np
@@ -42,11 +41,12 @@ import numpy as _np
 from . import _tribo
 from ._tribo import InputError
 
-if _typing.TYPE_CHECKING:
-    import os
-    from typing import Any, Dict, Optional, Tuple, Union
+# Bound for real (typing.get_type_hints resolves the string annotations); `__dir__` keeps
+# them out of dir().
+import os
+from typing import Any, Dict, List, Optional, Tuple, Union
 
-    import numpy as np
+import numpy as np
 
 del annotations  # the __future__ feature's name: not part of the API
 
@@ -517,3 +517,9 @@ class SurfaceGeneratorRandomPhase(SurfaceGeneratorFilter):
     statistic equals the spectrum's for any seed."""
 
     _method = "random_phase"
+
+
+def __dir__() -> List[str]:
+    # Tab completion and dir() list the API alone; the typing names above are real module
+    # attributes so that typing.get_type_hints() resolves the (string) annotations.
+    return sorted(__all__)

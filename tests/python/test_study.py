@@ -334,10 +334,10 @@ def test_cases_pickle():
     assert (back.toml, back.title, back.kind) == (case.toml, case.title, case.kind)
 
 
-@pytest.mark.parametrize("module", [tribo, tribo.study, tribo.fatigue])
+@pytest.mark.parametrize("module", [tribo, tribo.study, tribo.fatigue, tribo.surface])
 def test_dir_shows_the_api_only(module):
     # Tab completion lists dir(module): every public name is in __all__ or is a submodule
-    # (the imports are bound to private names).
+    # (the module's __dir__).
     def submodule(obj):
         return (isinstance(obj, types.ModuleType)
                 and obj.__name__.startswith(tribo.__name__ + "."))
@@ -347,6 +347,31 @@ def test_dir_shows_the_api_only(module):
     assert extra == []
     for name in module.__all__:
         assert getattr(module, name).__doc__, name
+
+
+@pytest.mark.parametrize("module", [tribo, tribo.study, tribo.fatigue, tribo.surface])
+def test_annotations_resolve(module):
+    # typing.get_type_hints() evaluates the string annotations (PEP 563) in the module's
+    # namespace: every name they use must be bound there (it raised NameError when the
+    # typing names were imported for type checkers only).
+    import inspect
+    import typing
+
+    checked = 0
+    for name in module.__all__:
+        obj = getattr(module, name)
+        if isinstance(obj, types.ModuleType):
+            continue
+        members = [obj]
+        if inspect.isclass(obj):
+            members += [m for k, m in vars(obj).items()
+                        if inspect.isfunction(m) and not k.startswith("_")]
+            members += [p.fget for p in vars(obj).values() if isinstance(p, property)]
+        for m in members:
+            if inspect.isfunction(m) or inspect.isclass(m):
+                typing.get_type_hints(m)
+                checked += 1
+    assert checked > 0
 
 
 def test_study_stub_covers_the_bindings():
