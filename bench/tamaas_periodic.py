@@ -2,6 +2,7 @@
 """Periodic normal contact of a self-affine rough surface solved with tamaas (issue 16's benchmark).
 
 Usage: tamaas_periodic.py --n N [--tolerance T] [--seed S] [--surface-out STEM] [--pressure-out FILE]
+       tamaas_periodic.py --n N --surface-only --surface-out STEM [--seed S]   (no solve)
 
 Prints one JSON line: n, seconds (solve only), setup_seconds, iterations, tamaas_error,
 mean_pressure, contact_fraction, max_pressure, peak_rss_bytes, and the surface's statistics.
@@ -70,11 +71,16 @@ def rms_slope(h: np.ndarray) -> float:
     return float(np.sqrt(np.mean(gx**2 + gy**2)))
 
 
+def write_surface(surface: np.ndarray, stem: str) -> None:
+    """STEM.npy ([ix, iy]) and STEM.bin (little-endian f64, x fastest: index iy * n + ix)."""
+    np.save(stem + ".npy", surface)
+    surface.T.astype("<f8").tofile(stem + ".bin")
+
+
 def run(n: int, tolerance: float, seed: int, surface_out: str | None, pressure_out: str | None) -> dict:
     surface = self_affine_surface(n, seed)
     if surface_out:
-        np.save(surface_out + ".npy", surface)
-        surface.T.astype("<f8").tofile(surface_out + ".bin")  # x fastest: index iy * n + ix
+        write_surface(surface, surface_out)
 
     t0 = time.perf_counter()
     model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [1.0, 1.0], [n, n])
@@ -142,9 +148,19 @@ def main() -> int:
     ap.add_argument("--seed", type=int, default=16)
     ap.add_argument("--surface-out", metavar="STEM", help="write the surface to STEM.npy and STEM.bin")
     ap.add_argument("--pressure-out", metavar="FILE", help="write the pressure (f64 LE, x fastest)")
+    ap.add_argument(
+        "--surface-only", action="store_true", help="write the surface (--surface-out) and exit without solving"
+    )
     args = ap.parse_args()
     if args.n < 16 or args.n % 2:
         ap.error("--n must be even and >= 16")
+    if args.surface_only:
+        if not args.surface_out:
+            ap.error("--surface-only needs --surface-out")
+        surface = self_affine_surface(args.n, args.seed)
+        write_surface(surface, args.surface_out)
+        print(json.dumps({"code": "surface", "n": args.n, "seed": args.seed, "rms_slope": rms_slope(surface)}))
+        return 0
     tm.set_log_level(tm.LogLevel.error)
     out = run(args.n, args.tolerance, args.seed, args.surface_out, args.pressure_out)
     print(json.dumps(out))

@@ -54,6 +54,10 @@ pub mod rough;
 pub use rough::rough_rows;
 pub mod periodic;
 pub use periodic::periodic_rows;
+pub mod tamaas;
+pub use tamaas::tamaas_rows;
+pub mod rough_area;
+pub use rough_area::rough_area_rows;
 
 /// How a row's error is measured.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -2221,5 +2225,7 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(prob_damage_rows()?);
     rows.extend(rough_rows()?);
     rows.extend(periodic_rows()?);
+    rows.extend(tamaas_rows()?);
+    rows.extend(rough_area_rows()?);
     Ok(rows)
 }
