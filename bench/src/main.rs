@@ -1,4 +1,4 @@
-//! `tribo-bench --n N [--tolerance T] [--max-iterations M] [--pressure-out FILE] [--one-call] [--repeat R] [--no-coarse-start]`
+//! `tribo-bench --n N [--tolerance T] [--max-iterations M] [--pressure-out FILE] [--one-call] [--repeat R] [--no-coarse-start] [--no-preconditioner] [--periodic-surface FILE [--compare-pressure FILE]]`
 //!
 //! Solves the paper's half-space case (docs/theory/HALFSPACE.md section 4) once with tribo's
 //! Polonsky-Keer solver and prints one line of JSON. `seconds` is the iteration
@@ -20,16 +20,28 @@
 //! h = 50 x^2 + 60 y^2 (1/m); F_N = 2000 N under force control; window |x|, |y| <= 1.5 a with
 //! a = 5.2964e-4 m (Hertz long semi-axis), N x N square elements. eps_avg is the paper's
 //! eq. (17): the mean over all N^2 elements of |p_H - p| / p0, p_H the Hertz pressure at the
-//! element centres.
+//! element centres. `--no-preconditioner`: Polonsky & Keer's unpreconditioned iteration
+//! (`NormalContactParams::preconditioned` off).
+//!
+//! `--periodic-surface FILE` (N*N little-endian f64, x fastest, from
+//! `bench/tamaas_periodic.py --surface-out`): issue 16's periodic case instead, tamaas's
+//! setup: a unit square period, E* = 1, the rigid surface h (apex up, initial gap -h), mean
+//! pressure 0.1 E* (force 0.1), the spectral periodic kernel (tamaas's), tolerance 1e-10;
+//! `--compare-pressure FILE` (tamaas's pressure, `tamaas_periodic.py --pressure-out`):
+//! `max_pressure_difference`, max |p_tribo - p_tamaas| / max p_tamaas.
 
 use std::process::ExitCode;
 use std::time::Instant;
 
 use serde_json::{json, Value};
 use tribo::kernels::hertz::{GapCurvature, HertzContact};
+use tribo::kernels::periodic::PeriodicKernel;
 use tribo::solvers::normal::coarse::coarse_grid_start;
-use tribo::solvers::normal::normal_compliance_operator;
-use tribo::solvers::{solve_normal, NormalContactParams, NormalContactProblem, NormalLoading};
+use tribo::solvers::normal::{normal_compliance_operator, normal_compliance_operator_periodic};
+use tribo::solvers::{
+    solve_normal, NormalContactParams, NormalContactProblem, NormalContactSolution, NormalLoading,
+    SolveResult,
+};
 use tribo::{composite_modulus, ElasticMaterial, SurfaceGrid};
 
 const YOUNGS_MODULUS: f64 = 2.01e11;
@@ -46,7 +58,7 @@ const E_STAR: f64 = 1.10440e11;
 const EXTENT: f64 = 1.5;
 
 const USAGE: &str =
-    "usage: tribo-bench --n N [--tolerance T] [--max-iterations M] [--pressure-out FILE] [--one-call] [--repeat R] [--no-coarse-start]";
+    "usage: tribo-bench --n N [--tolerance T] [--max-iterations M] [--pressure-out FILE] [--one-call] [--repeat R] [--no-coarse-start] [--no-preconditioner] [--periodic-surface FILE [--compare-pressure FILE]]";
 
 struct Args {
     n: usize,
@@ -56,6 +68,9 @@ struct Args {
     one_call: bool,
     repeat: usize,
     coarse_start: bool,
+    preconditioned: bool,
+    periodic_surface: Option<String>,
+    compare_pressure: Option<String>,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -66,6 +81,9 @@ fn parse_args() -> Result<Args, String> {
     let mut one_call = false;
     let mut repeat = 1;
     let mut coarse_start = true;
+    let mut preconditioned = true;
+    let mut periodic_surface = None;
+    let mut compare_pressure = None;
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
         let (key, inline) = match arg.split_once('=') {
@@ -77,6 +95,10 @@ fn parse_args() -> Result<Args, String> {
         }
         if key == "--no-coarse-start" {
             coarse_start = false;
+            continue;
+        }
+        if key == "--no-preconditioner" {
+            preconditioned = false;
             continue;
         }
         if key == "--one-call" {
@@ -108,6 +130,8 @@ fn parse_args() -> Result<Args, String> {
                 )
             }
             "--pressure-out" => pressure_out = Some(value()?),
+            "--periodic-surface" => periodic_surface = Some(value()?),
+            "--compare-pressure" => compare_pressure = Some(value()?),
             "--repeat" => {
                 repeat = value()?
                     .parse::<usize>()
@@ -128,6 +152,9 @@ fn parse_args() -> Result<Args, String> {
         one_call,
         repeat,
         coarse_start,
+        preconditioned,
+        periodic_surface,
+        compare_pressure,
     })
 }
 
@@ -221,6 +248,7 @@ fn run(args: &Args) -> Result<Value, String> {
         params.max_iterations = m;
     }
     params.coarse_start = args.coarse_start;
+    params.preconditioned = args.preconditioned;
     let problem = NormalContactProblem {
         grid: &grid,
         initial_gap: &gap,
@@ -248,16 +276,7 @@ fn run(args: &Args) -> Result<Value, String> {
             let t = Instant::now();
             let operator = normal_compliance_operator(&grid, e_star);
             let operator_seconds = t.elapsed().as_secs_f64();
-            // `--repeat R`: R solves, the medians of their wall and CPU times.
-            let (mut walls, mut cpus) = (Vec::new(), Vec::new());
-            let mut solved = None;
-            for _ in 0..args.repeat {
-                let (t, c) = (Instant::now(), cpu());
-                solved = Some(solve_normal(&problem, &params, Some(&operator), None));
-                walls.push(t.elapsed().as_secs_f64());
-                cpus.push(cpu() - c);
-            }
-            let solved = solved.ok_or("--repeat must be >= 1")?;
+            let (walls, cpus, solved) = repeated_solves(&problem, &params, &operator, args.repeat)?;
             // One operator application (the FFT convolution, one forward and one inverse
             // transform of the padded field), mean of a few, after the solve.
             let mut workspace = operator.workspace();
@@ -351,6 +370,7 @@ fn run(args: &Args) -> Result<Value, String> {
         "threads": rayon_threads(),
         "iterations": sol.iterations,
         "coarse_start": args.coarse_start,
+        "preconditioned": args.preconditioned,
         "coarse_iterations": coarse_levels,
         "residual": sol.residual,
         "common_residual": common_residual,
@@ -366,6 +386,123 @@ fn run(args: &Args) -> Result<Value, String> {
     }))
 }
 
+/// Wall seconds and CPU seconds of each solve, and the last solve's result.
+type Timed = (Vec<f64>, Vec<f64>, SolveResult<NormalContactSolution>);
+
+/// `--repeat R`: R solves on a prebuilt operator, their wall and CPU times, the last result.
+fn repeated_solves(
+    problem: &NormalContactProblem<'_>,
+    params: &NormalContactParams,
+    operator: &tribo::operators::ConvolutionOperator,
+    repeat: usize,
+) -> Result<Timed, String> {
+    let cpu = || cpu_seconds().unwrap_or(f64::NAN);
+    let (mut walls, mut cpus) = (Vec::new(), Vec::new());
+    let mut solved = None;
+    for _ in 0..repeat {
+        let (t, c) = (Instant::now(), cpu());
+        solved = Some(solve_normal(problem, params, Some(operator), None));
+        walls.push(t.elapsed().as_secs_f64());
+        cpus.push(cpu() - c);
+    }
+    Ok((walls, cpus, solved.ok_or("--repeat must be >= 1")?))
+}
+
+/// Read `n * n` little-endian f64 values.
+fn read_field(path: &str, n: usize) -> Result<Vec<f64>, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{path}: {e}"))?;
+    if bytes.len() != 8 * n * n {
+        return Err(format!(
+            "{path}: {} bytes, expected {} (N = {n})",
+            bytes.len(),
+            8 * n * n
+        ));
+    }
+    Ok(bytes
+        .chunks_exact(8)
+        .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
+        .collect())
+}
+
+/// Issue 16's periodic case (module docs) on the surface of `--periodic-surface`.
+fn run_periodic(args: &Args) -> Result<Value, String> {
+    let n = args.n;
+    let surface = read_field(args.periodic_surface.as_deref().unwrap_or_default(), n)?;
+    let grid = SurfaceGrid::centred(n, n, 0.5, 0.5).map_err(|e| e.to_string())?;
+    let gap: Vec<f64> = surface.iter().map(|h| -h).collect();
+    let defaults = NormalContactParams::default();
+    let params = NormalContactParams {
+        tolerance: args.tolerance.unwrap_or(1e-10),
+        max_iterations: args.max_iterations.unwrap_or(defaults.max_iterations),
+        coarse_start: args.coarse_start,
+        preconditioned: args.preconditioned,
+        ..defaults
+    };
+    let e_star = 1.0;
+    let problem = NormalContactProblem {
+        grid: &grid,
+        initial_gap: &gap,
+        composite_modulus: e_star,
+        loading: NormalLoading::Force(0.1),
+    };
+    let cpu = || cpu_seconds().unwrap_or(f64::NAN);
+    let t = Instant::now();
+    let operator = normal_compliance_operator_periodic(&grid, e_star, PeriodicKernel::Spectral);
+    let operator_seconds = t.elapsed().as_secs_f64();
+    let (walls, cpus, solved) = repeated_solves(&problem, &params, &operator, args.repeat)?;
+    let seconds = median(&walls);
+    let sol = solved.map_err(|e| format!("solve_normal failed after {seconds:.3} s: {e}"))?;
+    // One FFT pair (one operator application), mean of 10, after the solve.
+    let mut workspace = operator.workspace();
+    let mut out = vec![0.0; grid.len()];
+    let (t, c) = (Instant::now(), cpu());
+    for _ in 0..10 {
+        operator.apply_into(&sol.pressure, &mut out, &mut workspace);
+    }
+    let apply_seconds = t.elapsed().as_secs_f64() / 10.0;
+    let apply_cpu_seconds = (cpu() - c) / 10.0;
+    let max_pressure = sol.max_pressure();
+    let max_pressure_difference = match &args.compare_pressure {
+        Some(path) => {
+            let reference = read_field(path, n)?;
+            let p_ref = reference.iter().fold(0.0f64, |m, &p| m.max(p));
+            let d = sol
+                .pressure
+                .iter()
+                .zip(&reference)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            json!(d / p_ref)
+        }
+        None => Value::Null,
+    };
+    if let Some(path) = &args.pressure_out {
+        let bytes: Vec<u8> = sol.pressure.iter().flat_map(|p| p.to_le_bytes()).collect();
+        std::fs::write(path, bytes).map_err(|e| format!("{path}: {e}"))?;
+    }
+    Ok(json!({
+        "code": "tribo-periodic",
+        "version": env!("CARGO_PKG_VERSION"),
+        "n": n,
+        "tolerance": params.tolerance,
+        "seconds": seconds,
+        "cpu_seconds": median(&cpus),
+        "operator_seconds": operator_seconds,
+        "apply_seconds": apply_seconds,
+        "apply_cpu_seconds": apply_cpu_seconds,
+        "repeat": args.repeat,
+        "threads": rayon_threads(),
+        "iterations": sol.iterations,
+        "coarse_start": args.coarse_start,
+        "preconditioned": args.preconditioned,
+        "residual": sol.residual,
+        "mean_pressure": sol.normal_load,
+        "max_pressure": max_pressure,
+        "contact_fraction": sol.contact_elements as f64 / grid.len() as f64,
+        "max_pressure_difference": max_pressure_difference,
+        "peak_rss_bytes": peak_rss_bytes(),
+    }))
+}
+
 fn main() -> ExitCode {
     let args = match parse_args() {
         Ok(a) => a,
@@ -374,7 +511,11 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    match run(&args) {
+    let result = match args.periodic_surface {
+        Some(_) => run_periodic(&args),
+        None => run(&args),
+    };
+    match result {
         Ok(v) => {
             println!("{v}");
             ExitCode::SUCCESS

@@ -72,8 +72,11 @@ pub fn human(bytes: u64) -> String {
 pub fn half_space(case: &HalfSpaceCase) -> Estimate {
     let elements = (case.n[0] as f64) * (case.n[1] as f64);
     // Measured: 10.4 MiB at 21 x 21, 11.1 MiB at 64 x 64, 14.8 MiB at 128 x 128 (normal
-    // contact with all outputs): ~280 B per element above a 10.4 MiB base.
-    let per_element = 400.0;
+    // contact with all outputs): ~280 B per element above a 10.4 MiB base. Plus the normal
+    // solver's Fourier preconditioner (crates/tribo/src/solvers/normal/preconditioner.rs):
+    // an unpadded periodic operator (its spectrum, 4 B, and kernel table, 8 B per element),
+    // its workspace (24 B) and the preconditioned residual (8 B): ~48 B per element.
+    let per_element = 400.0 + 48.0;
     let tangential = if case.friction.is_some() {
         800.0 * elements
     } else {

@@ -31,6 +31,9 @@ use crate::solvers::{nan_max, SolveError, SolveResult};
 
 pub mod coarse;
 mod passes;
+pub mod preconditioner;
+
+pub use preconditioner::normal_preconditioner;
 
 /// How the normal contact is loaded.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -90,9 +93,16 @@ pub struct NormalContactParams {
     /// are even: the same solution to the tolerance in fewer fine iterations. Default on.
     #[serde(default = "coarse_start_default")]
     pub coarse_start: bool,
+    /// Precondition the conjugate gradient with the Fourier approximation of the inverse
+    /// operator, restricted to the contact set ([`normal_preconditioner`]; Vollebregt 2014):
+    /// iterations that grow slowly with the grid instead of like its side, at one extra
+    /// N-point FFT pair per iteration. The same solution to the tolerance. Default on.
+    #[serde(default = "coarse_start_default")]
+    pub preconditioned: bool,
 }
 
-/// Serde's default of [`NormalContactParams::coarse_start`].
+/// Serde's default of [`NormalContactParams::coarse_start`] and
+/// [`NormalContactParams::preconditioned`].
 fn coarse_start_default() -> bool {
     true
 }
@@ -104,6 +114,7 @@ impl Default for NormalContactParams {
             max_iterations: 10_000,
             method: NormalMethod::ConjugateGradient,
             coarse_start: true,
+            preconditioned: true,
         }
     }
 }
@@ -148,6 +159,14 @@ impl NormalContactParams {
     pub fn with_coarse_start(self, coarse_start: bool) -> Self {
         Self {
             coarse_start,
+            ..self
+        }
+    }
+
+    /// These parameters with the Fourier preconditioner on or off.
+    pub fn with_preconditioned(self, preconditioned: bool) -> Self {
+        Self {
+            preconditioned,
             ..self
         }
     }
@@ -509,14 +528,30 @@ pub fn solve_normal_from(
             };
             // The coarse-grid start where the caller gives no start of its own.
             let coarse = match initial_pressure {
-                None if params.coarse_start => coarse::coarse_grid_start(problem, params),
+                None if params.coarse_start => coarse::coarse_grid_start_on(
+                    problem,
+                    params,
+                    periodic_kernel_of(operator, problem),
+                ),
                 _ => None,
             };
             let initial_pressure = initial_pressure.or(coarse.as_ref().map(|(p, _)| &p[..]));
             let mut workspace = operator.workspace();
+            let preconditioner = params
+                .preconditioned
+                .then(|| normal_preconditioner(operator, problem.composite_modulus));
+            // A periodic operator's workspace fits its preconditioner (the same N-point
+            // transforms): shared. The padded operator's does not: a second, smaller one.
+            let mut preconditioner_workspace = preconditioner
+                .as_ref()
+                .filter(|_| !operator.is_periodic())
+                .map(ConvolutionOperator::workspace);
             conjugate_gradient(
                 operator,
                 &mut workspace,
+                preconditioner
+                    .as_ref()
+                    .map(|m| (m, preconditioner_workspace.as_mut())),
                 problem.initial_gap,
                 problem.loading,
                 initial_pressure,
@@ -561,6 +596,29 @@ fn refuse_on_periodic(
     Ok(())
 }
 
+/// The kernel of a periodic normal compliance operator of the problem's E*: the one whose
+/// coefficient at the first x frequency is `2/E*` times its multiplier (computed the same way,
+/// so equal to round-off); `None` for a non-periodic operator or one of neither kernel.
+fn periodic_kernel_of(
+    operator: &ConvolutionOperator,
+    problem: &NormalContactProblem<'_>,
+) -> Option<PeriodicKernel> {
+    let coefficient = operator.periodic_coefficient(1, 0)?;
+    [PeriodicKernel::ElementIntegrated, PeriodicKernel::Spectral]
+        .into_iter()
+        .find(|&kernel| {
+            let expected = 2.0 / problem.composite_modulus
+                * crate::kernels::periodic::multiplier_at(
+                    problem.grid,
+                    kernel,
+                    Multiplier::InverseNorm,
+                    1,
+                    0,
+                );
+            (coefficient.re - expected).abs() <= 1e-12 * expected.abs() && coefficient.im == 0.0
+        })
+}
+
 /// A caller-built operator must be the problem's: same grid, and the diagonal of
 /// [`normal_compliance_kernel`] for the problem's E* (computed the same way, so equal
 /// exactly).
@@ -578,20 +636,7 @@ fn check_operator(
     if let Some(coefficient) = operator.periodic_coefficient(1, 0) {
         // A periodic operator: its coefficient at the first x frequency must be 2/E* times
         // one of the two kernels' multipliers (computed the same way, so equal to round-off).
-        let matches = [PeriodicKernel::ElementIntegrated, PeriodicKernel::Spectral]
-            .iter()
-            .any(|&kernel| {
-                let expected = 2.0 / problem.composite_modulus
-                    * crate::kernels::periodic::multiplier_at(
-                        problem.grid,
-                        kernel,
-                        Multiplier::InverseNorm,
-                        1,
-                        0,
-                    );
-                (coefficient.re - expected).abs() <= 1e-12 * expected.abs() && coefficient.im == 0.0
-            });
-        if !matches {
+        if periodic_kernel_of(operator, problem).is_none() {
             return Err(Error::invalid(
                 "operator",
                 format!("periodic coefficient {:e} m/Pa", coefficient.re),
@@ -625,15 +670,23 @@ fn check_operator(
 /// `I_c` with negative gap re-enter the contact set, and the conjugate direction is reset
 /// when they do. Under approach control the gap includes the prescribed approach and no
 /// rescaling is done. Convergence: [`complementarity_residual`] <= `params.tolerance`.
+/// With a `preconditioner` (M, [`normal_preconditioner`], with its own workspace or `None`
+/// to share the operator's), the direction is built from `z = M r` instead of the gap
+/// (docs/theory/HALFSPACE.md 2.3); without one the iteration is Polonsky & Keer's exactly.
 ///
 /// Longer than 150 lines on purpose: the iteration is one loop whose state (pressure, gap,
 /// conjugate direction and its reset on re-entry, the previous norm, the approach, the
 /// incremental displacement with its sparse corrections and periodic refresh) every phase
 /// of an iteration reads and updates; split into functions each would take most of that
 /// state, hiding the order of Polonsky & Keer's steps that the loop shows in one place.
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the solver's state, one call site"
+)]
 fn conjugate_gradient(
     operator: &ConvolutionOperator,
     workspace: &mut ConvolutionWorkspace,
+    mut preconditioner: Option<(&ConvolutionOperator, Option<&mut ConvolutionWorkspace>)>,
     initial_gap: &[f64],
     loading: NormalLoading,
     initial_pressure: Option<&[f64]>,
@@ -669,6 +722,12 @@ fn conjugate_gradient(
     let mut gap = vec![0.0; n];
     let mut direction = vec![0.0; n];
     let mut response = vec![0.0; n];
+    // The preconditioned residual z (Pa), only with a preconditioner.
+    let mut preconditioned = if preconditioner.is_some() {
+        vec![0.0; n]
+    } else {
+        Vec::new()
+    };
     let mut norm_old = 1.0;
     let mut conjugate = false;
     let mut residual;
@@ -729,9 +788,46 @@ fn conjugate_gradient(
         iteration += 1;
 
         // Conjugate direction on the contact set.
-        let beta = if conjugate { norm / norm_old } else { 0.0 };
-        let (num, direction_sum) = passes::direction_sweep(&mut direction, &gap, &pressure, beta);
-        norm_old = norm;
+        let (num, direction_sum) = match preconditioner.as_mut() {
+            None => {
+                let beta = if conjugate { norm / norm_old } else { 0.0 };
+                norm_old = norm;
+                passes::direction_sweep(&mut direction, &gap, &pressure, beta)
+            }
+            Some((m, m_workspace)) => {
+                // z = M r, r the gap on the contact set and its negative part where points
+                // overlap outside it (`response` is free until K t below); under force
+                // control z's mean over the contact set is removed (the load is kept), and
+                // the norm is r.z on the contact set (Vollebregt 2014; docs/theory/HALFSPACE.md 2.3).
+                passes::masked_residual_sweep(&gap, &pressure, &mut response);
+                let m_workspace = match m_workspace {
+                    Some(w) => &mut **w,
+                    None => &mut *workspace,
+                };
+                m.apply_into(&response, &mut preconditioned, m_workspace);
+                let (z_sum, gz, g_sum) =
+                    passes::preconditioned_sums(&preconditioned, &gap, &pressure);
+                let z_mean = match loading {
+                    NormalLoading::Force(_) => z_sum / n_contact as f64,
+                    NormalLoading::Approach(_) => 0.0,
+                };
+                let norm = gz - z_mean * g_sum;
+                let beta = if conjugate && norm_old > 0.0 && norm > 0.0 {
+                    norm / norm_old
+                } else {
+                    0.0
+                };
+                norm_old = norm;
+                passes::preconditioned_direction_sweep(
+                    &mut direction,
+                    &preconditioned,
+                    z_mean,
+                    &gap,
+                    &pressure,
+                    beta,
+                )
+            }
+        };
 
         operator.apply_into(&direction, &mut response, workspace);
         // Under force control the response is taken relative to its mean over the contact
@@ -755,10 +851,16 @@ fn conjugate_gradient(
 
         // Step, projection onto p >= 0, re-entry of overlapping points; the corrections
         // record where the new pressure departs from the linear step p - step t.
+        let reentry = if preconditioner.is_some() {
+            &preconditioned
+        } else {
+            &gap
+        };
         let moved = passes::step_sweep(
             &mut pressure,
             &direction,
             &gap,
+            reentry,
             step,
             MAX_SPARSE_CORRECTIONS,
         );

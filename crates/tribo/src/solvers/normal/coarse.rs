@@ -14,9 +14,11 @@
 //! solution is the same to the tolerance whatever the start (tested).
 
 use super::{
-    normal_compliance_operator, solve_normal_from, NormalContactParams, NormalContactProblem,
+    normal_compliance_operator, normal_compliance_operator_periodic, solve_normal_from,
+    NormalContactParams, NormalContactProblem,
 };
 use crate::grid::SurfaceGrid;
+use crate::kernels::periodic::PeriodicKernel;
 
 /// The smallest coarse grid side: below ~64 elements across the window the contact area of
 /// a concentrated contact spans a few elements and the coarse solution says little about
@@ -42,6 +44,18 @@ pub type CoarseStart = (Vec<f64>, Vec<(usize, usize)>);
 pub fn coarse_grid_start(
     problem: &NormalContactProblem<'_>,
     params: &NormalContactParams,
+) -> Option<CoarseStart> {
+    coarse_grid_start_on(problem, params, None)
+}
+
+/// [`coarse_grid_start`] for the non-periodic operator (`periodic` = `None`) or the
+/// periodic one of the given kernel ([`normal_compliance_operator_periodic`]): the coarse
+/// grid has the same window, so on a periodic grid the same period, and the coarse
+/// problems are solved on the same kind of operator as the fine one.
+pub fn coarse_grid_start_on(
+    problem: &NormalContactProblem<'_>,
+    params: &NormalContactParams,
+    periodic: Option<PeriodicKernel>,
 ) -> Option<CoarseStart> {
     let grid = problem.grid;
     let (nx, ny) = (grid.nx(), grid.ny());
@@ -75,11 +89,17 @@ pub fn coarse_grid_start(
         ..*params
     };
     // The next level down first (recursion depth log2(n / MIN_COARSE_SIDE)).
-    let (start, mut levels) = match coarse_grid_start(&coarse_problem, &coarse_params) {
+    let (start, mut levels) = match coarse_grid_start_on(&coarse_problem, &coarse_params, periodic)
+    {
         Some((p, levels)) => (Some(p), levels),
         None => (None, Vec::new()),
     };
-    let operator = normal_compliance_operator(&coarse_grid, problem.composite_modulus);
+    let operator = match periodic {
+        None => normal_compliance_operator(&coarse_grid, problem.composite_modulus),
+        Some(kernel) => {
+            normal_compliance_operator_periodic(&coarse_grid, problem.composite_modulus, kernel)
+        }
+    };
     let solution = solve_normal_from(
         &coarse_problem,
         &coarse_params,

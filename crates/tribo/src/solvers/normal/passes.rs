@@ -175,6 +175,80 @@ pub(super) fn response_sweep(response: &[f64], direction: &[f64], pressure: &[f6
         .fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
 }
 
+/// The residual the preconditioner acts on: the gap on the contact set, its negative part
+/// outside it (the points that overlap and re-enter), 0 elsewhere.
+pub(super) fn masked_residual_sweep(gap: &[f64], pressure: &[f64], residual: &mut [f64]) {
+    residual
+        .par_chunks_mut(CHUNK)
+        .zip(gap.par_chunks(CHUNK))
+        .zip(pressure.par_chunks(CHUNK))
+        .for_each(|((r, g), p)| {
+            for i in 0..r.len() {
+                r[i] = if p[i] > 0.0 { g[i] } else { g[i].min(0.0) };
+            }
+        });
+}
+
+/// `(sum z, sum g z, sum g)` over the contact set, `z` the preconditioned residual.
+pub(super) fn preconditioned_sums(
+    preconditioned: &[f64],
+    gap: &[f64],
+    pressure: &[f64],
+) -> (f64, f64, f64) {
+    let parts: Vec<(f64, f64, f64)> = preconditioned
+        .par_chunks(CHUNK)
+        .zip(gap.par_chunks(CHUNK))
+        .zip(pressure.par_chunks(CHUNK))
+        .map(|((z, g), p)| {
+            let (mut zs, mut gz, mut gs) = (0.0, 0.0, 0.0);
+            for i in 0..z.len() {
+                if p[i] > 0.0 {
+                    zs += z[i];
+                    gz += g[i] * z[i];
+                    gs += g[i];
+                }
+            }
+            (zs, gz, gs)
+        })
+        .collect();
+    parts
+        .into_iter()
+        .fold((0.0, 0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2))
+}
+
+/// The preconditioned conjugate direction `t = (z - z_mean) + beta t` on the contact set
+/// (0 elsewhere), returning `(sum g t, sum t)` over the contact set.
+pub(super) fn preconditioned_direction_sweep(
+    direction: &mut [f64],
+    preconditioned: &[f64],
+    z_mean: f64,
+    gap: &[f64],
+    pressure: &[f64],
+    beta: f64,
+) -> (f64, f64) {
+    let parts: Vec<(f64, f64)> = direction
+        .par_chunks_mut(CHUNK)
+        .zip(preconditioned.par_chunks(CHUNK))
+        .zip(gap.par_chunks(CHUNK).zip(pressure.par_chunks(CHUNK)))
+        .map(|((t, z), (g, p))| {
+            let (mut gt, mut ts) = (0.0, 0.0);
+            for i in 0..t.len() {
+                if p[i] > 0.0 {
+                    t[i] = (z[i] - z_mean) + beta * t[i];
+                    gt += g[i] * t[i];
+                    ts += t[i];
+                } else {
+                    t[i] = 0.0;
+                }
+            }
+            (gt, ts)
+        })
+        .collect();
+    parts
+        .into_iter()
+        .fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
+}
+
 /// What the step sweep returns.
 #[derive(Debug, Default)]
 pub(super) struct StepStats {
@@ -190,20 +264,23 @@ pub(super) struct StepStats {
 }
 
 /// Polonsky & Keer's step: `p <- p - step t` on the contact set, projected onto p >= 0;
-/// points outside it with negative gap re-enter with `p = -step g`.
+/// points outside it with negative gap re-enter with `p = -step e` where that is positive,
+/// `e` the re-entry field: the gap itself in Polonsky & Keer's method (`p = -step g`), the
+/// preconditioned residual in the preconditioned one (so that `step e` is a pressure).
 pub(super) fn step_sweep(
     pressure: &mut [f64],
     direction: &[f64],
     gap: &[f64],
+    reentry: &[f64],
     step: f64,
     max_corrections: usize,
 ) -> StepStats {
     let parts: Vec<StepStats> = pressure
         .par_chunks_mut(CHUNK)
         .zip(direction.par_chunks(CHUNK))
-        .zip(gap.par_chunks(CHUNK))
+        .zip(gap.par_chunks(CHUNK).zip(reentry.par_chunks(CHUNK)))
         .enumerate()
-        .map(|(chunk, ((p, t), g))| {
+        .map(|(chunk, ((p, t), (g, e)))| {
             let mut s = StepStats::default();
             let offset = chunk * CHUNK;
             for i in 0..p.len() {
@@ -218,8 +295,8 @@ pub(super) fn step_sweep(
                     } else {
                         p[i] = v;
                     }
-                } else if g[i] < 0.0 {
-                    p[i] = -step * g[i];
+                } else if g[i] < 0.0 && -step * e[i] > 0.0 {
+                    p[i] = -step * e[i];
                     s.overlap = true;
                     s.changes += 1;
                     if s.corrections.len() <= max_corrections {
