@@ -1,8 +1,10 @@
 //! Rows of the periodic half-space (docs/theory/HALFSPACE.md section 7): Westergaard's
 //! periodic sinusoidal contact (Johnson 1985 sec. 13.2), the bi-sinusoidal surface (full
 //! contact pressure and the small-load Hertz limit; Johnson, Greenwood & Higginson 1985), and
-//! the tangential and coupling operators on uniform and sinusoidal shear. Cheap: grids up to
-//! 511 x 4 and 128^2, about a second in all.
+//! the tangential and coupling operators on uniform and sinusoidal shear, periodic partial
+//! slip of the wavy contact against Ciavarella-Jaeger's superposition, and the periodic
+//! coupled solve of dissimilar materials against a dense solution. Cheap: grids up to
+//! 511 x 4 and 256^2, a few seconds in all.
 
 use std::f64::consts::PI;
 
@@ -204,7 +206,8 @@ pub struct PartialSlipCase {
 /// load-parallel partial slip with [`tangential_compliance_operator_periodic`]). In plane
 /// strain the tangential compliance of equal bodies on a mode along x equals the normal one
 /// (`sum_b (1 - nu_b) / (G_b k) = 2 / (E* k)`), so Ciavarella-Jaeger's superposition holds
-/// (Ciavarella 1998, Int. J. Solids Struct. 35:2349; Jaeger): `q = f [p(x; P) - p(x; P_c)]`
+/// (Ciavarella 1998, Int. J. Solids Struct. 35:2349; Jaeger 1998, J. Tribol. 120:677):
+/// `q = f [p(x; P) - p(x; P_c)]`
 /// with the stick zone the contact of the load `P_c = P - Q / f`, here
 /// `sin^2(pi c / lambda) = sin^2(pi a / lambda) / 2`, `c = lambda / 6`, and both pressures
 /// Westergaard's ([`westergaard_pressure`]).
@@ -430,7 +433,7 @@ pub fn periodic_rows() -> Result<Vec<ValidationRow>> {
     // discretization). Measured L1 traction errors 4.8e-3, 2.2e-3, 6.0e-4, 2.7e-4 at 63, 127,
     // 255, 511 elements: square-root edges of p and of the stick zone's pressure, O(h^1.5)
     // as the normal rows (order 1.50 from 127 to 511).
-    let source_cj = "Ciavarella 1998 (IJSS 35:2349) / Jaeger superposition on Westergaard 1939";
+    let source_cj = "Ciavarella 1998 / Jaeger 1998 superposition on Westergaard 1939";
     let coarse = westergaard_partial_slip_case(127, PeriodicKernel::ElementIntegrated)?;
     let fine = westergaard_partial_slip_case(511, PeriodicKernel::ElementIntegrated)?;
     // The stick zone counted in elements: resolution one element, dx / c = 6 / 511 = 1.2 %.
