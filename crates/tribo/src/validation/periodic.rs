@@ -625,6 +625,26 @@ mod tests {
             "{} vs {expected}",
             b.shift
         );
+        // A periodic operator of other bodies or another direction is refused.
+        for wrong in [
+            tangential_compliance_operator_periodic(
+                &grid,
+                &steel,
+                &steel,
+                angle,
+                PeriodicKernel::ElementIntegrated,
+            ),
+            tangential_compliance_operator_periodic(
+                &grid,
+                &steel,
+                &other,
+                angle + 0.5,
+                PeriodicKernel::Spectral,
+            ),
+        ] {
+            let err = solve_tangential(&problem, &params, Some(&wrong), None).unwrap_err();
+            assert!(err.kind.to_string().contains("operator"), "{}", err.kind);
+        }
         // Full sliding on the periodic grid: q = f p along the load, exactly.
         let sliding = solve_tangential(
             &TangentialProblem {
