@@ -1634,6 +1634,10 @@ pub struct CoupledDenseCheck {
     pub dense_normal_load: f64,
     /// Tangential force of the dense solution, N (150 N applied to the alternation).
     pub dense_tangential_force: f64,
+    /// Normal force applied to the alternation, N.
+    pub normal_load: f64,
+    /// Tangential force applied to the alternation, N.
+    pub tangential_force: f64,
 }
 
 /// Independent check of the coupled normal-tangential solution of dissimilar materials
@@ -1667,35 +1671,88 @@ pub fn coupled_free_dense_check() -> Result<CoupledDenseCheck> {
     coupled_dense(crate::solvers::coupled::TangentialModel::Free)
 }
 
+/// [`coupled_dense_check`] on a periodic grid (issue 16): the wavy surface
+/// `Delta (1 - cos(2 pi x / lambda) cos(2 pi y / lambda))` (lambda = 1 mm, Delta = 1 um, one
+/// period on 16 x 16 elements) of steel on aluminium at the mean pressure 0.3 p*
+/// (`p* = sqrt(2) pi E* Delta / lambda`, two contact patches per period), f = 0.3,
+/// Q = 0.5 f P along x, by [`crate::solvers::coupled::solve_coupled_periodic`] with the
+/// spectral kernel, traction parallel to Q (`free = false`) or free. The dense matrices are
+/// the circulant periodic kernels written out by a direct inverse DFT of the Boussinesq and
+/// Cerruti compliances of each body in Fourier space (docs/theory/HALFSPACE.md 7.1; not the
+/// FFT operators nor their multiplier tables), solved by the same projected Gauss-Seidel at
+/// the approach (the mean gap measured from the mean plane) and shift the alternation
+/// reports. Expected agreement: 1e-6 of p_max, as [`coupled_dense_check`].
+pub fn periodic_coupled_dense_check(free: bool) -> Result<CoupledDenseCheck> {
+    use crate::solvers::coupled::TangentialModel;
+    coupled_dense_case(
+        if free {
+            TangentialModel::Free
+        } else {
+            TangentialModel::LoadParallel
+        },
+        true,
+    )
+}
+
 /// [`coupled_dense_check`] and [`coupled_free_dense_check`]: the alternation, the dense
 /// matrices, the shift W, the dense projected Gauss-Seidel, the comparison.
 fn coupled_dense(model: crate::solvers::coupled::TangentialModel) -> Result<CoupledDenseCheck> {
-    use crate::solvers::coupled::{solve_coupled, CoupledParams, CoupledProblem, TangentialModel};
+    coupled_dense_case(model, false)
+}
+
+/// [`coupled_dense`] for the sphere (`periodic = false`) or the periodic wavy surface of
+/// [`periodic_coupled_dense_check`].
+fn coupled_dense_case(
+    model: crate::solvers::coupled::TangentialModel,
+    periodic: bool,
+) -> Result<CoupledDenseCheck> {
+    use crate::kernels::periodic::PeriodicKernel;
+    use crate::solvers::coupled::{
+        solve_coupled, solve_coupled_periodic, CoupledParams, CoupledProblem, TangentialModel,
+    };
     let steel = ElasticMaterial::new(2.1e11, 0.3)?;
     let aluminium = ElasticMaterial::new(7.0e10, 0.33)?;
     let e_star = composite_modulus(&steel, &aluminium);
-    let a = (3.0 * 1000.0 * 0.01 / (4.0 * e_star)).cbrt();
-    let n_side = 20;
-    let grid = SurfaceGrid::centred(n_side, n_side, 1.3 * a, 1.3 * a)?;
-    let gap0 = grid.sample(|x, y| (x * x + y * y) / 0.02);
     let friction = 0.3;
-    let coupled = solve_coupled(
-        &CoupledProblem {
-            grid: &grid,
-            initial_gap: &gap0,
-            body1: steel,
-            body2: aluminium,
-            normal_loading: NormalLoading::Force(1000.0),
-            tangential_loading: TangentialLoading::Force {
-                magnitude: 150.0,
-                angle: 0.0,
-            },
-            friction,
+    let (grid, n_side, gap0, normal_force) = if periodic {
+        let (n_side, wavelength, amplitude) = (16, 1.0e-3, 1.0e-6);
+        let grid = SurfaceGrid::centred(n_side, n_side, 0.5 * wavelength, 0.5 * wavelength)?;
+        let q = 2.0 * std::f64::consts::PI / wavelength;
+        let gap0 = grid.sample(|x, y| amplitude * (1.0 - (q * x).cos() * (q * y).cos()));
+        let p_star = 2.0f64.sqrt() * std::f64::consts::PI * e_star * amplitude / wavelength;
+        (grid, n_side, gap0, 0.3 * p_star * wavelength * wavelength)
+    } else {
+        let a = (3.0 * 1000.0 * 0.01 / (4.0 * e_star)).cbrt();
+        let n_side = 20;
+        let grid = SurfaceGrid::centred(n_side, n_side, 1.3 * a, 1.3 * a)?;
+        let gap0 = grid.sample(|x, y| (x * x + y * y) / 0.02);
+        (grid, n_side, gap0, 1000.0)
+    };
+    let tangential_force = 0.5 * friction * normal_force;
+    let problem = CoupledProblem {
+        grid: &grid,
+        initial_gap: &gap0,
+        body1: steel,
+        body2: aluminium,
+        normal_loading: NormalLoading::Force(normal_force),
+        tangential_loading: TangentialLoading::Force {
+            magnitude: tangential_force,
+            angle: 0.0,
         },
-        &CoupledParams::new(1e-9, 60, model)?,
-        None,
-    )?;
-    let dense = DenseCoupled::new(&grid, n_side, &steel, &aluminium);
+        friction,
+    };
+    let params = CoupledParams::new(1e-9, 60, model)?;
+    let (coupled, dense) = if periodic {
+        (
+            solve_coupled_periodic(&problem, &params, PeriodicKernel::Spectral, None)?,
+            DenseCoupled::new_periodic_spectral(&grid, &steel, &aluminium),
+        )
+    } else {
+        (
+            solve_coupled(&problem, &params, None)?,
+            DenseCoupled::new(&grid, n_side, &steel, &aluminium),
+        )
+    };
     let n = dense.n;
     let free = model == TangentialModel::Free;
     let solved = [
@@ -1742,6 +1799,8 @@ fn coupled_dense(model: crate::solvers::coupled::TangentialModel) -> Result<Coup
         traction_difference: max_diff(&q[0], &solved[0]).max(max_diff(&q[1], &solved[1])) / p_scale,
         dense_normal_load: p.iter().sum::<f64>() * area,
         dense_tangential_force: q[0].iter().sum::<f64>() * area,
+        normal_load: normal_force,
+        tangential_force,
     })
 }
 
@@ -1802,6 +1861,110 @@ impl DenseCoupled {
             }
         }
         Self { n, c_n, c, k, kq }
+    }
+
+    /// The periodic matrices of the two bodies on `grid` (one period), spectral kernel: each
+    /// circulant kernel `K(d) = (1/N) sum_k K^(k) exp(2 pi i k.d / n)` by a direct sum over
+    /// the signed frequencies (zero mode 0; at a Nyquist bin the mean of +-n/2, which drops
+    /// the parts odd in that direction), from the Fourier-space compliances per body
+    /// (docs/theory/HALFSPACE.md 7.1): `u_z/p = (1 - nu)/(G k)`,
+    /// `u_a/q_b = (delta_ab / k - nu q_a q_b / k^3) / G`, and the coupling
+    /// `u_z/q_b = -2 pi i c q_b / k^2` (c of [`crate::solvers::coupled::coupling_coefficient`]),
+    /// `u_a/p` its negative (reciprocity, odd kernels).
+    fn new_periodic_spectral(
+        grid: &SurfaceGrid,
+        body1: &ElasticMaterial,
+        body2: &ElasticMaterial,
+    ) -> Self {
+        use realfft::num_complex::Complex;
+        let (nx, ny) = (grid.nx(), grid.ny());
+        let n = grid.len();
+        let two_pi = 2.0 * std::f64::consts::PI;
+        let (lx, ly) = (nx as f64 * grid.dx(), ny as f64 * grid.dy());
+        let (mut normal, mut shear, mut cross) = (0.0, 0.0, 0.0);
+        for m in [body1, body2] {
+            normal += (1.0 - m.poisson_ratio()) / m.shear_modulus();
+            shear += 1.0 / m.shear_modulus();
+            cross += m.poisson_ratio() / m.shear_modulus();
+        }
+        let c = crate::solvers::coupled::coupling_coefficient(body1, body2);
+        // The transfer of each kernel at the wavevector (qx, qy): normal, C_xx, C_yy, C_xy,
+        // K_x, K_y.
+        let transfer = |qx: f64, qy: f64| -> [Complex<f64>; 6] {
+            let k = qx.hypot(qy);
+            let k3 = k * k * k;
+            [
+                Complex::new(normal / k, 0.0),
+                Complex::new(shear / k - cross * qx * qx / k3, 0.0),
+                Complex::new(shear / k - cross * qy * qy / k3, 0.0),
+                Complex::new(-cross * qx * qy / k3, 0.0),
+                Complex::new(0.0, -two_pi * c * qx / (k * k)),
+                Complex::new(0.0, -two_pi * c * qy / (k * k)),
+            ]
+        };
+        let signed = |k: usize, m: usize| -> isize {
+            if 2 * k <= m {
+                k as isize
+            } else {
+                k as isize - m as isize
+            }
+        };
+        // Kernel tables at offsets (dx, dy) in [0, nx) x [0, ny).
+        let mut tables = vec![vec![0.0; n]; 6];
+        for ky in 0..ny {
+            for kx in 0..nx {
+                if kx == 0 && ky == 0 {
+                    continue;
+                }
+                let (fx, fy) = (signed(kx, nx), signed(ky, ny));
+                let nyquist_x = nx % 2 == 0 && 2 * kx == nx;
+                let nyquist_y = ny % 2 == 0 && 2 * ky == ny;
+                let mut h = [Complex::new(0.0, 0.0); 6];
+                let sx: &[f64] = if nyquist_x { &[1.0, -1.0] } else { &[1.0] };
+                let sy: &[f64] = if nyquist_y { &[1.0, -1.0] } else { &[1.0] };
+                let weight = 1.0 / (sx.len() * sy.len()) as f64;
+                for a in sx {
+                    for b in sy {
+                        let t = transfer(a * two_pi * fx as f64 / lx, b * two_pi * fy as f64 / ly);
+                        for (h, t) in h.iter_mut().zip(t) {
+                            *h += t * weight;
+                        }
+                    }
+                }
+                for dj in 0..ny {
+                    for di in 0..nx {
+                        let phase = two_pi
+                            * (fx as f64 * di as f64 / nx as f64
+                                + fy as f64 * dj as f64 / ny as f64);
+                        let e = Complex::new(phase.cos(), phase.sin());
+                        for (table, h) in tables.iter_mut().zip(&h) {
+                            table[dj * nx + di] += (h * e).re / n as f64;
+                        }
+                    }
+                }
+            }
+        }
+        let matrix = |table: &[f64], sign: f64| {
+            let mut m = vec![0.0; n * n];
+            for i in 0..n {
+                for j in 0..n {
+                    let di = (i % nx + nx - j % nx) % nx;
+                    let dj = (i / nx + ny - j / nx) % ny;
+                    m[i * n + j] = sign * table[dj * nx + di];
+                }
+            }
+            m
+        };
+        Self {
+            n,
+            c_n: matrix(&tables[0], 1.0),
+            c: [
+                [matrix(&tables[1], 1.0), matrix(&tables[3], 1.0)],
+                [matrix(&tables[3], 1.0), matrix(&tables[2], 1.0)],
+            ],
+            k: [matrix(&tables[4], 1.0), matrix(&tables[5], 1.0)],
+            kq: [matrix(&tables[4], -1.0), matrix(&tables[5], -1.0)],
+        }
     }
 
     /// Row `i` of the n x n matrix `m` times `v`.

@@ -7,6 +7,7 @@ pub mod edge_refinement;
 pub mod energy_criterion;
 pub mod hertz_error;
 pub mod limit_diagram;
+pub mod periodic_field;
 pub mod stress_field;
 pub mod surface_response;
 pub mod woehler;

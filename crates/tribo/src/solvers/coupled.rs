@@ -18,12 +18,12 @@ use crate::kernels::periodic::{multiplier_table, Multiplier, PeriodicKernel};
 use crate::material::ElasticMaterial;
 use crate::operators::ConvolutionOperator;
 use crate::solvers::normal::{
-    normal_compliance_operator, solve_normal, NormalContactParams, NormalContactProblem,
-    NormalContactSolution, NormalLoading, NormalMethod,
+    normal_compliance_operator, normal_compliance_operator_periodic, solve_normal,
+    NormalContactParams, NormalContactProblem, NormalContactSolution, NormalLoading, NormalMethod,
 };
 use crate::solvers::tangential::{
-    solve_tangential, tangential_compliance_operator, TangentialLoading, TangentialParams,
-    TangentialProblem, TangentialSolution,
+    solve_tangential, tangential_compliance_operator, tangential_compliance_operator_periodic,
+    TangentialLoading, TangentialParams, TangentialProblem, TangentialSolution,
 };
 use crate::solvers::tangential_free::{solve_tangential_free, TangentialBlockOperator};
 use crate::solvers::{nan_max, SolveError, SolveResult};
@@ -222,6 +222,107 @@ pub fn solve_coupled(
     observer: Option<&mut dyn FnMut(usize, f64)>,
 ) -> SolveResult<CoupledSolution> {
     params.validate()?;
+    let operators = CoupledOperators::new(problem, params.model, None);
+    alternate(problem, params, &operators, observer)
+}
+
+/// [`solve_coupled`] on a periodic grid (the window is one period; docs/theory/HALFSPACE.md
+/// 7.2): the same alternation with the periodic operators of `kernel`
+/// ([`crate::solvers::normal::normal_compliance_operator_periodic`],
+/// [`crate::solvers::tangential::tangential_compliance_operator_periodic`] or
+/// [`TangentialBlockOperator::new_periodic`], [`coupling_operator_periodic`]). The normal
+/// load is the force on one period (`p_mean Lx Ly`); approach control is refused (an
+/// [`Error::InvalidParameter`] naming `contact.approach`), as by the periodic normal solver.
+/// The tangential force is the one on a period; the displacements are measured from their
+/// mean (zero mean mode), so the shift W is that of the stick zone relative to the mean
+/// tangential displacement of the surface, and the tractions do not depend on that
+/// convention (docs/theory/HALFSPACE.md 7.2).
+///
+/// Errors: those of [`solve_coupled`].
+pub fn solve_coupled_periodic(
+    problem: &CoupledProblem<'_>,
+    params: &CoupledParams,
+    kernel: PeriodicKernel,
+    observer: Option<&mut dyn FnMut(usize, f64)>,
+) -> SolveResult<CoupledSolution> {
+    params.validate()?;
+    if let NormalLoading::Approach(approach) = problem.normal_loading {
+        return Err(Error::invalid(
+            "contact.approach",
+            approach,
+            "approach control is not defined on a periodic grid (the mean displacement of a \
+             loaded periodic half-space is unbounded): give the force",
+        )
+        .into());
+    }
+    let operators = CoupledOperators::new(problem, params.model, Some(kernel));
+    alternate(problem, params, &operators, observer)
+}
+
+/// The operators of the alternation: normal compliance, the tangential one of the model,
+/// and the coupling along x and y; non-periodic, or periodic with a kernel.
+struct CoupledOperators {
+    normal: ConvolutionOperator,
+    tangential: Tangential,
+    coupling: [ConvolutionOperator; 2],
+}
+
+impl CoupledOperators {
+    fn new(
+        problem: &CoupledProblem<'_>,
+        model: TangentialModel,
+        periodic: Option<PeriodicKernel>,
+    ) -> Self {
+        let (grid, body1, body2) = (problem.grid, &problem.body1, &problem.body2);
+        let angle = match problem.tangential_loading {
+            TangentialLoading::Force { angle, .. } | TangentialLoading::Sliding { angle } => angle,
+        };
+        let e_star = crate::material::composite_modulus(body1, body2);
+        let half_pi = std::f64::consts::FRAC_PI_2;
+        match periodic {
+            None => Self {
+                normal: normal_compliance_operator(grid, e_star),
+                // The load-parallel solver's compliance along e (the free solver builds its
+                // own 2 x 2 block operator).
+                tangential: match model {
+                    TangentialModel::LoadParallel => Tangential::LoadParallel(
+                        tangential_compliance_operator(grid, body1, body2, angle),
+                    ),
+                    TangentialModel::Free => {
+                        Tangential::Free(Box::new(TangentialBlockOperator::new(grid, body1, body2)))
+                    }
+                },
+                coupling: [
+                    coupling_operator(grid, body1, body2, 0.0),
+                    coupling_operator(grid, body1, body2, half_pi),
+                ],
+            },
+            Some(kernel) => Self {
+                normal: normal_compliance_operator_periodic(grid, e_star, kernel),
+                tangential: match model {
+                    TangentialModel::LoadParallel => Tangential::LoadParallel(
+                        tangential_compliance_operator_periodic(grid, body1, body2, angle, kernel),
+                    ),
+                    TangentialModel::Free => Tangential::Free(Box::new(
+                        TangentialBlockOperator::new_periodic(grid, body1, body2, kernel),
+                    )),
+                },
+                coupling: [
+                    coupling_operator_periodic(grid, body1, body2, 0.0, kernel),
+                    coupling_operator_periodic(grid, body1, body2, half_pi, kernel),
+                ],
+            },
+        }
+    }
+}
+
+/// The alternation of [`solve_coupled`] with prebuilt operators.
+fn alternate(
+    problem: &CoupledProblem<'_>,
+    params: &CoupledParams,
+    operators: &CoupledOperators,
+    observer: Option<&mut dyn FnMut(usize, f64)>,
+) -> SolveResult<CoupledSolution> {
     let CoupledProblem {
         grid,
         initial_gap,
@@ -240,25 +341,12 @@ pub fn solve_coupled(
     let tangential_params = &params.tangential;
     let mut silent = |_: usize, _: f64| {};
     let observer = observer.unwrap_or(&mut silent);
-    let angle = match tangential_loading {
-        TangentialLoading::Force { angle, .. } | TangentialLoading::Sliding { angle } => angle,
-    };
     let e_star = crate::material::composite_modulus(body1, body2);
-    let normal_op = normal_compliance_operator(grid, e_star);
-    // The load-parallel solver's compliance along e (the free solver builds its own 2 x 2
-    // block operator).
-    let tangential_op = match params.model {
-        TangentialModel::LoadParallel => {
-            Tangential::LoadParallel(tangential_compliance_operator(grid, body1, body2, angle))
-        }
-        TangentialModel::Free => {
-            Tangential::Free(Box::new(TangentialBlockOperator::new(grid, body1, body2)))
-        }
-    };
-    let coupling = [
-        coupling_operator(grid, body1, body2, 0.0),
-        coupling_operator(grid, body1, body2, std::f64::consts::FRAC_PI_2),
-    ];
+    let CoupledOperators {
+        normal: normal_op,
+        tangential: tangential_op,
+        coupling,
+    } = operators;
     let uncoupled = coupling_coefficient(body1, body2) == 0.0;
     let mut workspace = normal_op.workspace();
     let n = grid.len();
@@ -283,7 +371,7 @@ pub fn solve_coupled(
                 loading: normal_loading,
             },
             &normal_params,
-            Some(&normal_op),
+            Some(normal_op),
             None,
         )
         .map_err(drop_output)?;
@@ -308,7 +396,7 @@ pub fn solve_coupled(
                 Some([&offset[0], &offset[1]])
             },
         };
-        let tangential = match &tangential_op {
+        let tangential = match tangential_op {
             Tangential::LoadParallel(op) => {
                 solve_tangential(&problem, tangential_params, Some(op), None)
             }

@@ -438,6 +438,48 @@ pub fn solve_tangential(
     )
 }
 
+/// [`check_operator`] for a periodic operator: its coefficient at the bin (1, 0) against
+/// [`tangential_compliance_operator_periodic`]'s for the problem's bodies and direction.
+fn check_periodic_operator(
+    operator: &ConvolutionOperator,
+    problem: &TangentialProblem<'_>,
+    angle: f64,
+) -> Result<()> {
+    let Some(coefficient) = operator.periodic_coefficient(1, 0) else {
+        return Ok(());
+    };
+    let (sin, cos) = direction(angle);
+    let (inv_g, nu_g) = [problem.body1, problem.body2]
+        .iter()
+        .fold((0.0, 0.0), |(a, b), m| {
+            (
+                a + 1.0 / m.shear_modulus(),
+                b + m.poisson_ratio() / m.shear_modulus(),
+            )
+        });
+    let matches = [PeriodicKernel::ElementIntegrated, PeriodicKernel::Spectral]
+        .iter()
+        .any(|&kernel| {
+            let at =
+                |which| crate::kernels::periodic::multiplier_at(problem.grid, kernel, which, 1, 0);
+            let inverse = at(Multiplier::InverseNorm);
+            let c_xx = inv_g * inverse - nu_g * at(Multiplier::XxOverCube);
+            let c_yy = inv_g * inverse - nu_g * at(Multiplier::YyOverCube);
+            let c_xy = -nu_g * at(Multiplier::XyOverCube);
+            let expected = cos * cos * c_xx + sin * sin * c_yy + 2.0 * sin * cos * c_xy;
+            (coefficient.re - expected).abs() <= 1e-12 * expected.abs() && coefficient.im == 0.0
+        });
+    if matches {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        "operator",
+        format!("periodic coefficient {:e} m/Pa", coefficient.re),
+        "must be the periodic tangential compliance of the problem's bodies along its load \
+         direction (tangential_compliance_operator_periodic)",
+    ))
+}
+
 /// A caller-built operator must be the problem's: same grid, and the diagonal of
 /// [`tangential_compliance_operator`] for the problem's bodies and load direction (computed
 /// the same way, so equal exactly).
@@ -455,8 +497,11 @@ fn check_operator(
         ));
     }
     if operator.is_periodic() {
-        // tangential_compliance_operator_periodic: its diagonal is not Love's.
-        return Ok(());
+        // tangential_compliance_operator_periodic: its diagonal is not Love's; its
+        // coefficient at the first x frequency must be the bodies' compliance along the load
+        // for one of the two kernels (computed the same way: equal to round-off). The zero
+        // mode is not checked: it only moves the shift (docs/theory/HALFSPACE.md 7.2).
+        return check_periodic_operator(operator, problem, angle);
     }
     let (even, odd) = compliance_parts(
         &[problem.body1, problem.body2],
