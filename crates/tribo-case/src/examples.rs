@@ -201,7 +201,12 @@ mod tests {
                 assert!(c.is_ok(), "{}: {}", e.name, c.unwrap_err());
                 continue;
             }
-            let c = parse_case(e.text, e.name, Path::new("."));
+            // An example's data files beside it, as `tribo example NAME -o DIR` writes them.
+            let dir = tempfile::tempdir().unwrap();
+            for (file, bytes) in data_files(e.name).unwrap() {
+                std::fs::write(dir.path().join(file), bytes).unwrap();
+            }
+            let c = parse_case(e.text, e.name, dir.path());
             assert!(c.is_ok(), "{}: {}", e.name, c.unwrap_err());
         }
         assert_eq!(EXAMPLES[0].name, DEFAULT);

@@ -468,7 +468,7 @@ mod tests {
         assert_eq!(labels[2], labels[22]);
         assert_ne!(labels[5], labels[2]);
         // The four corners are one patch on a periodic grid.
-        let (g, p) = mask(&["#...#", ".....", "#...#"]);
+        let (g, p) = mask(&["#...#", ".....", ".....", "#...#"]);
         assert_eq!(contact_patches(&g, &p, true).0.len(), 1);
         assert_eq!(contact_patches(&g, &p, false).0.len(), 4);
     }

@@ -379,10 +379,11 @@ pub(super) fn check_against_grid(
 }
 
 /// The period of a periodic grid when `grid.period` is not given: the size of a measured map
-/// declared periodic (body 1's first), m.
+/// (body 1's first; one not declared periodic is then refused by [`check_against_grid`],
+/// naming the key that declares it), m.
 pub(super) fn default_period(bodies: [&Body; 2]) -> Option<[f64; 2]> {
     bodies.iter().find_map(|b| match &b.roughness {
-        Some(Roughness::Measured(m)) if m.periodic => {
+        Some(Roughness::Measured(m)) => {
             let (px, py) = m.topography.periods();
             Some([px, py])
         }
