@@ -24,6 +24,9 @@ const PALETTE: [RGBColor; 10] = [
     RGBColor(23, 190, 207),
 ];
 
+/// A reference law drawn on the area plot: label, colour, dashed, points.
+type LawLine = (String, RGBColor, bool, Vec<(f64, f64)>);
+
 /// The length unit of a map of half widths `h` (m): um below 0.5 mm, else mm; (factor, name).
 fn map_unit(h: f64) -> (f64, &'static str) {
     if h < 5e-4 {
@@ -113,7 +116,7 @@ pub fn area_vs_load(
         let x_end = x1.min(s / kappa);
         Some(vec![(0.0, 0.0), (x_end, kappa * x_end / s)])
     };
-    let lines: Vec<(String, RGBColor, bool, Vec<(f64, f64)>)> = [
+    let lines: Vec<LawLine> = [
         (KAPPA_SIMULATIONS, "kappa = 2 (Hyun et al. 2004)", false),
         (KAPPA_PERSSON, "kappa = sqrt(8/pi) (Persson)", true),
         (KAPPA_BGT, "kappa = sqrt(2 pi) (Bush et al.)", true),
