@@ -101,12 +101,72 @@ pub const EXAMPLES: &[Example] = &[
         text: include_str!("../examples/cases/height-map.toml"),
     },
     Example {
+        name: "rough-flat",
+        description: "a self-affine rough flat on a flat, periodic (H = 0.8, rms slope 0.05): \
+                      load sweep, contact area against load, patches, PSD",
+        text: include_str!("../examples/cases/rough-flat.toml"),
+    },
+    Example {
+        name: "rough-ball",
+        description: "a rough steel ball (R = 10 mm, rms 0.1 um) on a flat, 20 N in 5 steps \
+                      (non-periodic)",
+        text: include_str!("../examples/cases/rough-ball.toml"),
+    },
+    Example {
+        name: "measured-x3p",
+        description: "a measured X3P topography on a flat, periodic; writes its .x3p with \
+                      `tribo example measured-x3p -o DIR`",
+        text: include_str!("../examples/cases/measured-x3p.toml"),
+    },
+    Example {
         name: "fatigue-diagram",
         description:
             "four fatigue limits -> the limiting-state diagram, Fig. 4 (`tribo fatigue diagram -`)",
         text: include_str!("../examples/fatigue-diagram.toml"),
     },
 ];
+
+/// The data files an example reads (name relative to the case file, bytes): `tribo example
+/// NAME -o DIR` writes them beside the case. Only `measured-x3p` has one: its X3P map, drawn
+/// here (a 64 x 64 self-affine surface over 100 um x 100 um, Hurst exponent 0.8, wavelengths
+/// 6.25 ... 25 um, rms height 0.2 um, seed 7, random-phase method, so that its statistics are
+/// the spectrum's exactly) with a tilt of 1e-3 along x added, as an instrument records a
+/// sample that is not level.
+///
+/// Errors: none expected (the parameters are fixed and valid); a library error is passed on.
+pub fn data_files(name: &str) -> crate::error::CaseResult<Vec<(&'static str, Vec<u8>)>> {
+    if name != "measured-x3p" {
+        return Ok(Vec::new());
+    }
+    use std::f64::consts::PI;
+    use tribo::surface::{generate, GenerateParams, Method, Normalization, PowerSpectrum};
+    let (n, period) = (64, 100e-6);
+    let spectrum =
+        PowerSpectrum::isotropic(2.0 * PI / 25e-6, 2.0 * PI / 25e-6, 2.0 * PI / 6.25e-6, 0.8)?;
+    let t = generate(&GenerateParams {
+        nx: n,
+        ny: n,
+        periods: (period, period),
+        spectrum,
+        normalization: Normalization::RmsHeight(0.2e-6),
+        method: Method::RandomPhase,
+        seed: 7,
+    })?;
+    let (dx, dy) = t.spacing();
+    let tilted: Vec<f64> = t
+        .heights()
+        .iter()
+        .enumerate()
+        .map(|(k, h)| h + 1e-3 * (k % n) as f64 * dx)
+        .collect();
+    let tilted = tribo::surface::Topography::new(n, n, dx, dy, tilted)?;
+    let bytes = crate::topography::x3p::to_bytes(
+        &tilted,
+        "tribo example measured-x3p: a generated self-affine surface with a tilt of 1e-3",
+    )
+    .map_err(|e| e.into_case_error("example"))?;
+    Ok(vec![("measured-x3p.x3p", bytes)])
+}
 
 /// Find an example by name.
 pub fn find(name: &str) -> Option<&'static Example> {
@@ -141,7 +201,12 @@ mod tests {
                 assert!(c.is_ok(), "{}: {}", e.name, c.unwrap_err());
                 continue;
             }
-            let c = parse_case(e.text, e.name, Path::new("."));
+            // An example's data files beside it, as `tribo example NAME -o DIR` writes them.
+            let dir = tempfile::tempdir().unwrap();
+            for (file, bytes) in data_files(e.name).unwrap() {
+                std::fs::write(dir.path().join(file), bytes).unwrap();
+            }
+            let c = parse_case(e.text, e.name, dir.path());
             assert!(c.is_ok(), "{}: {}", e.name, c.unwrap_err());
         }
         assert_eq!(EXAMPLES[0].name, DEFAULT);

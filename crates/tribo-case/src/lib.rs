@@ -37,6 +37,7 @@ pub mod memory;
 pub mod pipeline;
 pub mod probabilistic;
 pub mod progress;
+pub mod rough;
 mod schema;
 pub mod summary;
 pub mod topography;
@@ -88,3 +89,6 @@ pub fn run(case: &Case, progress: &mut dyn Progress) -> CaseResult<Results> {
         Case::Bem2d(c) => Ok(Results::Bem2d(Box::new(bem::pipeline::solve(c, progress)?))),
     }
 }
+
+#[cfg(test)]
+mod rough_tests;

@@ -63,6 +63,8 @@ pub struct Prepared {
     pub hertz: Option<HertzReference>,
     /// A note on a height map coarser than the contact grid ([`height_map_note`]).
     pub gap_note: Option<String>,
+    /// The bodies' roughness on the grid (cases with a rough or measured surface).
+    pub rough: Option<crate::rough::RoughSurfaces>,
 }
 
 /// A solved case.
@@ -86,6 +88,9 @@ pub struct Outcome {
     pub stress: Option<Stress>,
     /// Volume damageability (cases with `[damage]`).
     pub damage: Option<Damage>,
+    /// The load sweep (cases with `contact.load_steps`, a periodic grid or a rough surface):
+    /// the record of every load and the final load's contact patches.
+    pub sweep: Option<crate::rough::LoadSweep>,
 }
 
 /// The tangential contact of a case with friction.
@@ -336,6 +341,8 @@ pub struct BackEffect {
 pub fn prepare(case: &HalfSpaceCase) -> CaseResult<Prepared> {
     let e_star = case.composite_modulus();
     let hertz = match (&case.body1.shape, &case.body2.shape) {
+        // A rough or periodic case has no Hertz reference (its gap is not a paraboloid).
+        _ if !case.is_hertzian() => None,
         (
             Shape::Radii {
                 radii: r1,
@@ -439,12 +446,18 @@ pub fn prepare(case: &HalfSpaceCase) -> CaseResult<Prepared> {
         )?,
     };
     let gap_note = height_map_note(case, &grid);
+    let rough = crate::rough::rough_surfaces(case, &grid)?;
+    let gap = match &rough {
+        Some(r) => crate::rough::rough_gap(&gap, r),
+        None => gap,
+    };
     Ok(Prepared {
         grid,
         initial_gap: gap,
         composite_modulus: e_star,
         hertz,
         gap_note,
+        rough,
     })
 }
 
@@ -508,39 +521,27 @@ pub fn solve(
         composite_modulus: prepared.composite_modulus,
         loading: case.loading,
     };
-    progress.stage(
-        &format!(
-            "solving normal contact ({} x {} elements, {})",
-            prepared.grid.nx(),
-            prepared.grid.ny(),
-            case.method.name()
-        ),
-        None,
-    );
+    let sweeping = case.load_steps > 1 || case.periodic || case.is_rough();
     let start = Instant::now();
-    let tolerance = case.params.tolerance;
-    let (nx, ny) = (prepared.grid.nx(), prepared.grid.ny());
-    let mut report = |iteration: usize, residual: f64| {
-        progress.status(&format!(
-            "solving normal contact ({nx} x {ny} elements, cg): iteration {iteration}, \
-             residual {residual:.2e} (tolerance {tolerance:.0e})"
-        ));
-    };
-    let result = match case.method {
-        NormalMethod::ConjugateGradient => {
-            solve_normal(&problem, &case.params, None, Some(&mut report))
+    let (result, steps) = if sweeping {
+        match normal_sweep(case, &prepared, progress) {
+            Ok((solution, steps)) => (Ok(solution), steps),
+            Err(e) => (Err(e), Vec::new()),
         }
-        NormalMethod::ActiveSet => {
-            let params = NormalContactParams {
-                method: NormalMethod::ActiveSet,
-                ..case.params
-            };
-            solve_normal(&problem, &params, None, None)
-        }
+    } else {
+        (single_solve(case, &problem, progress), Vec::new())
     };
     let solve_time_s = start.elapsed().as_secs_f64();
-    progress.finish();
     let solution = result?;
+    let sweep = sweeping.then(|| {
+        let (patches, labels) =
+            crate::rough::contact_patches(&prepared.grid, &solution.pressure, case.periodic);
+        crate::rough::LoadSweep {
+            steps,
+            patches,
+            labels,
+        }
+    });
     let (hertz_pressure, error) = match &prepared.hertz {
         Some(h) => {
             let ph = prepared.grid.sample(|x, y| h.contact.pressure(x, y));
@@ -559,6 +560,7 @@ pub fn solve(
         tangential: None,
         stress: None,
         damage: None,
+        sweep,
     };
     outcome.tangential = tangential(case, &outcome, progress)?;
     if let Some(c) = outcome
@@ -592,6 +594,139 @@ pub fn solve(
     let limiting = limiting_state(case, &outcome, progress)?;
     outcome.damage = damage(case, &outcome, limiting, progress)?;
     Ok(outcome)
+}
+
+/// One normal solve of the case's load with the case's method (no sweep), reporting the
+/// iterations to `progress`.
+fn single_solve(
+    case: &HalfSpaceCase,
+    problem: &NormalContactProblem<'_>,
+    progress: &mut dyn Progress,
+) -> CaseResult<NormalContactSolution> {
+    let grid = problem.grid;
+    progress.stage(
+        &format!(
+            "solving normal contact ({} x {} elements, {})",
+            grid.nx(),
+            grid.ny(),
+            case.method.name()
+        ),
+        None,
+    );
+    let tolerance = case.params.tolerance;
+    let (nx, ny) = (grid.nx(), grid.ny());
+    let mut report = |iteration: usize, residual: f64| {
+        progress.status(&format!(
+            "solving normal contact ({nx} x {ny} elements, cg): iteration {iteration}, \
+             residual {residual:.2e} (tolerance {tolerance:.0e})"
+        ));
+    };
+    let result = match case.method {
+        NormalMethod::ConjugateGradient => {
+            solve_normal(problem, &case.params, None, Some(&mut report))
+        }
+        NormalMethod::ActiveSet => {
+            let params = NormalContactParams {
+                method: NormalMethod::ActiveSet,
+                ..case.params
+            };
+            solve_normal(problem, &params, None, None)
+        }
+    };
+    progress.finish();
+    Ok(result?)
+}
+
+/// The loads of the sweep: `k / load_steps` of the case's force or approach, k = 1 ...
+/// load_steps (the last the case's own, exactly).
+pub fn sweep_loads(case: &HalfSpaceCase) -> Vec<NormalLoading> {
+    let n = case.load_steps;
+    (1..=n)
+        .map(|k| {
+            let f = if k == n { 1.0 } else { k as f64 / n as f64 };
+            match case.loading {
+                NormalLoading::Force(x) => NormalLoading::Force(f * x),
+                NormalLoading::Approach(x) => NormalLoading::Approach(f * x),
+            }
+        })
+        .collect()
+}
+
+/// The load sweep: every load of [`sweep_loads`] solved by the conjugate gradient on one
+/// operator (the periodic one on a periodic grid,
+/// [`tribo::solvers::normal::normal_compliance_operator_periodic`] with the element-integrated
+/// kernel), each started from the previous load's pressure (a warm start: the same solution
+/// to the tolerance in fewer iterations); returns the final solution and every load's record.
+pub fn normal_sweep(
+    case: &HalfSpaceCase,
+    prepared: &Prepared,
+    progress: &mut dyn Progress,
+) -> CaseResult<(NormalContactSolution, Vec<crate::rough::LoadStep>)> {
+    let grid = &prepared.grid;
+    let e_star = prepared.composite_modulus;
+    let operator = if case.periodic {
+        tribo::solvers::normal::normal_compliance_operator_periodic(
+            grid,
+            e_star,
+            tribo::kernels::periodic::PeriodicKernel::ElementIntegrated,
+        )
+    } else {
+        tribo::solvers::normal::normal_compliance_operator(grid, e_star)
+    };
+    let loads = sweep_loads(case);
+    let params = NormalContactParams {
+        method: NormalMethod::ConjugateGradient,
+        ..case.params
+    };
+    let (nx, ny) = (grid.nx(), grid.ny());
+    let total = loads.len();
+    progress.stage(
+        &format!(
+            "solving normal contact ({nx} x {ny} elements, cg{}, {total} load{})",
+            if case.periodic { ", periodic" } else { "" },
+            if total == 1 { "" } else { "s" }
+        ),
+        Some(total as u64),
+    );
+    let mut steps = Vec::with_capacity(total);
+    let mut previous: Option<NormalContactSolution> = None;
+    for (k, &loading) in loads.iter().enumerate() {
+        let problem = NormalContactProblem {
+            grid,
+            initial_gap: &prepared.initial_gap,
+            composite_modulus: e_star,
+            loading,
+        };
+        let tolerance = params.tolerance;
+        let mut report = |iteration: usize, residual: f64| {
+            progress.status(&format!(
+                "load {}/{total}: iteration {iteration}, residual {residual:.2e} (tolerance \
+                 {tolerance:.0e})",
+                k + 1
+            ));
+        };
+        let result = tribo::solvers::solve_normal_from(
+            &problem,
+            &params,
+            Some(&operator),
+            previous.as_ref().map(|p| &p.pressure[..]),
+            Some(&mut report),
+        );
+        let solution = match result {
+            Ok(s) => s,
+            Err(e) => {
+                progress.finish();
+                return Err(e.into());
+            }
+        };
+        steps.push(crate::rough::LoadStep::of(grid, &solution, case.periodic));
+        progress.advance(k as u64 + 1);
+        previous = Some(solution);
+    }
+    progress.finish();
+    let last =
+        previous.ok_or_else(|| CaseError::field("contact.load_steps", 0, "must be at least 1"))?;
+    Ok((last, steps))
 }
 
 /// The back effect of the case's `[bulk]` section (None without one): every curve point and

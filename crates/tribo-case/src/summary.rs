@@ -44,6 +44,13 @@ pub struct Summary {
     /// Volume damageability (cases with `[damage]`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub damage: Option<DamageSummary>,
+    /// The statistics of the rough or measured surfaces on the grid (cases with one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub roughness: Option<crate::rough::RoughSurfaces>,
+    /// The load sweep: every load's record and the final load's patches (cases with
+    /// `contact.load_steps`, a periodic grid or a rough surface).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub load_sweep: Option<LoadSweepSummary>,
     /// Files written (names within the output directory).
     pub outputs: Vec<String>,
     /// Wall time per stage, s.
@@ -90,6 +97,7 @@ pub const UNITS: &[(&str, &str)] = &[
     ("grid.dy", "m"),
     ("grid.half_width[]", "m"),
     ("grid.extent", "1"),
+    ("grid.period[]", "m"),
     ("solver.tolerance", "1"),
     ("solver.max_iterations", "1"),
     ("solver.time_s", "s"),
@@ -218,8 +226,142 @@ pub const UNITS: &[(&str, &str)] = &[
     ("damage.study.rows[].bending_vs_friction[]", "%"),
     ("damage.study.paper[]", "%"),
     ("damage.time_s", "s"),
+    ("roughness.bodies[].plateau", "m^4"),
+    ("roughness.bodies[].statistics.rms_height", "m"),
+    ("roughness.bodies[].statistics.rms_slope", "1"),
+    (
+        "roughness.bodies[].statistics.rms_slope_finite_difference",
+        "1",
+    ),
+    ("roughness.bodies[].statistics.rms_curvature", "1/m"),
+    ("roughness.composite.rms_height", "m"),
+    ("roughness.composite.rms_slope", "1"),
+    ("roughness.composite.rms_slope_finite_difference", "1"),
+    ("roughness.composite.rms_curvature", "1/m"),
+    ("load_sweep.loads", "1"),
+    ("load_sweep.nominal_area", "m^2"),
+    ("load_sweep.rms_slope", "1"),
+    ("load_sweep.kappa_reference", "1"),
+    ("load_sweep.kappa_small_load", "1"),
+    ("load_sweep.iterations_total", "1"),
+    ("load_sweep.steps[].normal_load", "N"),
+    ("load_sweep.steps[].mean_pressure", "Pa"),
+    ("load_sweep.steps[].approach", "m"),
+    ("load_sweep.steps[].contact_area", "m^2"),
+    ("load_sweep.steps[].area_fraction", "1"),
+    ("load_sweep.steps[].max_pressure", "Pa"),
+    ("load_sweep.steps[].mean_gap", "m"),
+    ("load_sweep.steps[].patches", "1"),
+    ("load_sweep.steps[].iterations", "1"),
+    ("load_sweep.steps[].residual", "1"),
+    ("load_sweep.patches.count", "1"),
+    ("load_sweep.patches.largest_area", "m^2"),
+    ("load_sweep.patches.mean_area", "m^2"),
+    ("load_sweep.patches.mean_equivalent_radius", "m"),
+    ("load_sweep.patches.largest_equivalent_radius", "m"),
     ("timings.*", "s"),
 ];
+
+/// The load sweep in `summary.json`: every load's record, the small-load proportionality
+/// and the final load's patch statistics (the patches one by one in `patches.csv`).
+#[derive(Debug, Clone, Serialize)]
+pub struct LoadSweepSummary {
+    /// Number of loads.
+    pub loads: usize,
+    /// Whether the grid is periodic (patches joined across the period's borders).
+    pub periodic: bool,
+    /// The nominal area A0 (the window's; a periodic grid's period), m^2.
+    pub nominal_area: f64,
+    /// The rms slope h'_rms of the composite roughness (rough cases), 1.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rms_slope: Option<f64>,
+    /// The literature's kappa drawn for reference (Hyun et al. 2004), 1.
+    pub kappa_reference: f64,
+    /// kappa of the smallest load, `(A/A0) E* h'_rms / p` (rough cases with contact).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kappa_small_load: Option<f64>,
+    /// Solver iterations of all loads.
+    pub iterations_total: usize,
+    /// One record per load.
+    pub steps: Vec<crate::rough::LoadStep>,
+    /// The final load's patches.
+    pub patches: PatchStatistics,
+}
+
+/// The distribution of the final load's contact patches.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct PatchStatistics {
+    /// Number of patches.
+    pub count: usize,
+    /// The largest patch's area, m^2 (0 without contact).
+    pub largest_area: f64,
+    /// The mean area, m^2.
+    pub mean_area: f64,
+    /// The mean equivalent radius sqrt(A/pi), m.
+    pub mean_equivalent_radius: f64,
+    /// The largest equivalent radius, m.
+    pub largest_equivalent_radius: f64,
+}
+
+impl LoadSweepSummary {
+    /// The summary of `sweep` for the case's grid.
+    pub fn new(case: &HalfSpaceCase, out: &Outcome, sweep: &crate::rough::LoadSweep) -> Self {
+        let (hx, hy) = out.prepared.grid.half_widths();
+        let rms_slope = out.prepared.rough.as_ref().map(|r| r.composite.rms_slope);
+        let e_star = out.prepared.composite_modulus;
+        let kappa_small_load = match (rms_slope, sweep.steps.first()) {
+            (Some(s), Some(first)) if first.mean_pressure > 0.0 && first.area_fraction > 0.0 => {
+                Some(first.area_fraction * e_star * s / first.mean_pressure)
+            }
+            _ => None,
+        };
+        let n = sweep.patches.len();
+        let mean = |f: &dyn Fn(&crate::rough::Patch) -> f64| {
+            if n == 0 {
+                0.0
+            } else {
+                sweep.patches.iter().map(f).sum::<f64>() / n as f64
+            }
+        };
+        Self {
+            loads: sweep.steps.len(),
+            periodic: case.periodic,
+            nominal_area: 4.0 * hx * hy,
+            rms_slope,
+            kappa_reference: crate::rough::KAPPA_SIMULATIONS,
+            kappa_small_load,
+            iterations_total: sweep.steps.iter().map(|s| s.iterations).sum(),
+            steps: sweep.steps.clone(),
+            patches: PatchStatistics {
+                count: n,
+                largest_area: sweep.patches.first().map_or(0.0, |p| p.area),
+                mean_area: mean(&|p| p.area),
+                mean_equivalent_radius: mean(&|p| p.equivalent_radius),
+                largest_equivalent_radius: sweep
+                    .patches
+                    .first()
+                    .map_or(0.0, |p| p.equivalent_radius),
+            },
+        }
+    }
+
+    /// Every number, for the finiteness check of the writers.
+    pub fn scalars(&self) -> Vec<f64> {
+        let p = &self.patches;
+        let mut v = vec![
+            self.nominal_area,
+            self.kappa_reference,
+            p.largest_area,
+            p.mean_area,
+            p.mean_equivalent_radius,
+            p.largest_equivalent_radius,
+        ];
+        v.extend(self.rms_slope);
+        v.extend(self.kappa_small_load);
+        v.extend(self.steps.iter().flat_map(|s| s.scalars()));
+        v
+    }
+}
 
 /// One body's elastic constants.
 #[derive(Debug, Clone, Copy, Serialize)]
@@ -274,6 +416,9 @@ pub struct GridInfo {
     /// Window half width / Hertz long semi-axis, where given so.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub extent: Option<f64>,
+    /// The period [Lx, Ly], m, of a periodic grid (the window is one period).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub period: Option<[f64; 2]>,
 }
 
 /// The solver.
@@ -593,6 +738,7 @@ impl Summary {
                     Window::Extent(e) => Some(e),
                     Window::HalfWidth(_) => None,
                 },
+                period: case.periodic.then_some([2.0 * hx, 2.0 * hy]),
             },
             solver: SolverInfo {
                 method: case.method.name(),
@@ -625,6 +771,11 @@ impl Summary {
                 .and_then(|t| TangentialSummary::new(case, out, t)),
             stress: out.stress.as_ref().map(StressSummary::new),
             damage: out.damage.as_ref().map(DamageSummary::new),
+            roughness: p.rough.clone(),
+            load_sweep: out
+                .sweep
+                .as_ref()
+                .map(|w| LoadSweepSummary::new(case, out, w)),
             outputs,
             timings: Timings {
                 solve_s: out.solve_time_s,
@@ -650,6 +801,9 @@ impl Summary {
             "back_effect" => self.back_effect.is_some(),
             "tangential" => self.tangential.is_some(),
             "stress" => self.stress.is_some(),
+            "roughness" => self.roughness.is_some(),
+            "load_sweep" => self.load_sweep.is_some(),
+            "grid" if path == "grid.period[]" => self.grid.period.is_some(),
             "damage" if path.starts_with("damage.study") => {
                 self.damage.as_ref().is_some_and(|d| d.study.is_some())
             }

@@ -154,10 +154,16 @@ Nothing is written when the case is invalid (exit 2) or the solver fails (exit 3
         #[arg(long, value_name = "SIZE", value_parser = memory::parse_size)]
         max_memory: Option<u64>,
     },
-    /// List the example cases, or print one (`tribo example NAME > case.toml`).
+    /// List the example cases, or print one (`tribo example NAME > case.toml`); with `-o DIR`
+    /// write it as DIR/NAME.toml with the data files it reads (the measured-x3p example's
+    /// .x3p).
     Example {
         /// Example name; omit to list them.
         name: Option<String>,
+        /// Write the case and its data files into this directory (created if needed) instead
+        /// of printing it.
+        #[arg(short = 'o', long = "out", value_name = "DIR")]
+        out: Option<PathBuf>,
     },
     /// Fatigue curves from test data and the limiting-state diagram (paper Figs. 3, 4).
     #[command(subcommand)]
@@ -216,7 +222,7 @@ fn main() -> ExitCode {
             dry_run,
             max_memory,
         }),
-        Command::Example { name } => cmd::example::run(name.as_deref()),
+        Command::Example { name, out } => cmd::example::run(name.as_deref(), out.as_deref()),
         Command::Validate { json } => cmd::validate::run(json),
         Command::Fatigue(c) => cmd::fatigue::run(c),
         Command::Sweep(c) => sweep::run(c),

@@ -6,6 +6,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod common;
+#[path = "common/summary.rs"]
+mod summary;
 #[path = "common/vtk.rs"]
 mod vtk;
 use common::{
@@ -270,6 +272,10 @@ fn examples_list_print_and_validate() {
             // Not a case file: `tribo fatigue diagram` input, checked in tests/fatigue_cli.rs.
             continue;
         }
+        if name == "measured-x3p" {
+            // Reads its .x3p: written with the case by `-o` (examples_with_data_files_run).
+            continue;
+        }
         let text = stdout(&o);
         let v = tribo(&["run", "-", "--dry-run"], Some(&text));
         assert_eq!(v.status.code(), Some(0), "{name}: {}", stderr(&v));
@@ -277,6 +283,81 @@ fn examples_list_print_and_validate() {
     let o = tribo(&["example", "no-such-case"], None);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("roller-shaft"));
+}
+
+/// `tribo example measured-x3p -o DIR` writes the case and its X3P file, and the case runs
+/// from there (exit 0, the sweep's files); printed alone it notes its data file on stderr.
+/// The rough examples run in about a second each and write the rough outputs.
+#[test]
+fn examples_with_data_files_run() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path().join("ex");
+    let o = tribo(
+        &["example", "measured-x3p", "-o", dir.to_str().unwrap()],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(dir.join("measured-x3p.x3p").is_file());
+    let case = dir.join("measured-x3p.toml");
+    let out = d.path().join("out");
+    let o = tribo(
+        &[
+            "run",
+            case.to_str().unwrap(),
+            "-q",
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    for f in [
+        "load_sweep.csv",
+        "patches.csv",
+        "psd.csv",
+        "contact_patches.png",
+        "area_vs_load.png",
+        "psd.png",
+    ] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    let sweep = std::fs::read_to_string(out.join("load_sweep.csv")).unwrap();
+    assert_eq!(sweep.lines().count(), 6, "{sweep}");
+    let o = tribo(&["example", "measured-x3p"], None);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(stderr(&o).contains("-o DIR"), "{}", stderr(&o));
+    // Without its file (the case from stdin): exit 2 naming the key, nothing written.
+    let text = stdout(&o);
+    let bad_out = d.path().join("bad");
+    let o = tribo(&["run", "-", "-o", bad_out.to_str().unwrap()], Some(&text));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("body1.surface.file"), "{}", stderr(&o));
+    assert!(!bad_out.join("summary.json").exists());
+    // A periodic case under approach control: exit 2 naming contact.approach.
+    let flat = stdout(&tribo(&["example", "rough-flat"], None))
+        .replace("mean_pressure = \"250 MPa\"", "approach = 1e-7");
+    let o = tribo(&["run", "-", "-o", bad_out.to_str().unwrap()], Some(&flat));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("contact.approach"), "{}", stderr(&o));
+    assert!(!bad_out.join("summary.json").exists());
+    for name in ["rough-flat", "rough-ball"] {
+        let text = stdout(&tribo(&["example", name], None));
+        let out = d.path().join(name);
+        let o = tribo(
+            &["run", "-", "-q", "-o", out.to_str().unwrap()],
+            Some(&text),
+        );
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+        let summary = read_json(&out.join("summary.json"));
+        assert!(summary["load_sweep"]["patches"]["count"].as_u64().unwrap() > 1);
+        assert!(
+            summary["roughness"]["composite"]["rms_height"]
+                .as_f64()
+                .unwrap()
+                > 0.0
+        );
+        summary::assert_layout(&summary);
+    }
 }
 
 #[test]

@@ -192,3 +192,79 @@ pub fn compare(c: &CompareSummary) -> String {
     }
     csv
 }
+
+/// The header of `load_sweep.csv`.
+pub const LOAD_SWEEP_HEADER: &str = "normal_load_N,mean_pressure_Pa,approach_m,contact_area_m2,\
+area_fraction,max_pressure_Pa,mean_gap_m,patches,iterations,residual";
+
+/// `load_sweep.csv`: one line per load of the sweep (tribo_case::rough::LoadStep).
+pub fn load_sweep(steps: &[tribo_case::rough::LoadStep]) -> String {
+    let mut s = String::from(LOAD_SWEEP_HEADER);
+    s.push('\n');
+    for t in steps {
+        let _ = writeln!(
+            s,
+            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{:e}",
+            t.normal_load,
+            t.mean_pressure,
+            t.approach + 0.0,
+            t.contact_area,
+            t.area_fraction,
+            t.max_pressure,
+            t.mean_gap,
+            t.patches,
+            t.iterations,
+            t.residual
+        );
+    }
+    s
+}
+
+/// The header of `patches.csv`.
+pub const PATCHES_HEADER: &str =
+    "patch,elements,area_m2,equivalent_radius_m,load_N,max_pressure_Pa";
+
+/// `patches.csv`: the final load's contact patches, largest first (patch 1 is label 1 of the
+/// patches map).
+pub fn patches(patches: &[tribo_case::rough::Patch]) -> String {
+    let mut s = String::from(PATCHES_HEADER);
+    s.push('\n');
+    for (k, p) in patches.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "{},{},{:e},{:e},{:e},{:e}",
+            k + 1,
+            p.elements,
+            p.area,
+            p.equivalent_radius,
+            p.load,
+            p.max_pressure
+        );
+    }
+    s
+}
+
+/// The header of `psd.csv` (the input column only where the input spectrum is known).
+pub fn psd_header(with_input: bool) -> &'static str {
+    if with_input {
+        "q_rad_per_m,psd_m4,modes,input_psd_m4"
+    } else {
+        "q_rad_per_m,psd_m4,modes"
+    }
+}
+
+/// `psd.csv`: the radially averaged PSD of the composite roughness on the grid, and the
+/// input spectrum at the same wavenumbers where every rough body is generated (isotropic).
+pub fn psd(rough: &tribo_case::rough::RoughSurfaces) -> String {
+    let with_input = rough.input_psd(1.0).is_some();
+    let mut s = String::from(psd_header(with_input));
+    s.push('\n');
+    for b in &rough.psd {
+        let _ = write!(s, "{:e},{:e},{}", b.q, b.psd, b.modes);
+        if let Some(c) = rough.input_psd(b.q) {
+            let _ = write!(s, ",{c:e}");
+        }
+        s.push('\n');
+    }
+    s
+}

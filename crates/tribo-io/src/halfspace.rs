@@ -46,6 +46,18 @@ pub const STRESS_FILES: [&str; 4] = [
 /// the plane in which friction acts.
 pub const STRESS_X0_FILES: [&str; 2] = ["sigma_yy_x0.png", "von_mises_x0.png"];
 
+/// Files of the load sweep (cases with `contact.load_steps`, a periodic grid or a rough
+/// surface): the table per load, the final load's patches, and their plots.
+pub const SWEEP_FILES: [&str; 4] = [
+    "load_sweep.csv",
+    "patches.csv",
+    "contact_patches.png",
+    "area_vs_load.png",
+];
+
+/// Files of a rough or measured surface: its PSD and the plot.
+pub const ROUGH_FILES: [&str; 2] = ["psd.csv", "psd.png"];
+
 /// Files of the Sec. 6 study.
 pub const STUDY_FILES: [&str; 2] = ["sec6.csv", "sec6.png"];
 
@@ -73,6 +85,12 @@ pub fn files(out: &Outcome, plots: bool) -> Vec<String> {
     }
     if out.tangential.is_some() {
         f.extend(TANGENTIAL_FILES.iter().map(|f| f.to_string()));
+    }
+    if out.sweep.is_some() {
+        f.extend(SWEEP_FILES.iter().map(|f| f.to_string()));
+    }
+    if out.prepared.rough.is_some() {
+        f.extend(ROUGH_FILES.iter().map(|f| f.to_string()));
     }
     let x0 = traction_along_y(out);
     if out.stress.is_some() {
@@ -155,6 +173,16 @@ pub fn summary(case: &HalfSpaceCase, out: &Outcome, plots: bool) -> IoResult<Sum
     }
     if let Some(d) = &s.damage {
         scalars.extend(d.scalars());
+    }
+    if let Some(r) = &s.roughness {
+        scalars.extend(r.composite.scalars());
+        for b in &r.bodies {
+            scalars.extend(b.statistics.scalars());
+            scalars.extend(b.plateau);
+        }
+    }
+    if let Some(w) = &s.load_sweep {
+        scalars.extend(w.scalars());
     }
     check_finite("summary.json", &scalars)?;
     Ok(s)
@@ -291,6 +319,27 @@ fn data_files(case: &HalfSpaceCase, out: &Outcome) -> IoResult<DataFiles> {
     }
     if let Some(csv) = traction {
         files.push((TANGENTIAL_FILES[0], csv.into_bytes()));
+    }
+    if let Some(w) = &out.sweep {
+        let steps: Vec<f64> = w.steps.iter().flat_map(|t| t.scalars()).collect();
+        check_finite("load_sweep.csv", &steps)?;
+        let patches: Vec<f64> = w
+            .patches
+            .iter()
+            .flat_map(|p| [p.area, p.equivalent_radius, p.load, p.max_pressure])
+            .collect();
+        check_finite("patches.csv", &patches)?;
+        files.push((
+            SWEEP_FILES[0],
+            crate::csv::load_sweep(&w.steps).into_bytes(),
+        ));
+        files.push((SWEEP_FILES[1], crate::csv::patches(&w.patches).into_bytes()));
+    }
+    if let Some(r) = &out.prepared.rough {
+        let mut values: Vec<f64> = r.psd.iter().flat_map(|b| [b.q, b.psd]).collect();
+        values.extend(r.psd.iter().filter_map(|b| r.input_psd(b.q)));
+        check_finite("psd.csv", &values)?;
+        files.push((ROUGH_FILES[0], crate::csv::psd(r).into_bytes()));
     }
     let stress_arrays = match stress {
         Some((vti, arrays)) => {

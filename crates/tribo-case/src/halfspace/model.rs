@@ -4,7 +4,12 @@ use serde::Deserialize;
 use tribo::analysis::damage::{DamageQuantity, TensorKind};
 use tribo::geometry::{QuadraticProfile, SurfaceProfile};
 use tribo::solvers::{NormalContactParams, NormalLoading, NormalMethod};
+use tribo::surface::generate::Method as RoughMethod;
+use tribo::surface::{Normalization, PowerSpectrum, Topography};
 use tribo::ElasticMaterial;
+
+/// Most load steps of `contact.load_steps` (each is one contact solution).
+pub const MAX_LOAD_STEPS: usize = 1000;
 
 /// Largest grid (elements) accepted for the dense active-set solver: its influence matrix
 /// needs (nx ny)^2 doubles, 128 MiB at this size.
@@ -30,13 +35,63 @@ pub enum Shape {
     Surface(SurfaceProfile),
 }
 
+/// A generated rough surface (`[bodyN.surface] kind = "rough"`): drawn on the contact grid
+/// by [`tribo::surface::generate()`] in [`crate::pipeline::prepare`], one height per element,
+/// the window (a periodic grid's period) as its period.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GeneratedRoughness {
+    /// The spectrum's shape, wavenumbers in rad/m (2 pi / the case's wavelengths).
+    pub spectrum: PowerSpectrum,
+    /// The target rms height (m) or rms slope.
+    pub normalization: Normalization,
+    /// Filtered noise (default) or random phase.
+    pub method: RoughMethod,
+    /// The seed of the random numbers.
+    pub seed: u64,
+}
+
+/// A measured topography (`[bodyN.surface] kind = "measured"`), read, detrended and scaled.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredRoughness {
+    /// The heights (m, positive outward from the body), detrended and scaled.
+    pub topography: Topography,
+    /// The file as written in the case.
+    pub file: String,
+    /// The degree of the polynomial removed (`None`: none).
+    pub detrend: Option<usize>,
+    /// Taken as one period of a periodic surface (`periodic = true`): its size is the period.
+    pub periodic: bool,
+}
+
+/// The roughness of a body, superposed on its smooth shape.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Roughness {
+    /// Generated from a power spectrum.
+    Generated(GeneratedRoughness),
+    /// Read from a file.
+    Measured(MeasuredRoughness),
+}
+
+impl Roughness {
+    /// "rough" or "measured", the case file's `kind`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Roughness::Generated(_) => "rough",
+            Roughness::Measured(_) => "measured",
+        }
+    }
+}
+
 /// One validated body.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {
     /// Elastic constants.
     pub material: ElasticMaterial,
-    /// Shape of the surface.
+    /// Shape of the surface (the smooth part where the body is rough: its radii, or a flat).
     pub shape: Shape,
+    /// A rough or measured surface superposed on the shape (`[bodyN.surface] kind = "rough"`
+    /// or `"measured"`).
+    pub roughness: Option<Roughness>,
 }
 
 impl Body {
@@ -307,8 +362,15 @@ pub struct HalfSpaceCase {
     pub body1: Body,
     /// Body 2.
     pub body2: Body,
-    /// Force or approach control.
+    /// Force or approach control (under `contact.mean_pressure`, the force on one period).
     pub loading: NormalLoading,
+    /// Load steps of the sweep (`contact.load_steps`, default 1): loads (or approaches)
+    /// `k / load_steps` of the case's, k = 1 ... load_steps, each solved from the previous
+    /// pressure; the last is the case's load, at which the other stages run.
+    pub load_steps: usize,
+    /// The window is one period of a periodic contact (`[grid] periodic = true`); its size
+    /// is the period (the window's half widths are half the period).
+    pub periodic: bool,
     /// Elements along x and y.
     pub n: [usize; 2],
     /// Window size.
@@ -335,6 +397,13 @@ impl HalfSpaceCase {
     pub fn is_hertzian(&self) -> bool {
         matches!(self.body1.shape, Shape::Radii { .. })
             && matches!(self.body2.shape, Shape::Radii { .. })
+            && !self.is_rough()
+            && !self.periodic
+    }
+
+    /// Whether a body has a rough or measured surface.
+    pub fn is_rough(&self) -> bool {
+        self.body1.roughness.is_some() || self.body2.roughness.is_some()
     }
 
     /// Composite modulus E*, Pa.

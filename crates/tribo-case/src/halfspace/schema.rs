@@ -65,6 +65,20 @@ pub(super) struct RawSurface {
     pub heights: Option<Vec<Vec<Number>>>,
     pub spacing: Option<Pair<Metres>>,
     pub scale: Option<Number>,
+    // rough (generated)
+    pub hurst: Option<Number>,
+    pub rolloff_wavelength: Option<Metres>,
+    pub long_wavelength: Option<Metres>,
+    pub short_wavelength: Option<Metres>,
+    pub rms_height: Option<Metres>,
+    pub rms_slope: Option<Number>,
+    pub anisotropy: Option<Pair<Number>>,
+    pub seed: Option<Count>,
+    pub method: Option<Choice<RoughMethod>>,
+    // measured
+    pub format: Option<Choice<TopographyFormat>>,
+    pub detrend: Option<Detrend>,
+    pub periodic: Option<Flag>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -72,11 +86,76 @@ pub(super) struct RawSurface {
 pub(super) enum SurfaceKind {
     Roller,
     HeightMap,
+    Rough,
+    Measured,
 }
 
 impl Choices for SurfaceKind {
-    const RULE: &'static str = "must be \"roller\" or \"height_map\"";
+    const RULE: &'static str =
+        "must be \"roller\", \"height_map\", \"rough\" (generated) or \"measured\" (a file)";
 }
+
+/// `[bodyN.surface] method` of a generated rough surface.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub(super) enum RoughMethod {
+    FilteredNoise,
+    RandomPhase,
+}
+
+impl Choices for RoughMethod {
+    const RULE: &'static str = "must be \"filtered_noise\" (Gaussian Fourier amplitudes, the \
+                                default) or \"random_phase\" (exact amplitudes)";
+}
+
+/// `[bodyN.surface] format` of a measured surface (default: by the file's extension).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub(super) enum TopographyFormat {
+    X3p,
+    Ascii,
+    Npy,
+}
+
+impl Choices for TopographyFormat {
+    const RULE: &'static str = "must be \"x3p\", \"ascii\" (CSV/text grids) or \"npy\"";
+}
+
+/// `[bodyN.surface] detrend`: `"none"`, `"plane"` or a polynomial degree (the range is a
+/// rule of [`super::validate`]).
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Detrend {
+    /// The degree, `None` for `"none"`.
+    pub degree: Option<usize>,
+    /// As written.
+    pub written: String,
+}
+
+impl FromToml for Detrend {
+    fn from_toml(value: &Value) -> Result<Self, Refusal> {
+        let written = units::show(value);
+        match value {
+            Value::String(s) if s == "none" => Ok(Detrend {
+                degree: None,
+                written,
+            }),
+            Value::String(s) if s == "plane" => Ok(Detrend {
+                degree: Some(1),
+                written,
+            }),
+            Value::String(_) => Err(Refusal::new(
+                value,
+                "must be \"none\", \"plane\" (the default) or a polynomial degree 0 ... 10",
+            )),
+            _ => Count::from_toml(value).map(|c| Detrend {
+                degree: Some(c.n),
+                written,
+            }),
+        }
+    }
+}
+
+leaf_deserialize!(Detrend);
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -101,6 +180,8 @@ pub(super) struct RawContact {
     pub sliding: Option<Flag>,
     pub sliding_angle_deg: Option<Degrees>,
     pub traction_direction: Option<Choice<TractionDirection>>,
+    pub mean_pressure: Option<Quantity<Pressure>>,
+    pub load_steps: Option<Count>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -121,6 +202,8 @@ pub(super) struct RawGrid {
     pub n: Option<Pair<Count>>,
     pub extent: Option<Number>,
     pub half_width: Option<Pair<Metres>>,
+    pub periodic: Option<Flag>,
+    pub period: Option<Pair<Metres>>,
 }
 
 #[derive(Debug, Deserialize)]

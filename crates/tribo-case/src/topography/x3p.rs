@@ -328,3 +328,71 @@ fn number(path: &Path, axis: Node, name: &str, axis_name: &str) -> TopographyRes
 fn is(node: &Node, name: &str) -> bool {
     node.is_element() && node.tag_name().name() == name
 }
+
+/// An X3P archive (ISO 25178-72) of the topography `t`: `main.xml` (FeatureType SUR,
+/// incremental x and y axes of the spacing, z absolute in metres, data type D) and the heights
+/// as little-endian doubles in `bindata/data.bin`, x fastest, both stored uncompressed. The
+/// MD5 checksums are left empty (the reader does not verify them; an instrument's own
+/// software may). `comment` goes into Record2.
+///
+/// Errors: the zip writer's (none are expected writing into memory).
+pub fn to_bytes(t: &tribo::surface::Topography, comment: &str) -> TopographyResult<Vec<u8>> {
+    use std::io::Write;
+    let (dx, dy) = t.spacing();
+    let escaped: String = comment
+        .chars()
+        .map(|c| match c {
+            '<' | '>' | '&' => ' ',
+            c => c,
+        })
+        .collect();
+    let xml = format!(
+        r#"<?xml version="1.0" encoding="UTF-8"?>
+<p:ISO5436_2 xmlns:p="http://www.opengps.eu/2008/ISO5436_2" xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xsi:schemaLocation="http://www.opengps.eu/2008/ISO5436_2 http://www.opengps.eu/2008/ISO5436_2/ISO5436_2.xsd">
+  <Record1>
+    <Revision>ISO5436 - 2000</Revision>
+    <FeatureType>SUR</FeatureType>
+    <Axes>
+      <CX><AxisType>I</AxisType><DataType>D</DataType><Increment>{dx:e}</Increment><Offset>0.0</Offset></CX>
+      <CY><AxisType>I</AxisType><DataType>D</DataType><Increment>{dy:e}</Increment><Offset>0.0</Offset></CY>
+      <CZ><AxisType>A</AxisType><DataType>D</DataType><Increment>1.0</Increment><Offset>0.0</Offset></CZ>
+    </Axes>
+  </Record1>
+  <Record2>
+    <Date>2026-11-25T00:00:00+00:00</Date>
+    <Instrument><Manufacturer>tribo</Manufacturer><Model>tribo example</Model><Serial>0</Serial><Version>{version}</Version></Instrument>
+    <CalibrationDate>2026-11-25T00:00:00+00:00</CalibrationDate>
+    <ProbingSystem><Type>NonContacting</Type><Identification>none</Identification></ProbingSystem>
+    <Comment>{escaped}</Comment>
+  </Record2>
+  <Record3>
+    <MatrixDimension><SizeX>{nx}</SizeX><SizeY>{ny}</SizeY><SizeZ>1</SizeZ></MatrixDimension>
+    <DataLink><PointDataLink>bindata/data.bin</PointDataLink><MD5ChecksumPointData></MD5ChecksumPointData></DataLink>
+  </Record3>
+  <Record4><ChecksumFile>md5checksum.hex</ChecksumFile></Record4>
+</p:ISO5436_2>
+"#,
+        version = env!("CARGO_PKG_VERSION"),
+        nx = t.nx(),
+        ny = t.ny(),
+    );
+    let data: Vec<u8> = t.heights().iter().flat_map(|h| h.to_le_bytes()).collect();
+    let err = |e: &dyn std::fmt::Display| {
+        TopographyError::new(
+            Path::new("<x3p in memory>"),
+            format!("writing the archive: {e}"),
+        )
+    };
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let options =
+        zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
+    for (name, bytes) in [
+        ("main.xml", xml.as_bytes()),
+        ("bindata/data.bin", &data[..]),
+    ] {
+        zip.start_file(name, options).map_err(|e| err(&e))?;
+        zip.write_all(bytes).map_err(|e| err(&e))?;
+    }
+    let cursor = zip.finish().map_err(|e| err(&e))?;
+    Ok(cursor.into_inner())
+}

@@ -7,8 +7,8 @@ use super::style::*;
 use crate::atomic::draw_atomic;
 use crate::error::{IoError, IoResult};
 use crate::halfspace::{
-    damage_plot_name, damage_plot_name_x0, DataFiles, BACK_EFFECT_FILES, FILES, STRESS_FILES,
-    STRESS_X0_FILES, STUDY_FILES, TANGENTIAL_FILES,
+    damage_plot_name, damage_plot_name_x0, DataFiles, BACK_EFFECT_FILES, FILES, ROUGH_FILES,
+    STRESS_FILES, STRESS_X0_FILES, STUDY_FILES, SWEEP_FILES, TANGENTIAL_FILES,
 };
 use plotters::prelude::*;
 use std::path::Path;
@@ -83,6 +83,7 @@ pub(crate) fn write_plots(
         })?;
     }
     tangential_plots(dir, case, out)?;
+    rough_plots(dir, case, out)?;
     if let (Some(arrays), Some(st)) = (&data.stress_arrays, &out.stress) {
         stress_sections(dir, case, out, st, arrays)?;
     }
@@ -134,6 +135,64 @@ pub(crate) fn write_plots(
                     "Sec. 6: dangerous volume of the intensity, limit {} p0 (dashed: the paper)",
                     study.limit_over_p0
                 ),
+            )
+        })?;
+    }
+    Ok(())
+}
+
+/// The contact patches map, the area against the load (cases with a sweep) and the PSD of
+/// the surface (rough cases).
+fn rough_plots(dir: &Path, case: &HalfSpaceCase, out: &Outcome) -> IoResult<()> {
+    use super::rough;
+    let grid = &out.prepared.grid;
+    let r = out.prepared.rough.as_ref();
+    if let Some(w) = &out.sweep {
+        draw_atomic(dir, SWEEP_FILES[2], |p| {
+            rough::patches_map(p, grid, &w.labels, w.patches.len(), &case.title)
+        })?;
+        let slope = r.map(|r| r.composite.rms_slope).filter(|_| case.periodic);
+        draw_atomic(dir, SWEEP_FILES[3], |p| {
+            rough::area_vs_load(
+                p,
+                &w.steps,
+                out.prepared.composite_modulus,
+                slope,
+                &format!("Contact area against load: {}", case.title),
+            )
+        })?;
+    }
+    if let Some(r) = r {
+        let input: Option<Vec<(f64, f64)>> = r.input_psd(1.0).map(|_| {
+            // The input spectrum on a log-spaced set of wavenumbers over the bins' range,
+            // with its corners (roll-off, start of the power law, cutoff) exact.
+            let (q0, q1) = (
+                r.psd.first().map_or(1.0, |b| b.q),
+                r.psd.last().map_or(1.0, |b| b.q),
+            );
+            let mut qs: Vec<f64> = (0..=400)
+                .map(|k| q0 * (q1 / q0).powf(k as f64 / 400.0))
+                .collect();
+            for b in &r.bodies {
+                if let Some(g) = &b.generated {
+                    let s = g.spectrum;
+                    for q in [s.rolloff, s.powerlaw_start, s.cutoff] {
+                        qs.extend([q * (1.0 - 1e-9), q * (1.0 + 1e-9)]);
+                    }
+                }
+            }
+            qs.retain(|q| *q >= q0 && *q <= q1);
+            qs.sort_by(f64::total_cmp);
+            qs.into_iter()
+                .filter_map(|q| r.input_psd(q).map(|c| (q, c)))
+                .collect()
+        });
+        draw_atomic(dir, ROUGH_FILES[1], |p| {
+            rough::psd(
+                p,
+                &r.psd,
+                input.as_deref(),
+                &format!("PSD of the surface: {}", case.title),
             )
         })?;
     }

@@ -11,4 +11,5 @@ pub mod dynamics_damage;
 pub mod fatigue;
 pub mod halfspace;
 pub mod probabilistic;
+pub mod rough;
 pub mod style;

@@ -3,7 +3,7 @@
 
 use super::positive;
 use crate::error::{CaseError, CaseResult};
-use crate::halfspace::model::Shape;
+use crate::halfspace::model::{Roughness, Shape};
 use crate::halfspace::schema::{CrownKind, Metres, Radii, RawBody, RawSurface, SurfaceKind};
 use std::path::{Path, PathBuf};
 use tribo::geometry::{Crown, HeightMap, LogarithmicCrown, Roller, SurfaceProfile};
@@ -19,16 +19,37 @@ pub(super) fn material(name: &str, b: &RawBody) -> CaseResult<ElasticMaterial> {
 /// What a body's surface needs from the rest of the case.
 pub(super) struct ShapeContext<'a> {
     pub e_star: f64,
-    pub loading: NormalLoading,
+    /// The load, `None` under `contact.mean_pressure` (the force needs the period).
+    pub loading: Option<NormalLoading>,
     pub base_dir: &'a Path,
 }
 
-pub(super) fn shape(name: &str, b: RawBody, ctx: &ShapeContext<'_>) -> CaseResult<Shape> {
+/// A body's smooth shape and its roughness. `radii` and a `[bodyN.surface]` of kind
+/// "rough" or "measured" combine: the roughness superposed on the body of those radii (a
+/// rough ball); such a surface alone is a rough flat. A roller or a height map is the
+/// whole shape: not with `radii`.
+pub(super) fn shape(
+    name: &str,
+    b: RawBody,
+    ctx: &ShapeContext<'_>,
+) -> CaseResult<(Shape, Option<Roughness>)> {
+    let field = format!("{name}.surface");
+    let rough_kind =
+        |s: &RawSurface| matches!(s.kind.value, SurfaceKind::Rough | SurfaceKind::Measured);
     match (b.radii, b.surface) {
-        (Some(_), Some(_)) => Err(CaseError::field(
+        (Some(r), Some(s)) if rough_kind(&s) => {
+            let roughness = roughness(&field, s, ctx)?;
+            let radii = radii(name, &r)?;
+            let angle = b.angle_deg.as_ref().map_or(0.0, |d| d.si().to_radians());
+            Ok((Shape::Radii { radii, angle }, Some(roughness)))
+        }
+        (Some(_), Some(s)) => Err(CaseError::field(
             format!("{name}.radii"),
-            "(and a surface)",
-            format!("give exactly one of {name}.radii and [{name}.surface]"),
+            format!("(and a surface of kind = {})", s.kind.written),
+            format!(
+                "give exactly one of {name}.radii and a [{name}.surface] of kind \"roller\" or \
+                 \"height_map\" (radii combine only with a \"rough\" or \"measured\" surface)"
+            ),
         )),
         (None, None) => Err(CaseError::field(
             format!("{name}.radii"),
@@ -41,7 +62,7 @@ pub(super) fn shape(name: &str, b: RawBody, ctx: &ShapeContext<'_>) -> CaseResul
                 None => 0.0,
                 Some(deg) => deg.si().to_radians(),
             };
-            Ok(Shape::Radii { radii, angle })
+            Ok((Shape::Radii { radii, angle }, None))
         }
         (None, Some(s)) => {
             if let Some(a) = &b.angle_deg {
@@ -51,7 +72,18 @@ pub(super) fn shape(name: &str, b: RawBody, ctx: &ShapeContext<'_>) -> CaseResul
                     "applies to radii only; a surface is given in the common frame",
                 ));
             }
-            Ok(Shape::Surface(surface(&format!("{name}.surface"), s, ctx)?))
+            if rough_kind(&s) {
+                // A rough flat: the roughness on a plane.
+                let roughness = roughness(&field, s, ctx)?;
+                return Ok((
+                    Shape::Radii {
+                        radii: [f64::INFINITY; 2],
+                        angle: 0.0,
+                    },
+                    Some(roughness),
+                ));
+            }
+            Ok((Shape::Surface(surface(&field, s, ctx)?), None))
         }
     }
 }
@@ -76,44 +108,117 @@ fn radii(name: &str, r: &Radii) -> CaseResult<[f64; 2]> {
     Ok(out)
 }
 
-fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CaseResult<SurfaceProfile> {
-    if let Some((key, value)) = foreign_key(&s) {
-        return Err(CaseError::field(
+/// Refuses the keys that do not apply to the surface's kind.
+fn check_keys(field: &str, s: &RawSurface) -> CaseResult<()> {
+    match foreign_key(s) {
+        Some((key, value)) => Err(CaseError::field(
             format!("{field}.{key}"),
             value,
             format!("does not apply to kind = {}", s.kind.written),
-        ));
-    }
-    match s.kind.value {
-        SurfaceKind::Roller => roller(field, s, ctx),
-        SurfaceKind::HeightMap => height_map(field, s, ctx),
+        )),
+        None => Ok(()),
     }
 }
 
-/// The first key given that belongs to the other kind of surface, with its value as written.
+fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CaseResult<SurfaceProfile> {
+    check_keys(field, &s)?;
+    match s.kind.value {
+        SurfaceKind::Roller => roller(field, s, ctx),
+        SurfaceKind::HeightMap => height_map(field, s, ctx),
+        // `shape` takes these to `roughness`.
+        SurfaceKind::Rough | SurfaceKind::Measured => Err(CaseError::field(
+            format!("{field}.kind"),
+            &s.kind.written,
+            "a rough or measured surface is a roughness, not a shape",
+        )),
+    }
+}
+
+fn roughness(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CaseResult<Roughness> {
+    check_keys(field, &s)?;
+    match s.kind.value {
+        SurfaceKind::Rough => super::rough::generated(field, &s).map(Roughness::Generated),
+        _ => super::rough::measured(field, s, ctx.base_dir).map(Roughness::Measured),
+    }
+}
+
+/// The first key given that does not apply to the surface's kind, with its value as written.
 fn foreign_key(s: &RawSurface) -> Option<(&'static str, String)> {
+    use SurfaceKind::{HeightMap, Measured, Roller, Rough};
     let q = |q: Option<&Metres>| q.map(|q| q.written().to_string());
-    let keys = match s.kind.value {
-        SurfaceKind::Roller => vec![
-            ("file", s.file.as_ref().map(|f| format!("{f:?}"))),
-            ("heights", s.heights.as_ref().map(|_| "given".to_string())),
-            ("spacing", s.spacing.as_ref().map(|p| p.written.clone())),
-            ("scale", s.scale.as_ref().map(|x| x.written().to_string())),
-        ],
-        SurfaceKind::HeightMap => vec![
-            ("radius", q(s.radius.as_ref())),
-            ("length", q(s.length.as_ref())),
-            ("crown", s.crown.as_ref().map(|c| c.written.clone())),
-            ("crown_radius", q(s.crown_radius.as_ref())),
-            ("flat_length", q(s.flat_length.as_ref())),
-            (
-                "design_load",
-                s.design_load.as_ref().map(|x| x.written().to_string()),
-            ),
-            ("crown_drop", q(s.crown_drop.as_ref())),
-        ],
-    };
-    keys.into_iter().find_map(|(k, v)| Some((k, v?)))
+    let n = |q: Option<&crate::halfspace::schema::Number>| q.map(|q| q.written().to_string());
+    let keys: Vec<(&'static str, Option<String>, &[SurfaceKind])> = vec![
+        ("radius", q(s.radius.as_ref()), &[Roller]),
+        ("length", q(s.length.as_ref()), &[Roller]),
+        (
+            "crown",
+            s.crown.as_ref().map(|c| c.written.clone()),
+            &[Roller],
+        ),
+        ("crown_radius", q(s.crown_radius.as_ref()), &[Roller]),
+        ("flat_length", q(s.flat_length.as_ref()), &[Roller]),
+        (
+            "design_load",
+            s.design_load.as_ref().map(|x| x.written().to_string()),
+            &[Roller],
+        ),
+        ("crown_drop", q(s.crown_drop.as_ref()), &[Roller]),
+        (
+            "file",
+            s.file.as_ref().map(|f| format!("{f:?}")),
+            &[HeightMap, Measured],
+        ),
+        (
+            "heights",
+            s.heights.as_ref().map(|_| "given".to_string()),
+            &[HeightMap],
+        ),
+        (
+            "spacing",
+            s.spacing.as_ref().map(|p| p.written.clone()),
+            &[HeightMap, Measured],
+        ),
+        ("scale", n(s.scale.as_ref()), &[HeightMap, Measured]),
+        ("hurst", n(s.hurst.as_ref()), &[Rough]),
+        (
+            "rolloff_wavelength",
+            q(s.rolloff_wavelength.as_ref()),
+            &[Rough],
+        ),
+        ("long_wavelength", q(s.long_wavelength.as_ref()), &[Rough]),
+        ("short_wavelength", q(s.short_wavelength.as_ref()), &[Rough]),
+        ("rms_height", q(s.rms_height.as_ref()), &[Rough]),
+        ("rms_slope", n(s.rms_slope.as_ref()), &[Rough]),
+        (
+            "anisotropy",
+            s.anisotropy.as_ref().map(|p| p.written.clone()),
+            &[Rough],
+        ),
+        ("seed", s.seed.as_ref().map(|c| c.n.to_string()), &[Rough]),
+        (
+            "method",
+            s.method.as_ref().map(|m| m.written.clone()),
+            &[Rough],
+        ),
+        (
+            "format",
+            s.format.as_ref().map(|f| f.written.clone()),
+            &[Measured],
+        ),
+        (
+            "detrend",
+            s.detrend.as_ref().map(|d| d.written.clone()),
+            &[Measured],
+        ),
+        (
+            "periodic",
+            s.periodic.as_ref().map(|p| p.written.clone()),
+            &[Measured],
+        ),
+    ];
+    keys.into_iter()
+        .filter(|(_, _, kinds)| !kinds.contains(&s.kind.value))
+        .find_map(|(k, v, _)| Some((k, v?)))
 }
 
 fn required<'a>(
@@ -193,19 +298,25 @@ fn roller(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CaseResult<Surf
         CrownKind::Logarithmic => {
             unused("crown_radius", written(&s.crown_radius))?;
             unused("flat_length", written(&s.flat_length))?;
-            let q = match (&s.design_load, ctx.loading) {
-                (Some(v), _) => {
-                    positive(&format!("{field}.design_load"), v, "the design load (N)")?
-                }
-                (None, NormalLoading::Force(f)) => f,
-                (None, NormalLoading::Approach(_)) => {
-                    return Err(CaseError::field(
+            let q =
+                match (&s.design_load, ctx.loading) {
+                    (Some(v), _) => {
+                        positive(&format!("{field}.design_load"), v, "the design load (N)")?
+                    }
+                    (None, Some(NormalLoading::Force(f))) => f,
+                    (None, None) => return Err(CaseError::field(
                         format!("{field}.design_load"),
                         "(missing)",
-                        "a logarithmic crown under approach control needs its design load (N)",
-                    ))
-                }
-            };
+                        "a logarithmic crown under contact.mean_pressure needs its design load (N)",
+                    )),
+                    (None, Some(NormalLoading::Approach(_))) => {
+                        return Err(CaseError::field(
+                            format!("{field}.design_load"),
+                            "(missing)",
+                            "a logarithmic crown under approach control needs its design load (N)",
+                        ))
+                    }
+                };
             let zm = match &s.crown_drop {
                 None => None,
                 Some(v) => Some(positive(
@@ -377,7 +488,8 @@ pub(super) fn check_convex(r1: [f64; 2], r2: [f64; 2], angle: f64) -> CaseResult
             format!(
                 "the gap h = A x'^2 + B y'^2 must be convex (A, B > 0) for a bounded contact, \
                  here A = {a:.4e}, B = {b:.4e} 1/m (both bodies flat, or a concave body tighter \
-                 than the convex one); use a [bodyN.surface] for line contacts"
+                 than the convex one); use a [bodyN.surface] for line contacts, and \
+                 [grid] periodic = true for a rough flat on a flat"
             ),
         ));
     }

@@ -3,10 +3,83 @@
 
 use super::positive;
 use crate::error::{CaseError, CaseResult};
-use crate::halfspace::model::Friction;
+use crate::halfspace::model::{Friction, MAX_LOAD_STEPS};
 use crate::halfspace::schema::{Degrees, RawContact, TractionDirection};
 use tribo::solvers::tangential::TangentialLoading;
 use tribo::solvers::NormalLoading;
+
+/// How the case is loaded: a force or an approach, or a mean pressure (periodic grids only;
+/// the force on one period once the period is known).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum LoadSpec {
+    /// `contact.load` or `contact.approach`.
+    Loading(NormalLoading),
+    /// `contact.mean_pressure`, Pa.
+    MeanPressure(f64),
+}
+
+impl LoadSpec {
+    /// The loading where it is known before the grid.
+    pub(super) fn loading(self) -> Option<NormalLoading> {
+        match self {
+            LoadSpec::Loading(l) => Some(l),
+            LoadSpec::MeanPressure(_) => None,
+        }
+    }
+}
+
+/// Exactly one of `load` (N), `approach` (m) and `mean_pressure` (Pa, periodic grids only:
+/// the force on one period divided by its area), > 0.
+pub(super) fn load_spec(c: &RawContact, periodic: bool) -> CaseResult<LoadSpec> {
+    let Some(p) = &c.mean_pressure else {
+        return loading(c).map(LoadSpec::Loading);
+    };
+    if let Some(l) = &c.load {
+        return Err(CaseError::field(
+            "contact.load",
+            l,
+            "give exactly one of contact.load (N), contact.approach (m) and \
+             contact.mean_pressure (Pa), not both",
+        ));
+    }
+    if let Some(a) = &c.approach {
+        return Err(CaseError::field(
+            "contact.approach",
+            a,
+            "give exactly one of contact.load (N), contact.approach (m) and \
+             contact.mean_pressure (Pa), not both",
+        ));
+    }
+    if !periodic {
+        return Err(CaseError::field(
+            "contact.mean_pressure",
+            p,
+            "applies to periodic grids ([grid] periodic = true), where the load is the mean \
+             pressure times the period area; give contact.load (N) otherwise",
+        ));
+    }
+    Ok(LoadSpec::MeanPressure(positive(
+        "contact.mean_pressure",
+        p,
+        "the mean pressure (Pa)",
+    )?))
+}
+
+/// `contact.load_steps`: 1 ... [`MAX_LOAD_STEPS`], default 1.
+pub(super) fn load_steps(c: &RawContact) -> CaseResult<usize> {
+    match &c.load_steps {
+        None => Ok(1),
+        Some(n) if (1..=MAX_LOAD_STEPS).contains(&n.n) => Ok(n.n),
+        Some(n) => Err(CaseError::field(
+            "contact.load_steps",
+            n.n,
+            format!(
+                "must be 1 ... {MAX_LOAD_STEPS} (the number of loads of the sweep, each one \
+                 contact solution)"
+            ),
+        )),
+    }
+}
 
 /// Exactly one of `load` (N) and `approach` (m), > 0.
 pub(super) fn loading(c: &RawContact) -> CaseResult<NormalLoading> {

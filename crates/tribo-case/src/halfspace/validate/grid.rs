@@ -107,10 +107,73 @@ pub(super) fn window(grid: &RawGrid, hertzian: bool, shapes: [&Shape; 2]) -> Cas
     Ok(window)
 }
 
+/// The window of a periodic grid (`[grid] periodic = true`): one period, `grid.period` (m)
+/// or, without it, `default_period` (a measured map declared periodic); `None` for a
+/// non-periodic grid (then [`window`]). A periodic grid refuses `extent` and `half_width`;
+/// a non-periodic one refuses `period`.
+pub(super) fn periodic_window(
+    grid: &RawGrid,
+    default_period: Option<[f64; 2]>,
+) -> CaseResult<Option<Window>> {
+    let periodic = grid.periodic.as_ref().is_some_and(|p| p.on);
+    if !periodic {
+        if let Some(p) = &grid.period {
+            return Err(CaseError::field(
+                "grid.period",
+                &p.written,
+                "applies to periodic grids: set grid.periodic = true, or size the window by \
+                 grid.half_width",
+            ));
+        }
+        return Ok(None);
+    }
+    if let Some(e) = &grid.extent {
+        return Err(CaseError::field(
+            "grid.extent",
+            e,
+            "a periodic grid is one period: size it by grid.period = [Lx, Ly] (m)",
+        ));
+    }
+    if let Some(h) = &grid.half_width {
+        return Err(CaseError::field(
+            "grid.half_width",
+            &h.written,
+            "a periodic grid is one period: size it by grid.period = [Lx, Ly] (m)",
+        ));
+    }
+    let period = match &grid.period {
+        Some(p) => {
+            let l = [p.items[0].si(), p.items[1].si()];
+            for (k, w) in l.iter().enumerate() {
+                let key = p.item_key("grid.period", k);
+                if !(w.is_finite() && *w > 0.0) {
+                    return Err(CaseError::field(
+                        key,
+                        w,
+                        "the period must be finite and > 0 (m)",
+                    ));
+                }
+                crate::units::check_length(&key, &p.written, *w)?;
+            }
+            l
+        }
+        None => default_period.ok_or_else(|| {
+            CaseError::field(
+                "grid.period",
+                "(missing)",
+                "required on a periodic grid: the period [Lx, Ly] (m), scalar or pair (a \
+                 measured map declared periodic gives its own size)",
+            )
+        })?,
+    };
+    Ok(Some(Window::HalfWidth([0.5 * period[0], 0.5 * period[1]])))
+}
+
 /// The solver and its parameters; the dense active set only on small grids.
 pub(super) fn solver(
     raw: Option<RawSolver>,
     n: [usize; 2],
+    periodic: bool,
 ) -> CaseResult<(NormalMethod, NormalContactParams)> {
     let mut params = NormalContactParams::default();
     let Some(s) = raw else {
@@ -136,6 +199,13 @@ pub(super) fn solver(
             ));
         }
         params.max_iterations = m.n;
+    }
+    if method == NormalMethod::ActiveSet && periodic {
+        return Err(CaseError::field(
+            "solver.method",
+            "\"active_set\"",
+            "the dense active set has no periodic form: use method = \"cg\" on a periodic grid",
+        ));
     }
     if method == NormalMethod::ActiveSet && n[0] * n[1] > MAX_ACTIVE_SET_ELEMENTS {
         return Err(CaseError::field(

@@ -8,16 +8,19 @@ mod contact;
 mod damage;
 mod field;
 mod grid;
+mod rough;
 
 pub use body::read_height_csv;
 #[cfg(test)]
 pub(crate) use bulk::shaft_radius_from;
 
-use super::model::{Body, HalfSpaceCase, Shape};
+use super::model::{Body, HalfSpaceCase, Shape, Window};
 use super::schema::RawCase;
+use super::schema::RawContact;
 use crate::error::{CaseError, CaseResult};
 use crate::units::{Dim, Dimension, Quantity};
 use std::path::Path;
+use tribo::solvers::NormalLoading;
 
 /// The validated case from its raw form, in the order of the sections' dependencies: the
 /// bodies and the load, the window, the solver, then bulk, friction, field and damage.
@@ -31,7 +34,10 @@ pub(super) fn validate(
     let m2 = body::material("body2", &raw.body2)?;
     let e_star = tribo::composite_modulus(&m1, &m2);
 
-    let loading = contact::loading(&raw.contact)?;
+    let raw_grid = raw.grid.unwrap_or_default();
+    let periodic = raw_grid.periodic.as_ref().is_some_and(|p| p.on);
+    let load_spec = contact::load_spec(&raw.contact, periodic)?;
+    let load_steps = contact::load_steps(&raw.contact)?;
 
     if let Some(a) = &raw.body1.angle_deg {
         return Err(CaseError::field(
@@ -43,24 +49,67 @@ pub(super) fn validate(
     }
     let ctx = body::ShapeContext {
         e_star,
-        loading,
+        loading: load_spec.loading(),
         base_dir,
     };
-    let shape1 = body::shape("body1", raw.body1, &ctx)?;
-    let shape2 = body::shape("body2", raw.body2, &ctx)?;
-    let hertzian = matches!(shape1, Shape::Radii { .. }) && matches!(shape2, Shape::Radii { .. });
+    let (shape1, rough1) = body::shape("body1", raw.body1, &ctx)?;
+    let (shape2, rough2) = body::shape("body2", raw.body2, &ctx)?;
+    let rough = rough1.is_some() || rough2.is_some();
+    let hertzian =
+        matches!(shape1, Shape::Radii { .. }) && matches!(shape2, Shape::Radii { .. }) && !rough;
     if let (Shape::Radii { radii: r1, .. }, Shape::Radii { radii: r2, angle }) = (&shape1, &shape2)
     {
-        body::check_convex(*r1, *r2, *angle)?;
+        if !periodic {
+            body::check_convex(*r1, *r2, *angle)?;
+        }
     }
+    let body1 = Body {
+        material: m1,
+        shape: shape1,
+        roughness: rough1,
+    };
+    let body2 = Body {
+        material: m2,
+        shape: shape2,
+        roughness: rough2,
+    };
 
-    let raw_grid = raw.grid.unwrap_or_default();
     let n = grid::elements(&raw_grid)?;
-    let window = grid::window(&raw_grid, hertzian, [&shape1, &shape2])?;
-    let (method, params) = grid::solver(raw.solver, n)?;
+    let window = match grid::periodic_window(&raw_grid, rough::default_period([&body1, &body2]))? {
+        Some(w) => w,
+        None => grid::window(&raw_grid, hertzian, [&body1.shape, &body2.shape])?,
+    };
+    rough::check_against_grid([("body1", &body1), ("body2", &body2)], n, window, periodic)?;
+    let loading = match (load_spec, window) {
+        (contact::LoadSpec::Loading(l), _) => l,
+        (contact::LoadSpec::MeanPressure(p), Window::HalfWidth(hw)) => {
+            NormalLoading::Force(p * 4.0 * hw[0] * hw[1])
+        }
+        (contact::LoadSpec::MeanPressure(p), Window::Extent(_)) => {
+            // A periodic window is sized by its period (grid::periodic_window).
+            return Err(CaseError::field(
+                "contact.mean_pressure",
+                p,
+                "applies to periodic grids only",
+            ));
+        }
+    };
+    if periodic {
+        if let NormalLoading::Approach(d) = loading {
+            return Err(CaseError::field(
+                "contact.approach",
+                d,
+                "approach control is not defined on a periodic grid (the mean displacement of \
+                 a periodic half-space is unbounded): give contact.load (N, the force on one \
+                 period) or contact.mean_pressure (Pa)",
+            ));
+        }
+        periodic_refusals(&raw.contact, raw.bulk.is_some(), raw.field.is_some())?;
+    }
+    let (method, params) = grid::solver(raw.solver, n, periodic)?;
     let bulk = match raw.bulk {
         None => None,
-        Some(b) => Some(bulk::bulk(b, &shape1, &shape2)?),
+        Some(b) => Some(bulk::bulk(b, &body1.shape, &body2.shape)?),
     };
 
     let friction = contact::friction(&raw.contact)?;
@@ -86,15 +135,11 @@ pub(super) fn validate(
     Ok(HalfSpaceCase {
         title,
         source: source.to_string(),
-        body1: Body {
-            material: m1,
-            shape: shape1,
-        },
-        body2: Body {
-            material: m2,
-            shape: shape2,
-        },
+        body1,
+        body2,
         loading,
+        load_steps,
+        periodic,
         n,
         window,
         method,
@@ -105,6 +150,38 @@ pub(super) fn validate(
         damage,
         echo,
     })
+}
+
+/// What a periodic grid does not run yet: friction (the tangential solvers' operators are
+/// the non-periodic ones), the back effect of bulk loading (a shaft is not periodic), and
+/// the stress field and damage (the case's field paths are the non-periodic ones; the
+/// library's `stress_field_periodic_pressure` is not wired to `[field]` yet).
+fn periodic_refusals(c: &RawContact, bulk: bool, field: bool) -> CaseResult<()> {
+    if let Some(f) = &c.friction {
+        return Err(CaseError::field(
+            "contact.friction",
+            f,
+            "friction is not available on a periodic grid yet (the tangential solvers are \
+             non-periodic): leave it out, or run on a non-periodic window",
+        ));
+    }
+    if bulk {
+        return Err(CaseError::field(
+            "bulk",
+            "given",
+            "the back effect of bulk loading needs a shaft, not a periodic surface: leave \
+             [bulk] out on a periodic grid",
+        ));
+    }
+    if field {
+        return Err(CaseError::field(
+            "field",
+            "given",
+            "the stress field of a periodic grid is not available from a case file yet: leave \
+             [field] (and [damage]) out on a periodic grid",
+        ));
+    }
+    Ok(())
 }
 
 /// A quantity that must be > 0 (`what` names it in the rule); a length of the geometry (any
