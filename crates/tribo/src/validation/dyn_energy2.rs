@@ -220,8 +220,8 @@ pub(crate) const ROWS_SETUP: CavitySetup = CavitySetup {
     sectors: 24,
 };
 
-/// The cavity's energy rows (module docs; not yet in [`super::run_all`]'s list: the run
-/// changed to R = 12 a awaits its first measurement): at t = 8 a/c2 the
+/// The cavity's energy rows (module docs; in [`super::run_all`]'s list; measured, session
+/// 13: U/U_s,h - 1 = 5.9e-3, K/U_s = 4.1e-6, the balance 1.43e-2; 7 s): at t = 8 a/c2 the
 /// strain energy of a < r < 3a
 /// against the Lame value of the same quadrature, the kinetic energy there, and U + K = W
 /// at t = 0.6 (the P front at r = 2.04 a, inside the annulus).
@@ -240,14 +240,15 @@ pub fn dyn_energy2_rows() -> Result<Vec<ValidationRow>> {
     Ok(vec![
         // The tolerance: the near field's approach (u_r(a) - u_s falls like t^-2, 2.8e-3
         // of u_s at t = 8 on this ring, sec. 5.6), doubled in U ~ u^2, plus the coarse
-        // hole's BEM error (8 elements per half circle, ~5e-4) and the start-up: 3 %.
+        // hole's BEM error (8 elements per half circle, ~5e-4) and the start-up: 1.5 %
+        // (measured 5.9e-3).
         ValidationRow::new(
             case,
             "strain energy U(a < r < 3a) at t = 8 a/c2, J/m",
             e.static_quadrature,
             e.strain[n],
             ErrorMeasure::Relative,
-            3e-2,
+            1.5e-2,
             source,
         ),
         ValidationRow::new(
@@ -256,7 +257,7 @@ pub fn dyn_energy2_rows() -> Result<Vec<ValidationRow>> {
             0.0,
             e.kinetic[n] / e.static_quadrature,
             ErrorMeasure::Bound,
-            1e-2,
+            1e-4,
             source,
         ),
         // U + K = W while the waves are inside the annulus (BDF2's numerical damping and
@@ -268,7 +269,7 @@ pub fn dyn_energy2_rows() -> Result<Vec<ValidationRow>> {
             0.0,
             (e.work[early] - e.strain[early] - e.kinetic[early]).abs() / e.work[early],
             ErrorMeasure::Bound,
-            5e-2,
+            3e-2,
             source,
         ),
     ])
@@ -280,7 +281,6 @@ mod tests {
 
     /// Every row passes (values printed for the tolerances above).
     #[test]
-    #[ignore = "the rows' run changed to R = 12 a (session 13): not yet measured"]
     fn dyn_energy2_rows_pass() {
         let rows = dyn_energy2_rows().unwrap();
         assert_eq!(rows.len(), 3);
