@@ -163,6 +163,17 @@ size = "4 mm"
 /// leaves; the library test of the same statement measured 1.2e-3 (translation) and
 /// 1.2e-3 of max p. Tolerance 1 %. The energies at the end: K ~ 0 (4e-15 of W); U see
 /// below.
+///
+/// The strain energy at the end against the static run's strain energy on the same field
+/// triangulation (the static sampler's values, the same quadrature): the recovery
+/// evaluates the boundary nodes by the static sampler's rule (a boundary layer inside,
+/// corners from the boundary solution), so what remains is the quasi-static error.
+/// Measured: U = 10.50907 J/m against 10.51004 (U/U_static - 1 = -9.2e-5; the
+/// translation's error 4.4e-5, doubled in U ~ u^2); before the rule (boundary nodes 1 %
+/// inside their triangle) 14.65 J/m, +39 %. Tolerance 1e-3: ten times the measured, half the
+/// quasi-static bound (T_tr/T0)^2 ~ 6e-4 doubled in U. The domain balance W - D - U - K at
+/// the end: measured -2.04e-2 J/m = 1.9e-3 W (the static run's own U against W - D, the
+/// field quadrature of the singular corners on 4 mm triangles); tolerance 5e-3 W.
 #[test]
 fn slow_rigid_punch_equals_the_static_run() {
     let text = slow_punch_text();
@@ -222,13 +233,10 @@ fn slow_rigid_punch_equals_the_static_run() {
     }
     eprintln!("slow punch: static strain energy on the same triangulation {u_static:.6e}");
     assert!(e.kinetic[last].abs() < 1e-2 * w[last]);
-    // Measured: U = 14.65 J/m against the static run's 10.51 on the same triangulation
-    // (= W - D = 10.49 to 2e-3): the recovery evaluates boundary nodes 1 % inside their
-    // triangle, and at the punch's and the contact's singular corners (t ~ r^-1/2) that
-    // value, interpolated over a 4 mm triangle, overstates the energy by 39 %; the static
-    // sampler's boundary rule does not. A known limit (docs/theory/DYNAMICS.md sec. 5.8):
-    // asserted only that U lies between the static value and 1.5 times it.
-    assert!(e.strain[last] > u_static && e.strain[last] < 1.5 * u_static);
+    let ratio = e.strain[last] / u_static;
+    eprintln!("slow punch: U / U_static - 1 = {:.3e}", ratio - 1.0);
+    assert!((ratio - 1.0).abs() < 1e-3, "{ratio}");
+    assert!(e.domain_balance[last].abs() < 5e-3 * w[last]);
 }
 
 /// Strain and kinetic energy of the contact run (`energy.csv`'s `strain_energy`,
@@ -238,12 +246,14 @@ fn slow_rigid_punch_equals_the_static_run() {
 /// the translational energy is W/2, the kinetic energy of the deformation 0 and U = W/2;
 /// after separation the target carries v0 (translational energy W) and nothing vibrates.
 ///
-/// Measured: at t = L/c (20 us) U = 0.467 W (the fronts smeared over one 25 mm triangle of
+/// Measured: at t = L/c (20 us) U = 0.469 W (the fronts smeared over one 25 mm triangle of
 /// the 100 mm rods: relative O(h/L)), K = -9e-5 W, K_rigid = 0.500 W; at the end U + K =
 /// 1.7e-2 W (the boundary-work vibration, mechanical - translational, 4.7e-2 W: the march's
-/// smeared release), translational 0.953 W; the worst |domain balance| 9.0e-2 W.
-/// Tolerances: U within 10 % of W/2 (one triangle of four along the rod), |K| below 1 % of
-/// W, K_rigid within 1 %, the end's vibration below 5 % of W and the balance below 12 %.
+/// smeared release), translational 0.953 W; the worst |domain balance| 4.3e-2 W (9.0e-2
+/// with the boundary nodes evaluated 1 % inside their triangle, before the static
+/// sampler's rule). Tolerances: U within 10 % of W/2 (one triangle of four along the rod),
+/// |K| below 1 % of W, K_rigid within 1 %, the end's vibration below 5 % of W and the
+/// balance below 6 % (the measured 4.3e-2 and the margin of the time step's share of it).
 #[test]
 fn rod_impact_strain_and_kinetic_energy_after_separation() {
     let text = find("rod-impact")
@@ -287,7 +297,7 @@ fn rod_impact_strain_and_kinetic_energy_after_separation() {
         e.kinetic[mid],
         e.translational_kinetic[mid],
     );
-    assert!(worst < 0.12, "{worst}");
+    assert!(worst < 0.06, "{worst}");
     assert!((e.strain[mid] / (0.5 * w_max) - 1.0).abs() < 0.1);
     assert!(e.kinetic[mid].abs() < 0.01 * w_max);
     assert!((e.translational_kinetic[mid] / (0.5 * w_max) - 1.0).abs() < 0.01);

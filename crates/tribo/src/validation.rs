@@ -2385,6 +2385,7 @@ pub fn run_all() -> Result<Vec<ValidationRow>> {
     rows.extend(dyn_stress_rows()?);
     rows.extend(dyn_damage_rows()?);
     rows.extend(dyn_energy_rows()?);
+    rows.extend(dyn_energy2_rows()?);
     rows.extend(prob_damage_rows()?);
     rows.extend(rough_rows()?);
     rows.extend(periodic_rows()?);

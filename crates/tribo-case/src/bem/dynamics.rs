@@ -26,10 +26,14 @@
 //! without snapshots; [`domain_energies`], [`tribo::dynamics::energy_domain`]) at every
 //! step, with the balance W - U - K (docs/theory/DYNAMICS.md sec. 5.8).
 //!
-//! Field snapshot points on the boundary are evaluated 1 % of the way towards the centroid
-//! of their first triangle (the Somigliana identity holds inside; at a corner the static
-//! sampler's boundary-layer rule has two feet and no single inside point): a displacement
-//! error of about 0.5 % of h |grad u| there, h the triangle size.
+//! Field snapshot points on the boundary are evaluated as the static field sampler
+//! evaluates them ([`tribo::analysis::bem_field::sample_region`], each in its own region,
+//! [`LaplaceBem::with_field_points`]): a node on a segment is taken a boundary layer (1e-4
+//! of an element length) inside by the Somigliana identity, a node at a segment junction (a
+//! corner) from the boundary solution itself (the tractions of the sides give the whole
+//! in-plane stress; Hooke's law is instantaneous, so the static rule holds at every time).
+//! The strain energy of a run pressed slowly thus equals the static run's on the same
+//! triangulation (docs/theory/DYNAMICS.md sec. 5.8).
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
@@ -258,10 +262,10 @@ pub fn run(
     let factors = &case.steps[0].factors;
     let all = pipeline::scaled_conditions(case, built, factors, &|_| 1.0)?;
     // The field triangulation always: the strain and kinetic energies integrate over it.
-    let (points, snapshot) = output_points_with(case, spec, built, true)?;
+    let (output, snapshot) = output_points_with(case, spec, built, true)?;
     // Stresses at every point (probes and snapshot points): three more outputs each.
-    let bem =
-        LaplaceBem::new(&built.model, &densities, &all, &points)?.with_stress_probes(&points)?;
+    let bem = recovery_bem(built, &densities, &all, &output)?;
+    let points = output.points;
     let mut patterns = Vec::with_capacity(case.bcs.len());
     for b in 0..case.bcs.len() {
         let only = pipeline::scaled_conditions(case, built, factors, &|k| {
@@ -359,16 +363,18 @@ pub(crate) fn check_probes(spec: &DynamicsSpec, built: &BuiltModel) -> CaseResul
 
 /// The points whose histories are convolved: the probes, then the nodes of the static
 /// field's triangulation of every sampled region (with snapshots, `[damage]`, or where
-/// `always`: the domain energies; boundary nodes moved inwards, module docs), and the
-/// snapshot mesh over them.
+/// `always`: the domain energies; boundary nodes evaluated by the static sampler's rule,
+/// module docs), each with its region (None for the probes: the first region holding
+/// them), and the snapshot mesh over them.
 pub(crate) fn output_points_with(
     case: &BemCase,
     spec: &DynamicsSpec,
     built: &BuiltModel,
     always: bool,
-) -> CaseResult<(Vec<[f64; 2]>, SnapshotMesh)> {
+) -> CaseResult<(OutputPoints, SnapshotMesh)> {
     let mut snapshot = SnapshotMesh::default();
     let mut points: Vec<[f64; 2]> = spec.probes.iter().map(|p| p.at).collect();
+    let mut regions: Vec<Option<usize>> = vec![None; points.len()];
     if always || !spec.field_steps.is_empty() || super::dynamics_damage::needs_points(case) {
         let mesh = tribo::operators::bem2d::BemMesh::new(&built.model)?;
         let size = case
@@ -377,13 +383,8 @@ pub(crate) fn output_points_with(
             .unwrap_or_else(|| pipeline::default_field_size(&mesh));
         for r in pipeline::field_regions(case, &mesh, None)? {
             let tri = triangulate_region(&mesh, r, size)?;
-            for (k, p) in tri.nodes.iter().enumerate() {
-                points.push(if k < tri.boundary_nodes {
-                    inward(p, k, &tri.nodes, &tri.triangles)
-                } else {
-                    *p
-                });
-            }
+            points.extend_from_slice(&tri.nodes);
+            regions.extend(std::iter::repeat_n(Some(r), tri.nodes.len()));
             snapshot.regions.push(SnapshotRegion {
                 region: mesh.regions[r].name.clone(),
                 index: r,
@@ -392,7 +393,29 @@ pub(crate) fn output_points_with(
             });
         }
     }
-    Ok((points, snapshot))
+    Ok((OutputPoints { points, regions }, snapshot))
+}
+
+/// The points of a dynamic run's recovery ([`output_points_with`]): positions (m) and the
+/// region of each (None: the first region holding it).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct OutputPoints {
+    /// Positions, m: the probes, then the snapshot nodes.
+    pub points: Vec<[f64; 2]>,
+    /// The region of each point.
+    pub regions: Vec<Option<usize>>,
+}
+
+/// The Laplace-domain BEM of `built` with the densities, the boundary conditions `bcs` and
+/// the displacement and stress probes at `points` (module docs).
+pub(crate) fn recovery_bem(
+    built: &BuiltModel,
+    densities: &[f64],
+    bcs: &tribo::solvers::bem2d::BoundaryConditions,
+    points: &OutputPoints,
+) -> CaseResult<LaplaceBem> {
+    Ok(LaplaceBem::new(&built.model, densities, bcs, &[])?
+        .with_field_points(&points.points, &points.regions)?)
 }
 
 /// The strain and kinetic energy (J/m) of the bodies at every step t_n = n dt, n =
@@ -761,21 +784,6 @@ fn static_at(statics: &BemSolution, region: &str, p: [f64; 2]) -> CaseResult<[f6
         || CaseError::field("probe", format!("{p:?}"), "lies in no region"),
         CaseError::from,
     ))
-}
-
-/// Boundary node `k` moved 1 % of the way towards the centroid of its first triangle
-/// (module docs).
-fn inward(p: &[f64; 2], k: usize, nodes: &[[f64; 2]], triangles: &[[usize; 3]]) -> [f64; 2] {
-    match triangles.iter().find(|t| t.contains(&k)) {
-        Some(t) => {
-            let c = [
-                (nodes[t[0]][0] + nodes[t[1]][0] + nodes[t[2]][0]) / 3.0,
-                (nodes[t[0]][1] + nodes[t[1]][1] + nodes[t[2]][1]) / 3.0,
-            ];
-            [p[0] + 0.01 * (c[0] - p[0]), p[1] + 0.01 * (c[1] - p[1])]
-        }
-        None => *p,
-    }
 }
 
 #[cfg(test)]

@@ -25,7 +25,6 @@ use serde::Serialize;
 use tribo::dynamics::contact::{DynamicContact, DynamicContactParams, DynamicLoad};
 use tribo::dynamics::cq::CqGrid;
 use tribo::dynamics::history::{DynamicHistory, EnergyTerms};
-use tribo::dynamics::laplace::LaplaceBem;
 use tribo::solvers::bem2d::contact::ContactOptions;
 use tribo::solvers::bem2d::BemSolution;
 
@@ -33,7 +32,7 @@ use super::case::dynamics::DynamicsSpec;
 use super::case::BemCase;
 use super::dynamics::{
     check_probes, convolve_counted, cq_method, domain_energies, output_points_with, probe_peaks,
-    record, region_materials, DynamicOutcome, DynamicTimings, Recovery,
+    record, recovery_bem, region_materials, DynamicOutcome, DynamicTimings, Recovery,
 };
 use super::pipeline::{self, BuiltModel};
 use crate::error::{CaseError, CaseResult};
@@ -317,7 +316,8 @@ pub fn run(
     };
     let t2 = Instant::now();
     // The field triangulation always: the strain and kinetic energies integrate over it.
-    let (points, snapshot) = output_points_with(case, spec, built, true)?;
+    let (output, snapshot) = output_points_with(case, spec, built, true)?;
+    let points = &output.points;
     // `[damage]`: the damage triangulation is among the points (`output_points_with`), so the
     // damage run starts with the recovery model below.
     let mut damage = None;
@@ -338,7 +338,7 @@ pub fn run(
                 bem,
                 series: &empty,
                 grid: &grid,
-                points: &points,
+                points,
                 region_velocity: &velocities,
             },
             spec,
@@ -348,8 +348,7 @@ pub fn run(
         )?;
         (h, 0, dof)
     } else {
-        let bem = LaplaceBem::new(&built.model, &densities, problem.conditions(), &points)?
-            .with_stress_probes(&points)?;
+        let bem = recovery_bem(built, &densities, problem.conditions(), &output)?;
         let ni = bem.inputs();
         if ni != problem.bem().inputs() {
             return Err(CaseError::field(
@@ -364,7 +363,7 @@ pub fn run(
             data.extend(problem.boundary_inputs(step)?);
         }
         let (series, solves) = convolve_counted(&bem, &grid, &data, spec.steps, progress)?;
-        domain = domain_energies(&bem, &series, &grid, &points, &snapshot, &densities)?;
+        domain = domain_energies(&bem, &series, &grid, points, &snapshot, &densities)?;
         damage = super::dynamics_damage::start(case, &snapshot, spec.probes.len(), &bem)?;
         let h = record(
             history,
@@ -372,7 +371,7 @@ pub fn run(
                 bem: &bem,
                 series: &series,
                 grid: &grid,
-                points: &points,
+                points,
                 region_velocity: &velocities,
             },
             spec,

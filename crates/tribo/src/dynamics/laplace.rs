@@ -54,7 +54,9 @@ use crate::operators::bem2d::assemble::{
 use crate::operators::bem2d::integrate::{element_hg, element_integrals};
 use crate::operators::bem2d::mesh::{Element, RegionMesh};
 use crate::operators::bem2d::{BemModel, RegionOperators};
-use crate::solvers::bem2d::{known_values, locate_interior, BemProblem, BoundaryConditions, Dof};
+use crate::solvers::bem2d::{
+    junction_fields, known_values, locate_site, BemProblem, BoundaryConditions, Dof, Site,
+};
 use crate::solvers::nan_max;
 
 /// The largest number of pieces an element is cut into for the Laplace-domain integrals
@@ -297,10 +299,11 @@ pub struct LaplaceBem {
     known_static: Vec<f64>,
     /// Whether system column c is a traction unknown.
     traction_col: Vec<bool>,
-    /// (region, model-local evaluation point) per probe.
-    probes: Vec<(usize, [f64; 2])>,
-    /// (region, model-local evaluation point) per stress probe ([`stress`]).
-    stress_probes: Vec<(usize, [f64; 2])>,
+    /// (region, site) per probe: a model-local evaluation point, or a segment junction
+    /// evaluated from the boundary state ([`probe_sites`]).
+    probes: Vec<(usize, Site)>,
+    /// (region, site) per stress probe ([`stress`]), as `probes`.
+    stress_probes: Vec<(usize, Site)>,
     /// Per region the index into [`LaplaceBem::operators`]' list of the operators it uses
     /// (congruent regions share one, [`congruence`]).
     slot: Vec<usize>,
@@ -314,10 +317,15 @@ impl LaplaceBem {
     /// values are the static data, [`LaplaceBem::static_known_values`]) and interior
     /// `probes` (m) whose displacements follow the boundary unknowns in the outputs.
     ///
+    /// Each probe is evaluated where the static field sampler evaluates it (in the first
+    /// region holding it; [`LaplaceBem::with_field_points`] names the region): inside by the
+    /// Somigliana identity, within the boundary layer at that distance inside, at a segment
+    /// junction from the boundary state by the static junction rule (module docs).
+    ///
     /// Errors: as [`BemProblem::new`]; a density count that is not the region count or a
     /// density that is not positive; a region with body forces (not supported in the
     /// Laplace domain); the condition errors of [`BemProblem::solve`]; a probe outside every
-    /// region or at a segment junction ([`Error::InvalidParameter`]).
+    /// region ([`Error::InvalidParameter`]).
     pub fn new(
         model: &BemModel,
         densities: &[f64],
@@ -390,14 +398,7 @@ impl LaplaceBem {
             }
         }
         known.sort_by_key(|k| k.0);
-        let o = problem.mesh.origin;
-        let probes = probes
-            .iter()
-            .map(|&p| {
-                let (r, q) = locate_interior(&problem.mesh, p)?;
-                Ok((r, [q[0] - o[0], q[1] - o[1]]))
-            })
-            .collect::<Result<_>>()?;
+        let probes = probe_sites(&problem.mesh, probes, &vec![None; probes.len()])?;
         Ok(Self {
             kernels,
             dofs,
@@ -938,7 +939,7 @@ impl LaplaceBem {
             .map(|(r, (region, kernel))| {
                 self.probes
                     .iter()
-                    .any(|q| q.0 == r)
+                    .any(|q| q.0 == r && matches!(q.1, Site::Interior(_)))
                     .then(|| kernel.radial_table(s, region_extent(region)))
                     .transpose()
             })
@@ -955,8 +956,17 @@ impl LaplaceBem {
         traction: &[Vec<[c64; 2]>],
     ) -> Result<Vec<[c64; 2]>> {
         let mut probes = Vec::with_capacity(self.probes.len());
-        for &(r, p) in &self.probes {
+        for (r, site) in &self.probes {
+            let r = *r;
             let region = &self.problem.mesh.regions[r];
+            let p = match site {
+                Site::Interior(p) => *p,
+                Site::Junction(feet) => {
+                    let (u, _) = junction_state(region, feet, &displacement[r], &traction[r]);
+                    probes.push(u);
+                    continue;
+                }
+            };
             let Some(table) = &tables[r] else {
                 return Err(Error::Numerical {
                     context: "LaplaceBem probes",
@@ -979,6 +989,61 @@ impl LaplaceBem {
         }
         Ok(probes)
     }
+}
+
+/// The sites of `points` (m; point i in region `regions[i]`, None: the first region holding
+/// it) for the probes of a model with mesh `mesh` ([`locate_site`]): interior points in
+/// model-local coordinates (the Somigliana integrals' frame, `RegionMesh::local_elements`),
+/// segment junctions as found.
+///
+/// Errors: as [`locate_site`]; counts that differ ([`Error::InvalidParameter`]).
+pub(crate) fn probe_sites(
+    mesh: &crate::operators::bem2d::BemMesh,
+    points: &[[f64; 2]],
+    regions: &[Option<usize>],
+) -> Result<Vec<(usize, Site)>> {
+    if regions.len() != points.len() {
+        return Err(Error::invalid(
+            "regions",
+            regions.len(),
+            format!("must give one region per point ({})", points.len()),
+        ));
+    }
+    let o = mesh.origin;
+    points
+        .iter()
+        .zip(regions)
+        .map(|(&p, &region)| {
+            let (r, site) = locate_site(mesh, region, p)?;
+            Ok(match site {
+                Site::Interior(q) => (r, Site::Interior([q[0] - o[0], q[1] - o[1]])),
+                junction => (r, junction),
+            })
+        })
+        .collect()
+}
+
+/// The static junction rule ([`junction_fields`]) on a transformed boundary state (per
+/// node of `region`): the rule is linear in the boundary data, so it applies to the real
+/// and the imaginary part separately; the transformed displacement (m s) and stress
+/// [xx, yy, xy] (Pa s).
+pub(crate) fn junction_state(
+    region: &RegionMesh,
+    feet: &[(usize, f64)],
+    displacement: &[[c64; 2]],
+    traction: &[[c64; 2]],
+) -> ([c64; 2], [c64; 3]) {
+    let part = |f: fn(&c64) -> f64| {
+        let u: Vec<[f64; 2]> = displacement.iter().map(|v| v.each_ref().map(f)).collect();
+        let t: Vec<[f64; 2]> = traction.iter().map(|v| v.each_ref().map(f)).collect();
+        junction_fields(region, feet, &u, &t)
+    };
+    let (ur, sr) = part(|v| v.re);
+    let (ui, si) = part(|v| v.im);
+    (
+        [0, 1].map(|d| c64::new(ur[d], ui[d])),
+        [0, 1, 2].map(|c| c64::new(sr[c], si[c])),
+    )
 }
 
 /// The Laplace-domain BEM as the response that convolution quadrature convolves

@@ -79,7 +79,7 @@ use crate::kernels::kelvin2d::Kelvin2d;
 use crate::operators::bem2d::assemble::{matrix_bytes_of, probe_memory, try_zeros_of, BemScalar};
 use crate::operators::bem2d::integrate::{element_interior, piece_distance};
 use crate::operators::bem2d::mesh::{dist, Element};
-use crate::operators::bem2d::{assemble, BemMesh, BemModel, RegionOperators};
+use crate::operators::bem2d::{assemble, BemMesh, BemModel, RegionMesh, RegionOperators};
 use crate::solvers::nan_max;
 
 /// A scalar load or displacement distribution along a segment.
@@ -757,9 +757,9 @@ pub(crate) fn known_values(dofs: &[Vec<[Dof; 2]>]) -> Vec<Vec<[f64; 2]>> {
         .collect()
 }
 
-/// Where a point is evaluated (see [`BemSolution::locate_in`]).
-#[derive(Debug, Clone)]
-enum Site {
+/// Where a point is evaluated (see [`locate_in_region`]).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Site {
     /// The Somigliana identities at this point (inside the region).
     Interior([f64; 2]),
     /// A segment junction (corner): the boundary-recovered fields of these elements at
@@ -799,54 +799,9 @@ impl BemSolution {
         ))
     }
 
-    /// The point at which to evaluate `p` in region `r`: `p` moved to [`BOUNDARY_LAYER`] of
-    /// an element length inside the boundary where it is closer than that to one of the
-    /// region's elements (on the boundary or just outside it), `p` itself where it is
-    /// inside the region (winding number over 8 chords per element), `None` where it is
-    /// outside. `p` must be finite.
+    /// The site of `p` in region `r` ([`locate_in_region`]).
     fn locate_in(&self, r: usize, p: [f64; 2]) -> Option<Site> {
-        let region = &self.mesh.regions[r];
-        // Boundary proximity first: every element closer than BOUNDARY_LAYER of its length,
-        // with its foot point and outward normal there.
-        // (distance, foot, outward normal, layer, element, xi)
-        type Near = (f64, [f64; 2], [f64; 2], f64, usize, f64);
-        let mut near: Vec<Near> = Vec::new();
-        for (k, e) in region.elements.iter().enumerate() {
-            let (d, len) = piece_distance(e, p, -1.0, 1.0);
-            if d < 0.6 * len {
-                let xi = nearest_xi(e, p);
-                let foot = e.point(xi);
-                let dd = dist(foot, p);
-                if dd < BOUNDARY_LAYER * len {
-                    let (n, _) = e.normal_jacobian(xi);
-                    near.push((dd, foot, n, BOUNDARY_LAYER * len, k, xi));
-                }
-            }
-        }
-        let first = near.first().map(|q| region.elements[q.4].segment);
-        if near
-            .iter()
-            .any(|q| Some(region.elements[q.4].segment) != first)
-        {
-            // A junction of segments: their discontinuous end nodes make u jump there, and
-            // the identities at distance d carry an error ~ G |jump| / d (module docs).
-            return Some(Site::Junction(near.iter().map(|q| (q.4, q.5)).collect()));
-        }
-        if let Some(&(_, foot, n, h, _, _)) = near.iter().min_by(|a, b| a.0.total_cmp(&b.0)) {
-            return Some(Site::Interior([foot[0] - h * n[0], foot[1] - h * n[1]]));
-        }
-        // Winding number over 8 chords per element.
-        let mut wn = 0.0;
-        for e in &region.elements {
-            for m in 0..8 {
-                let a = e.point(-1.0 + m as f64 / 4.0);
-                let b = e.point(-1.0 + (m + 1) as f64 / 4.0);
-                let (ax, ay) = (a[0] - p[0], a[1] - p[1]);
-                let (bx, by) = (b[0] - p[0], b[1] - p[1]);
-                wn += (ax * by - ay * bx).atan2(ax * bx + ay * by);
-            }
-        }
-        (wn > std::f64::consts::PI).then_some(Site::Interior(p))
+        locate_in_region(&self.mesh, r, p)
     }
 
     /// Displacement (m), stress (Pa) and strain at `p` in the known region `region`, without
@@ -915,55 +870,12 @@ impl BemSolution {
     fn evaluate(&self, r: usize, site: &Site) -> ([f64; 2], [f64; 3]) {
         match site {
             Site::Interior(p) => self.interior(r, *p),
-            Site::Junction(feet) => {
-                let region = &self.mesh.regions[r];
-                let w = 1.0 / feet.len() as f64;
-                let mut u = [0.0; 2];
-                let mut s = [0.0; 3];
-                // Normal equations of sigma n_k = t_k over the elements (unknowns sxx, syy,
-                // sxy; rows [n_x, 0, n_y] and [0, n_y, n_x]).
-                let mut ata = [[0.0; 3]; 3];
-                let mut atb = [0.0; 3];
-                let mut normals = Vec::with_capacity(feet.len());
-                for &(k, xi) in feet {
-                    let e = &region.elements[k];
-                    let nk = e.field_shape(xi);
-                    let (ue, te) = self.nodal(r, e);
-                    let mut t = [0.0; 2];
-                    for d in 0..2 {
-                        u[d] += w * (0..3).map(|m| nk[m] * ue[m][d]).sum::<f64>();
-                        t[d] = (0..3).map(|m| nk[m] * te[m][d]).sum::<f64>();
-                    }
-                    let st = self.boundary_stress(r, k, xi);
-                    for c in 0..3 {
-                        s[c] += w * st[c];
-                    }
-                    let (n, _) = e.normal_jacobian(xi);
-                    for (row, b) in [([n[0], 0.0, n[1]], t[0]), ([0.0, n[1], n[0]], t[1])] {
-                        for i in 0..3 {
-                            atb[i] += row[i] * b;
-                            for j in 0..3 {
-                                ata[i][j] += row[i] * row[j];
-                            }
-                        }
-                    }
-                    normals.push(n);
-                }
-                // A corner (normals at least ~12 deg apart): the tractions of its two sides
-                // determine the whole in-plane stress, more accurately than the tangential
-                // strain of the discontinuous end elements (Lame corners: 1e-3 against
-                // 5e-3 of sigma). Along a smooth junction: the mean recovered stress.
-                let corner = normals
-                    .iter()
-                    .enumerate()
-                    .any(|(i, a)| normals[i + 1..].iter().any(|b| cross2(*a, *b).abs() > 0.2));
-                if corner {
-                    if let Some(x) = solve3(ata, atb) {
-                        s = x;
-                    }
-                }
-                (u, s)
-            }
+            Site::Junction(feet) => junction_fields(
+                &self.mesh.regions[r],
+                feet,
+                &self.displacement[r],
+                &self.traction[r],
+            ),
         }
     }
 
@@ -1107,6 +1019,122 @@ pub(crate) fn element_boundary_stress(
     [comp(0, 0), comp(1, 1), comp(0, 1)]
 }
 
+/// The displacement (m) and in-plane stress [xx, yy, xy] (Pa) at a segment junction of
+/// `region` ([`Site::Junction`], module docs) from the region's nodal displacements
+/// `u_nodal` (m) and tractions `t_nodal` (Pa), one per node: the displacement recovered on
+/// each element at its foot point `feet` (element, xi), averaged; at a corner the stress
+/// whose tractions on the sides are theirs (sigma n_k = t_k, least squares), along a smooth
+/// junction the recovered stress ([`element_boundary_stress`]) averaged. Linear in the
+/// boundary data and instantaneous (Hooke's law), so the Laplace-domain BEM applies the
+/// same rule to its transformed boundary state. `feet` and the node arrays must be of
+/// `region`.
+pub(crate) fn junction_fields(
+    region: &RegionMesh,
+    feet: &[(usize, f64)],
+    u_nodal: &[[f64; 2]],
+    t_nodal: &[[f64; 2]],
+) -> ([f64; 2], [f64; 3]) {
+    let w = 1.0 / feet.len() as f64;
+    let mut u = [0.0; 2];
+    let mut s = [0.0; 3];
+    // Normal equations of sigma n_k = t_k over the elements (unknowns sxx, syy,
+    // sxy; rows [n_x, 0, n_y] and [0, n_y, n_x]).
+    let mut ata = [[0.0; 3]; 3];
+    let mut atb = [0.0; 3];
+    let mut normals = Vec::with_capacity(feet.len());
+    for &(k, xi) in feet {
+        let e = &region.elements[k];
+        let nk = e.field_shape(xi);
+        let ue = e.nodes.map(|m| u_nodal[m]);
+        let te = e.nodes.map(|m| t_nodal[m]);
+        let mut t = [0.0; 2];
+        for d in 0..2 {
+            u[d] += w * (0..3).map(|m| nk[m] * ue[m][d]).sum::<f64>();
+            t[d] = (0..3).map(|m| nk[m] * te[m][d]).sum::<f64>();
+        }
+        let st = element_boundary_stress(&region.kernels, e, &ue, &te, xi);
+        for c in 0..3 {
+            s[c] += w * st[c];
+        }
+        let (n, _) = e.normal_jacobian(xi);
+        for (row, b) in [([n[0], 0.0, n[1]], t[0]), ([0.0, n[1], n[0]], t[1])] {
+            for i in 0..3 {
+                atb[i] += row[i] * b;
+                for j in 0..3 {
+                    ata[i][j] += row[i] * row[j];
+                }
+            }
+        }
+        normals.push(n);
+    }
+    // A corner (normals at least ~12 deg apart): the tractions of its two sides
+    // determine the whole in-plane stress, more accurately than the tangential
+    // strain of the discontinuous end elements (Lame corners: 1e-3 against
+    // 5e-3 of sigma). Along a smooth junction: the mean recovered stress.
+    let corner = normals
+        .iter()
+        .enumerate()
+        .any(|(i, a)| normals[i + 1..].iter().any(|b| cross2(*a, *b).abs() > 0.2));
+    if corner {
+        if let Some(x) = solve3(ata, atb) {
+            s = x;
+        }
+    }
+    (u, s)
+}
+
+/// The point at which to evaluate `p` in region `r`: `p` moved to [`BOUNDARY_LAYER`] of
+/// an element length inside the boundary where it is closer than that to one of the
+/// region's elements (on the boundary or just outside it), `p` itself where it is
+/// inside the region (winding number over 8 chords per element), `None` where it is
+/// outside (the rule of the static field sampler, module docs; a [`Site::Junction`] where
+/// the layer touches elements of two segments). `p` must be finite and `r` a region of
+/// `mesh`.
+pub(crate) fn locate_in_region(mesh: &BemMesh, r: usize, p: [f64; 2]) -> Option<Site> {
+    let region = &mesh.regions[r];
+    // Boundary proximity first: every element closer than BOUNDARY_LAYER of its length,
+    // with its foot point and outward normal there.
+    // (distance, foot, outward normal, layer, element, xi)
+    type Near = (f64, [f64; 2], [f64; 2], f64, usize, f64);
+    let mut near: Vec<Near> = Vec::new();
+    for (k, e) in region.elements.iter().enumerate() {
+        let (d, len) = piece_distance(e, p, -1.0, 1.0);
+        if d < 0.6 * len {
+            let xi = nearest_xi(e, p);
+            let foot = e.point(xi);
+            let dd = dist(foot, p);
+            if dd < BOUNDARY_LAYER * len {
+                let (n, _) = e.normal_jacobian(xi);
+                near.push((dd, foot, n, BOUNDARY_LAYER * len, k, xi));
+            }
+        }
+    }
+    let first = near.first().map(|q| region.elements[q.4].segment);
+    if near
+        .iter()
+        .any(|q| Some(region.elements[q.4].segment) != first)
+    {
+        // A junction of segments: their discontinuous end nodes make u jump there, and
+        // the identities at distance d carry an error ~ G |jump| / d (module docs).
+        return Some(Site::Junction(near.iter().map(|q| (q.4, q.5)).collect()));
+    }
+    if let Some(&(_, foot, n, h, _, _)) = near.iter().min_by(|a, b| a.0.total_cmp(&b.0)) {
+        return Some(Site::Interior([foot[0] - h * n[0], foot[1] - h * n[1]]));
+    }
+    // Winding number over 8 chords per element.
+    let mut wn = 0.0;
+    for e in &region.elements {
+        for m in 0..8 {
+            let a = e.point(-1.0 + m as f64 / 4.0);
+            let b = e.point(-1.0 + (m + 1) as f64 / 4.0);
+            let (ax, ay) = (a[0] - p[0], a[1] - p[1]);
+            let (bx, by) = (b[0] - p[0], b[1] - p[1]);
+            wn += (ax * by - ay * bx).atan2(ax * bx + ay * by);
+        }
+    }
+    (wn > std::f64::consts::PI).then_some(Site::Interior(p))
+}
+
 fn cross2(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
@@ -1192,34 +1220,44 @@ fn nearest_xi(e: &Element, p: [f64; 2]) -> f64 {
     xi
 }
 
-/// The region whose interior holds `p` and the point at which to evaluate it there (`p`,
-/// or `p` moved [`BOUNDARY_LAYER`] inside the boundary as in [`BemSolution::stress_at`]),
-/// for Somigliana evaluations with other boundary data (the Laplace-domain BEM's probes).
+/// The region holding `p` (`region`, or where None the first region of `mesh` holding it)
+/// and where to evaluate a field there, by the static field sampler's rule
+/// ([`locate_in_region`], as [`BemSolution::stress_at`]): [`Site::Interior`] at `p` or `p`
+/// moved [`BOUNDARY_LAYER`] inside the boundary, for Somigliana evaluations with other
+/// boundary data (the Laplace-domain BEM's probes); [`Site::Junction`] at a segment junction,
+/// evaluated from the boundary data ([`junction_fields`]).
 ///
-/// Errors: `p` not finite, outside every region, or at a segment junction of the boundary
-/// ([`Error::InvalidParameter`], field `probe`).
-pub(crate) fn locate_interior(mesh: &BemMesh, p: [f64; 2]) -> Result<(usize, [f64; 2])> {
-    let zero = |r: &crate::operators::bem2d::RegionMesh| vec![[0.0; 2]; r.nodes.len()];
-    let probe = BemSolution {
-        mesh: mesh.clone(),
-        displacement: mesh.regions.iter().map(zero).collect(),
-        traction: mesh.regions.iter().map(zero).collect(),
-        residual: 0.0,
-        body_force_factor: 0.0,
-    };
+/// Errors ([`Error::InvalidParameter`], field `probe`): `p` not finite, `region` out of
+/// range, `p` outside that region or outside every region.
+pub(crate) fn locate_site(
+    mesh: &BemMesh,
+    region: Option<usize>,
+    p: [f64; 2],
+) -> Result<(usize, Site)> {
     let at = format!("({:.6e}, {:.6e})", p[0], p[1]);
-    match probe.locate(p) {
-        Ok((r, Site::Interior(q))) => Ok((r, q)),
-        Ok((_, Site::Junction(_))) => Err(Error::invalid(
-            "probe",
-            at,
-            "lies at a junction of boundary segments; move it inside the body",
-        )),
-        Err(_) => Err(Error::invalid(
-            "probe",
-            at,
-            "lies outside every region of the model",
-        )),
+    if !(p[0].is_finite() && p[1].is_finite()) {
+        return Err(Error::invalid("probe", at, "must be finite"));
+    }
+    match region {
+        Some(r) => {
+            let name = mesh
+                .regions
+                .get(r)
+                .map(|x| x.name.as_str())
+                .ok_or_else(|| {
+                    Error::invalid(
+                        "probe",
+                        format!("region {r}"),
+                        format!("must be a region index < {}", mesh.regions.len()),
+                    )
+                })?;
+            locate_in_region(mesh, r, p)
+                .map(|q| (r, q))
+                .ok_or_else(|| Error::invalid("probe", at, format!("lies outside region '{name}'")))
+        }
+        None => (0..mesh.regions.len())
+            .find_map(|r| locate_in_region(mesh, r, p).map(|q| (r, q)))
+            .ok_or_else(|| Error::invalid("probe", at, "lies outside every region of the model")),
     }
 }
 

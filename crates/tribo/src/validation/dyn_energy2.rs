@@ -205,11 +205,12 @@ pub(crate) fn cavity_energies(setup: &CavitySetup) -> Result<CavityEnergies> {
     })
 }
 
-/// The validate rows' run: ring R = 8 (the outer echo returns to the cavity at
-/// 2 (R - a)/c1 = 8.08 a/c2), 8 + 8 elements, BDF2 dt = 0.2 a/c2 to t = 8, the annulus
-/// a..3a in 6 x 24 quads.
+/// The validate rows' run: ring R = 12 (the outer echo enters the annulus r < 3a at
+/// (2 R - a - 3a)/c1 = 11.5 a/c2 and returns to the cavity at 2 (R - a)/c1 = 12.7 a/c2;
+/// with R = 8, session 12's choice, it entered at 6.9 a/c2 and U at t = 8 was 39 % above
+/// U_s,h), 8 + 8 elements, BDF2 dt = 0.2 a/c2 to t = 8, the annulus a..3a in 6 x 24 quads.
 pub(crate) const ROWS_SETUP: CavitySetup = CavitySetup {
-    big: 8.0,
+    big: 12.0,
     n_outer: 8,
     n_hole: 8,
     dt: 0.2,
@@ -219,30 +220,35 @@ pub(crate) const ROWS_SETUP: CavitySetup = CavitySetup {
     sectors: 24,
 };
 
-/// The cavity's energy rows (module docs; not yet in [`super::run_all`]'s list: their
-/// tolerances await a first measured run): at t = 8 a/c2 the strain energy of a < r < 3a
+/// The cavity's energy rows (module docs; in [`super::run_all`]'s list; measured, session
+/// 13: U/U_s,h - 1 = 5.9e-3, K/U_s = 4.1e-6, the balance 1.43e-2; 7 s): at t = 8 a/c2 the
+/// strain energy of a < r < 3a
 /// against the Lame value of the same quadrature, the kinetic energy there, and U + K = W
-/// at t = 1 (the P front at r = 2.7 a, inside the annulus).
+/// at t = 0.6 (the P front at r = 2.04 a, inside the annulus).
 pub fn dyn_energy2_rows() -> Result<Vec<ValidationRow>> {
     let s = ROWS_SETUP;
     let e = cavity_energies(&s)?;
     let n = s.steps;
-    let early = (1.0 / s.dt).round() as usize;
-    let case = "cylindrical cavity under sudden pressure, ring R = 8a (reflection-free to \
-                t = 8 a/c2), 8 + 8 elements, BDF2 dt = 0.2 a/c2; energies in a < r < 3a";
+    // t = 0.6 a/c2: the P front at r = 2.04 a, its smeared tail still inside r < 3a (at
+    // t = 1 it crosses it: the opt-in test's 3.3e-2 there).
+    let early = (0.6 / s.dt).round() as usize;
+    let case = "cylindrical cavity under sudden pressure, ring R = 12a (reflection-free in \
+                r < 3a to t = 11.5 a/c2), 8 + 8 elements, BDF2 dt = 0.2 a/c2; energies in \
+                a < r < 3a";
     let source = "Lame: U_s = pi p^2 a^2 (1 - a^2/rho^2)/(2 mu) (Lamé 1852; \
                   docs/theory/DYNAMICS.md sec. 5.8), on the same triangulation";
     Ok(vec![
         // The tolerance: the near field's approach (u_r(a) - u_s falls like t^-2, 2.8e-3
         // of u_s at t = 8 on this ring, sec. 5.6), doubled in U ~ u^2, plus the coarse
-        // hole's BEM error (8 elements per half circle, ~5e-4) and the start-up: 3 %.
+        // hole's BEM error (8 elements per half circle, ~5e-4) and the start-up: 1.5 %
+        // (measured 5.9e-3).
         ValidationRow::new(
             case,
             "strain energy U(a < r < 3a) at t = 8 a/c2, J/m",
             e.static_quadrature,
             e.strain[n],
             ErrorMeasure::Relative,
-            3e-2,
+            1.5e-2,
             source,
         ),
         ValidationRow::new(
@@ -251,18 +257,19 @@ pub fn dyn_energy2_rows() -> Result<Vec<ValidationRow>> {
             0.0,
             e.kinetic[n] / e.static_quadrature,
             ErrorMeasure::Bound,
-            1e-2,
+            1e-4,
             source,
         ),
         // U + K = W while the waves are inside the annulus (BDF2's numerical damping and
-        // the start-up: the column's 1.3e-2, docs/theory/DYNAMICS.md sec. 5.8).
+        // the start-up: the column's 1.3e-2, docs/theory/DYNAMICS.md sec. 5.8; the opt-in
+        // test's 1.1e-2 at t = 0.5 with half this time step).
         ValidationRow::new(
             case,
-            "energy balance |W - U - K| / W at t = a/c2",
+            "energy balance |W - U - K| / W at t = 0.6 a/c2",
             0.0,
             (e.work[early] - e.strain[early] - e.kinetic[early]).abs() / e.work[early],
             ErrorMeasure::Bound,
-            5e-2,
+            3e-2,
             source,
         ),
     ])
@@ -271,6 +278,20 @@ pub fn dyn_energy2_rows() -> Result<Vec<ValidationRow>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every row passes (values printed for the tolerances above).
+    #[test]
+    fn dyn_energy2_rows_pass() {
+        let rows = dyn_energy2_rows().unwrap();
+        assert_eq!(rows.len(), 3);
+        for r in &rows {
+            eprintln!(
+                "{}: {} computed {:.6e} reference {:.6e}, error {:.3e} (tolerance {:.1e})",
+                r.case, r.quantity, r.computed, r.reference, r.error, r.tolerance
+            );
+        }
+        assert!(rows.iter().all(|r| r.passed), "{rows:?}");
+    }
 
     /// The Lame strain energy by the annulus quadrature converges to the closed form at
     /// second order (linear interpolation of r^-2 on graded rings, the inscribed polygon).
@@ -319,12 +340,30 @@ mod tests {
 
     /// The cavity's energies at long times (module docs) on the reflection-free ring
     /// R = 24 a (the outer echo returns at 26.6 a/c2), 16 hole elements per half circle,
-    /// BDF2 dt = 0.1 a/c2 to t = 20: U(a < r < 3a) -> U_s, K -> 0, U + K = W at t = 1.
-    /// Measured: see the printed line. Tolerances: U within 1 % of U_s,h at t = 20 (u_r(a)
-    /// is within 6e-4 of u_s there, sec. 5.6; U ~ u^2) and closer at 20 than at 10 (the
-    /// approach); K/U_s below 2e-3 at t = 20; the balance at t = 1 within 3 %.
+    /// BDF2 dt = 0.1 a/c2 to t = 20: U(a < r < 3a) -> U_s, K -> 0, U + K = W early.
+    ///
+    /// Measured (session 13): U_s = 1.396263, U_s,h = 1.378062; U/U_s,h - 1 at t = 5, 10,
+    /// 20: 2.764e-2, 6.747e-3, 1.644e-3 (a factor 4.1 per doubling of t: the t^-2 approach
+    /// of u_r(a), sec. 5.6, doubled in U ~ u^2 as an amplitude); K/U_s at t = 10, 20:
+    /// 5.3e-7, 4.8e-8; (W - U - K)/W at t = 0.5, 1, 1.5: 1.09e-2, 3.29e-2, 2.27e-1 (the P
+    /// front at r = 1.87, 2.73, 3.60 a: at t = 1 its smeared tail already crosses r = 3a,
+    /// at 1.5 the front has left the annulus); W(20)/(pi p^2 a^2/mu) = 0.926 (W_0 = 0 while
+    /// BDF2's first sample already moves the wall by p/(rho c1 (1.5/dt)) = 7.7 % of u_s:
+    /// the start-up, sec. 5.8 "The start").
+    ///
+    /// Tolerances: |U/U_s,h - 1| < 3e-3 at t = 20 (u_r(a) within 6e-4 of u_s there, sec.
+    /// 5.6, doubled in U, plus the hole's BEM error ~5e-4 doubled) and the error at t = 10
+    /// at least 3 times that at 20 (the t^-2 approach gives 4; a wrong static limit would
+    /// stall it); K/U_s < 1e-6 at t = 20 (20 times the measured: the near field at rest);
+    /// the balance within 2e-2 at t = 0.5, the front inside the annulus (the column's
+    /// start-up 1.26e-2 plus BDF2's damping 0.5 .. 0.8 %, sec. 5.8).
+    ///
+    /// Opt-in: about 3 to 5 minutes of a loaded 2-core machine (1 solve per frequency with
+    /// 16 + 8 elements and 288 stress points, 200 steps); the validate rows
+    /// ([`dyn_energy2_rows`], test `dyn_energy2_rows_pass`: R = 12 a to t = 8, 40 steps) are
+    /// its cheap variant in CI.
     #[test]
-    #[ignore = "not yet run (session 12): tolerances to be confirmed by a first run, ~1-2 min"]
+    #[ignore = "long (3-5 min on a loaded 2-core machine); the rows' test is the CI variant"]
     fn cavity_strain_energy_tends_to_the_lame_value() {
         let s = CavitySetup {
             big: 24.0,
@@ -356,9 +395,9 @@ mod tests {
             bal(at(1.5)),
             e.work[at(20.0)] / (2.0 * PI / 2.0)
         );
-        assert!(rel(at(20.0)).abs() < 1e-2);
-        assert!(rel(at(20.0)).abs() < rel(at(10.0)).abs());
-        assert!(e.kinetic[at(20.0)] / e.static_quadrature < 2e-3);
-        assert!(bal(at(1.0)).abs() < 3e-2);
+        assert!(rel(at(20.0)).abs() < 3e-3);
+        assert!(rel(at(10.0)).abs() > 3.0 * rel(at(20.0)).abs());
+        assert!(e.kinetic[at(20.0)] / e.static_quadrature < 1e-6);
+        assert!(bal(at(0.5)).abs() < 2e-2);
     }
 }

@@ -629,23 +629,11 @@ impl DynamicContact {
             // Radau IIA: S-stage block steps (radau.rs).
             return self.march_samples(params, observer).map(|m| m.result);
         }
-        if !(params.dt.is_finite() && params.dt > 0.0) {
-            return Err(Error::invalid(
-                "dt",
-                params.dt,
-                "the time step must be positive (s)",
-            ));
-        }
-        if params.steps == 0 {
-            return Err(Error::invalid("steps", 0, "at least one step"));
-        }
-        let bytes = self.memory_estimate(params).unwrap_or(usize::MAX);
-        if params.memory_limit.is_some_and(|limit| bytes > limit) {
-            return Err(Error::OutOfMemory {
-                what: "the dynamic contact CQ weights and history".into(),
-                bytes,
-            });
-        }
+        check_march(
+            params,
+            self.memory_estimate(params),
+            "the dynamic contact CQ weights and history",
+        )?;
         let weights = cq_weights(
             &self.compliance,
             params.method,
@@ -905,4 +893,30 @@ impl DynamicContact {
             max_iterations,
         })
     }
+}
+
+/// The checks of a march's parameters shared by the multistep and the Radau IIA march:
+/// a positive time step, at least one step, and the memory estimate `bytes` (None: it
+/// overflows) within `params.memory_limit`, `what` naming the allocation.
+///
+/// Errors: [`Error::InvalidParameter`] (`dt`, `steps`); [`Error::OutOfMemory`].
+fn check_march(params: &DynamicContactParams, bytes: Option<usize>, what: &str) -> Result<()> {
+    if !(params.dt.is_finite() && params.dt > 0.0) {
+        return Err(Error::invalid(
+            "dt",
+            params.dt,
+            "the time step must be positive (s)",
+        ));
+    }
+    if params.steps == 0 {
+        return Err(Error::invalid("steps", 0, "at least one step"));
+    }
+    let bytes = bytes.unwrap_or(usize::MAX);
+    if params.memory_limit.is_some_and(|limit| bytes > limit) {
+        return Err(Error::OutOfMemory {
+            what: what.into(),
+            bytes,
+        });
+    }
+    Ok(())
 }

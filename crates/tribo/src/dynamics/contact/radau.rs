@@ -109,23 +109,11 @@ impl DynamicContact {
                  multistep rule): use BDF2 with rigid segments",
             ));
         }
-        if !(params.dt.is_finite() && params.dt > 0.0) {
-            return Err(Error::invalid(
-                "dt",
-                params.dt,
-                "the time step must be positive (s)",
-            ));
-        }
-        if params.steps == 0 {
-            return Err(Error::invalid("steps", 0, "at least one step"));
-        }
-        let bytes = self.stage_memory_estimate(params).unwrap_or(usize::MAX);
-        if params.memory_limit.is_some_and(|limit| bytes > limit) {
-            return Err(Error::OutOfMemory {
-                what: "the dynamic contact Radau IIA weights and history".into(),
-                bytes,
-            });
-        }
+        super::check_march(
+            params,
+            self.stage_memory_estimate(params),
+            "the dynamic contact Radau IIA weights and history",
+        )?;
         // Runge-Kutta CQ: one entry per step (the stages inside it).
         let weights = cq_weights(
             &self.compliance,

@@ -4,7 +4,8 @@
 //! Stadler & Wohlmuth, SIAM J. Sci. Comput. 30 (2008) 572-596) generalised to the block
 //! system: one contact state per node and stage, normal complementarity on each stage's gap,
 //! Coulomb on the slip increment between consecutive stages (the first stage's from the
-//! previous step's end).
+//! previous step's end). With one stage it is the multistep march's step
+//! ([`super::step::StepProblem`] solves through it).
 
 use faer::linalg::solvers::Solve;
 use faer::Mat;
@@ -12,6 +13,23 @@ use faer::Mat;
 use crate::error::{Error, Result};
 use crate::solvers::bem2d::contact::{ContactOptions, ContactState};
 use crate::solvers::nan_max;
+
+/// How a step's errors name the step, the solver and the pressures.
+pub(super) struct StepWording {
+    /// [`Error::Numerical`]'s context.
+    pub context: &'static str,
+    /// [`Error::NotConverged`]'s solver.
+    pub solver: &'static str,
+    /// The pressures' name in the non-finite residual's message.
+    pub pressure: &'static str,
+}
+
+/// The Radau IIA march's wording.
+const RADAU_WORDING: StepWording = StepWording {
+    context: "dynamic contact Radau IIA step",
+    solver: "2D BEM dynamic frictional contact, Radau IIA stages (active set)",
+    pressure: "stage pressure",
+};
 
 /// The data of one step with `stages` stages and `n` nodes. The unknowns are stage-major,
 /// `z[i * 2n + k]`: stage i, `k < n` the pressure of node k, `k >= n` the shear of node
@@ -81,8 +99,20 @@ impl BlockStepProblem<'_> {
     pub(super) fn solve(
         &self,
         step: usize,
+        states: Vec<ContactState>,
+        options: &ContactOptions,
+    ) -> Result<BlockStepSolution> {
+        self.solve_worded(step, states, options, &RADAU_WORDING)
+    }
+
+    /// [`BlockStepProblem::solve`] with the errors worded by `wording` (the multistep
+    /// march's step is the block step with one stage, [`super::step`]).
+    pub(super) fn solve_worded(
+        &self,
+        step: usize,
         mut states: Vec<ContactState>,
         options: &ContactOptions,
+        wording: &StepWording,
     ) -> Result<BlockStepSolution> {
         let (n, ns, a) = (self.n, self.stages, self.a);
         let m = self.m();
@@ -200,10 +230,11 @@ impl BlockStepProblem<'_> {
             let residual = if pmax > 0.0 { rmax / pmax } else { rmax };
             if !residual.is_finite() {
                 return Err(Error::Numerical {
-                    context: "dynamic contact Radau IIA step",
+                    context: wording.context,
                     detail: format!(
                         "step {step}, iteration {iterations}: the complementarity residual is \
-                         {residual} (a non-finite stage pressure, shear, gap or slip)"
+                         {residual} (a non-finite {}, shear, gap or slip)",
+                        wording.pressure
                     ),
                 });
             }
@@ -220,7 +251,7 @@ impl BlockStepProblem<'_> {
             let cycled = history.contains(&new_states);
             if iterations >= options.max_iterations || (cycled && single) {
                 return Err(Error::NotConverged {
-                    solver: "2D BEM dynamic frictional contact, Radau IIA stages (active set)",
+                    solver: wording.solver,
                     iterations,
                     residual,
                     tolerance: options.tolerance,

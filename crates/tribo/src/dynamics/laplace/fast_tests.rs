@@ -274,7 +274,11 @@ fn probe_stresses_direct(bem: &LaplaceBem, s: c64, state: &LaplaceState) -> Vec<
     use crate::operators::bem2d::integrate::{adaptive, element_interior};
     let regions = &bem.static_problem().mesh.regions;
     let mut out = Vec::new();
-    for &(r, p) in &bem.stress_probes {
+    for (r, site) in &bem.stress_probes {
+        let r = *r;
+        let crate::solvers::bem2d::Site::Interior(p) = *site else {
+            panic!("the direct path knows interior probes only");
+        };
         let (region, kernel) = (&regions[r], &bem.kernels()[r]);
         let (u, t) = (&state.displacement[r], &state.traction[r]);
         let mut sigma = [c64::ZERO; 3];

@@ -28,14 +28,17 @@
 
 use faer::c64;
 
-use super::{far, region_extent, LaplaceBem, LaplaceState, FAR_DECAY, MAX_PIECES};
+use super::{
+    far, junction_state, probe_sites, region_extent, LaplaceBem, LaplaceState, FAR_DECAY,
+    MAX_PIECES,
+};
 use crate::dynamics::cq::CqSeries;
 use crate::dynamics::kernel::stress::StressTable;
 use crate::dynamics::kernel::LaplaceKelvin2d;
 use crate::error::{Error, Result};
 use crate::operators::bem2d::integrate::{adaptive, element_interior};
 use crate::operators::bem2d::mesh::Element;
-use crate::solvers::bem2d::{element_boundary_stress, locate_interior, Dof, Stress2d};
+use crate::solvers::bem2d::{element_boundary_stress, Dof, Site, Stress2d};
 
 /// Nodal boundary fields at one time (per region and node, the static solution's layout):
 /// displacements (m) and tractions on the region (Pa).
@@ -60,20 +63,34 @@ fn pieces(e: &Element, kernel: &LaplaceKelvin2d, s: c64) -> usize {
 impl LaplaceBem {
     /// The same model with stress probes at `points` (m): each adds three outputs, the
     /// transformed stresses sigma_xx, sigma_yy, sigma_xy (Pa s), after the displacement
-    /// probes ([`LaplaceBem::outputs`]). Points within the static solver's boundary layer
-    /// are moved inside as for the displacement probes.
+    /// probes ([`LaplaceBem::outputs`]). Each is evaluated as the displacement probes are
+    /// (the static field sampler's rule, in the first region holding it): points within the
+    /// static solver's boundary layer at that distance inside, points at a segment junction
+    /// by the junction rule (module docs).
     ///
-    /// Errors: a point outside every region or at a segment junction
-    /// ([`Error::InvalidParameter`], field `probe`).
+    /// Errors: a point outside every region ([`Error::InvalidParameter`], field `probe`).
     pub fn with_stress_probes(mut self, points: &[[f64; 2]]) -> Result<Self> {
-        let o = self.problem.mesh.origin;
-        self.stress_probes = points
-            .iter()
-            .map(|&p| {
-                let (r, q) = locate_interior(&self.problem.mesh, p)?;
-                Ok((r, [q[0] - o[0], q[1] - o[1]]))
-            })
-            .collect::<Result<_>>()?;
+        self.stress_probes = probe_sites(&self.problem.mesh, points, &vec![None; points.len()])?;
+        Ok(self)
+    }
+
+    /// The same model with its displacement probes and its stress probes both at `points`
+    /// (m), point i located in region `regions[i]` (None: the first region holding it), the
+    /// outputs as [`LaplaceBem::new`]'s probes and [`LaplaceBem::with_stress_probes`]: the
+    /// field of a body sampled on its own triangulation, whose boundary nodes may lie on an
+    /// interface with another region (each side then evaluated in its own region, as the
+    /// static sampler [`crate::analysis::bem_field::sample_region`] does).
+    ///
+    /// Errors: counts that differ, a region out of range or a point outside its region
+    /// ([`Error::InvalidParameter`]).
+    pub fn with_field_points(
+        mut self,
+        points: &[[f64; 2]],
+        regions: &[Option<usize>],
+    ) -> Result<Self> {
+        let sites = probe_sites(&self.problem.mesh, points, regions)?;
+        self.probes.clone_from(&sites);
+        self.stress_probes = sites;
         Ok(self)
     }
 
@@ -85,7 +102,7 @@ impl LaplaceBem {
     /// The region (index in the static problem's mesh) holding stress probe `i`, or `None`
     /// past the last probe: its Hooke's law turns the probe's stresses into strains.
     pub fn stress_probe_region(&self, i: usize) -> Option<usize> {
-        self.stress_probes.get(i).map(|&(r, _)| r)
+        self.stress_probes.get(i).map(|q| q.0)
     }
 
     /// Index of the first stress output (sigma_xx of the first stress probe): the system
@@ -129,7 +146,7 @@ impl LaplaceBem {
             .map(|(r, (region, kernel))| {
                 self.stress_probes
                     .iter()
-                    .any(|q| q.0 == r)
+                    .any(|q| q.0 == r && matches!(q.1, Site::Interior(_)))
                     .then(|| kernel.stress_table(s, region_extent(region)))
                     .transpose()
             })
@@ -147,8 +164,16 @@ impl LaplaceBem {
     ) -> Result<Vec<[c64; 3]>> {
         let regions = &self.problem.mesh.regions;
         let mut out = Vec::with_capacity(self.stress_probes.len());
-        for &(r, p) in &self.stress_probes {
+        for (r, site) in &self.stress_probes {
+            let r = *r;
             let region = &regions[r];
+            let p = match site {
+                Site::Interior(p) => *p,
+                Site::Junction(feet) => {
+                    out.push(junction_state(region, feet, &displacement[r], &traction[r]).1);
+                    continue;
+                }
+            };
             let kernel = &self.kernels[r];
             let Some(table) = &tables[r] else {
                 return Err(Error::Numerical {
