@@ -331,6 +331,11 @@ class Study:
         A pandas DataFrame (the numbers of ``results.csv`` bit for bit), a dict of numpy
         arrays without pandas, or with ``as_xarray=True`` an ``xarray.Dataset`` over the
         dimension ``point`` with the variables, units and attributes of ``results.nc``.
+
+        The plot pages of ``tribo sweep gather`` (``plots/<column>.png``: histograms,
+        exceedance curves with their confidence band, rank correlations, scatter and grid
+        plots; docs/user/studies.md, "Plots") are not drawn here: run ``tribo sweep gather``
+        on the same directory for them, or plot the table with pandas.
         """
         sd = self._planned(directory)
         t = sd.gather(bool(write))

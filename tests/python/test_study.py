@@ -19,50 +19,7 @@ import pytest
 
 import tribo
 import tribo.study
-
-# A cheap study (16 x 16 grids: milliseconds a point): 2 loads x 2 zip values x 2 samples;
-# nu = 0.7 makes an invalid case (those points fail alone).
-BALLS = """
-[study]
-name = "balls"
-seed = 3
-samples = 2
-collect = ["contact.max_pressure", "contact.hertz.p0", "contact.iterations"]
-
-[base]
-[base.body1]
-E = "210 GPa"
-nu = 0.3
-radii = ["10 mm", "10 mm"]
-[base.body2]
-E = "210 GPa"
-nu = 0.3
-radii = ["inf", "inf"]
-[base.contact]
-load = 100.0
-[base.grid]
-n = 16
-
-[[grid]]
-key = "contact.load"
-values = [50.0, 100.0]
-
-[[zip]]
-key = "body2.nu"
-values = [0.3, 0.7]
-
-[[random]]
-key = "body1.radii[0]"
-dist = "uniform"
-low = 0.008
-high = 0.012
-"""
-
-
-def cli(tribo_bin, *args):
-    out = subprocess.run([tribo_bin, *args], capture_output=True, text=True, timeout=600)
-    assert out.returncode == 0, out.stderr
-    return out.stdout
+from study_helpers import BALLS, cli
 
 
 @pytest.fixture(scope="module")
@@ -257,7 +214,8 @@ def test_load_from_dict_path_and_example(tmp_path):
     (tmp_path / "balls.toml").write_text(BALLS)
     assert len(tribo.study.load(tmp_path / "balls.toml")) == 8
     assert len(tribo.study.load(str(tmp_path / "balls.toml"))) == 8
-    assert set(tribo.study.examples()) >= {"fig2a", "sec6", "sec7-knife", "roller-monte-carlo"}
+    assert set(tribo.study.examples()) >= {"fig2a", "sec6", "sec7-knife", "roller-monte-carlo",
+                                          "roller-random-limit"}
     assert len(tribo.study.example("fig2a")) == 9
     with pytest.raises(tribo.InputError):
         tribo.study.example("nope")

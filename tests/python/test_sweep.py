@@ -4,57 +4,19 @@ compared with results.csv, column by column."""
 
 import csv
 import math
-import subprocess
 
 import pytest
-
-STUDY = """
-[study]
-name = "balls"
-seed = 3
-samples = 2
-collect = ["contact.max_pressure", "contact.hertz.p0", "contact.iterations"]
-
-[base]
-[base.body1]
-E = "210 GPa"
-nu = 0.3
-radii = ["10 mm", "10 mm"]
-[base.body2]
-E = "210 GPa"
-nu = 0.3
-radii = ["inf", "inf"]
-[base.contact]
-load = 100.0
-[base.grid]
-n = 16
-
-[[grid]]
-key = "contact.load"
-values = [50.0, 100.0]
-
-[[zip]]
-key = "body2.nu"
-values = [0.3, 0.7]
-
-[[random]]
-key = "body1.radii[0]"
-dist = "uniform"
-low = 0.008
-high = 0.012
-"""
+from study_helpers import BALLS, cli
 
 
 @pytest.fixture(scope="module")
 def study(tmp_path_factory, tribo_bin):
     root = tmp_path_factory.mktemp("sweep")
-    (root / "s.toml").write_text(STUDY)
+    (root / "s.toml").write_text(BALLS)
     for args in (["plan", str(root / "s.toml"), "-o", str(root / "s")],
                  ["run", str(root / "s"), "--jobs", "2", "-q"],
                  ["gather", str(root / "s")]):
-        out = subprocess.run([tribo_bin, "sweep", *args], capture_output=True, text=True,
-                             timeout=300)
-        assert out.returncode == 0, out.stderr
+        cli(tribo_bin, "sweep", *args)
     with open(root / "s" / "results.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     return root / "s", rows

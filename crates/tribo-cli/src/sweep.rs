@@ -5,7 +5,7 @@
 //! - `run DIR [--jobs N] [--points 0-9,12] [--task I --chunk K]`: the points not done yet;
 //! - `slurm DIR [--submit] ...`: the SLURM array and gather scripts (and their submission);
 //! - `status DIR`: done, failed (with the reasons), missing, and the tasks to resubmit;
-//! - `gather DIR`: `results.csv` and `results.nc`;
+//! - `gather DIR`: `results.csv`, `results.nc` and the plots in `plots/`;
 //! - `example [NAME]`: the embedded study files.
 //!
 //! Exit codes as the rest of the command line: 2 for bad input (the study file, its base
@@ -58,7 +58,8 @@ pub enum SweepCommand {
         #[arg(long, value_name = "K")]
         chunk: Option<usize>,
     },
-    /// Gather the points into DIR/results.csv and DIR/results.nc (NetCDF-3).
+    /// Gather the points into DIR/results.csv and DIR/results.nc (NetCDF-3), with plots in
+    /// DIR/plots.
     Gather {
         /// The study directory.
         dir: PathBuf,
@@ -284,7 +285,6 @@ fn slurm_cmd(dir: &Path, o: &SlurmOpts) -> Outcome {
             "SLURM's [D-]HH:MM:SS, MM:SS or minutes",
         ));
     }
-    let abs = std::path::absolute(dir).map_err(|e| StudyError::file(dir, e))?;
     let exe = std::env::current_exe().map_err(|e| StudyError::file("tribo", e))?;
     let s = Slurm {
         chunk,
@@ -293,24 +293,8 @@ fn slurm_cmd(dir: &Path, o: &SlurmOpts) -> Outcome {
         cpus_per_task: o.cpus_per_task,
         max_running: o.max_running,
     };
-    let (array, gather) = slurm::scripts(&s, &sd.study.name, n, &exe, &abs);
-    let sdir = abs.join("slurm");
-    std::fs::create_dir_all(sdir.join("logs")).map_err(|e| StudyError::file(&sdir, e))?;
-    for (name, text) in [
-        ("array.sbatch", array.as_str()),
-        ("gather.sbatch", gather.as_str()),
-        (
-            "settings.json",
-            &format!(
-                "{{\n \"chunk\": {chunk},\n \"tasks\": {}\n}}\n",
-                tribo_study::run::chunks(n, chunk)
-            ),
-        ),
-    ] {
-        tribo_io::atomic::write_atomic(&sdir, name, text.as_bytes())?;
-    }
-    let a = sdir.join("array.sbatch");
-    let g = sdir.join("gather.sbatch");
+    let (a, g) = slurm::write_scripts(&sd, &s, &exe)?;
+    let sdir = a.parent().map(Path::to_path_buf).unwrap_or_default();
     let tasks = tribo_study::run::chunks(n, chunk);
     let mut text = format!(
         "{}: {n} points in {tasks} array tasks of {chunk}; scripts in {}\n",
@@ -422,13 +406,16 @@ fn status(dir: &Path, chunk: Option<usize>) -> Outcome {
 fn gather(dir: &Path) -> Outcome {
     let sd = StudyDir::open(dir)?;
     let t = tribo_study::table::write(&sd)?;
+    let plots = tribo_study::plots::write(&sd, &t)?;
     let (done, failed, missing) = t.counts();
     Ok(term::out(&format!(
-        "{}: {} points ({done} ok, {failed} failed, {missing} missing) -> {}, {}\n",
+        "{}: {} points ({done} ok, {failed} failed, {missing} missing) -> {}, {}; {} plots in {}\n",
         sd.study.name,
         t.status.len(),
         dir.join("results.csv").display(),
-        dir.join("results.nc").display()
+        dir.join("results.nc").display(),
+        plots.len(),
+        dir.join("plots").display()
     ))
     .map(|()| EXIT_OK))
 }

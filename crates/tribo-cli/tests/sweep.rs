@@ -123,6 +123,21 @@ fn tables_are_identical_for_any_jobs_and_chunking() {
     assert_eq!(csv_a, csv_b, "jobs 1 vs 2");
     assert_eq!(csv_a, csv_c, "whole vs chunks of 3");
     assert!(nc_a == nc_b && nc_a == nc_c, "results.nc differs");
+    // gather draws a page per collected number (tribo_study::plots; its tests check them).
+    let mut pngs: Vec<String> = std::fs::read_dir(a.join("plots"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    pngs.sort();
+    assert_eq!(
+        pngs,
+        [
+            "contact.contact_area_m2.png",
+            "contact.hertz.p0_Pa.png",
+            "contact.iterations.png",
+            "contact.max_pressure_Pa.png"
+        ]
+    );
     let lines: Vec<&str> = csv_a.lines().collect();
     assert_eq!(
         lines[0],
@@ -478,7 +493,13 @@ fn slurm_scripts_and_submission() {
 #[test]
 fn example_studies_list_and_plan() {
     let list = ok(&["sweep", "example"]);
-    for name in ["fig2a", "sec6", "sec7-knife", "roller-monte-carlo"] {
+    for name in [
+        "fig2a",
+        "sec6",
+        "sec7-knife",
+        "roller-monte-carlo",
+        "roller-random-limit",
+    ] {
         assert!(list.contains(name), "{list}");
     }
     let tmp = tempfile::tempdir().unwrap();

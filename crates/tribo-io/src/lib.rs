@@ -8,6 +8,7 @@
 //! - [`atomic`]: each file written whole or not at all (temporary file + rename), the
 //!   earlier run's files removed first;
 //! - [`csv`], [`vtk`] (binary VTK XML, raw appended data), [`json`]: the formats;
+//! - [`study`]: the plot pages of a study's gathered table;
 //! - the PNG plots (plotters, the shipped DejaVu Sans) behind the cargo feature `png`
 //!   (default on): `cargo build -p tribo-io --no-default-features` builds without plotters
 //!   and writes no PNG.
@@ -46,6 +47,7 @@ pub mod json;
 #[cfg(feature = "png")]
 mod plot;
 pub mod probabilistic;
+pub mod study;
 pub mod vtk;
 
 pub use bem::write_bem;

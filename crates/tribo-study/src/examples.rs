@@ -38,6 +38,12 @@ pub const STUDIES: &[StudyExample] = &[
                       load, 200 samples",
         text: include_str!("../../../examples/studies/roller-monte-carlo.toml"),
     },
+    StudyExample {
+        name: "roller-random-limit",
+        description: "brute-force Monte Carlo of the case roller-shaft-probabilistic: the \
+                      random intensity limit sampled run by run, 200 samples",
+        text: include_str!("../../../examples/studies/roller-random-limit.toml"),
+    },
 ];
 
 /// Find a study example by name.

@@ -12,6 +12,8 @@
 //! - [`run`]: running points, each atomically into `points/NNNNNN/` (resumable), failures
 //!   recorded per point;
 //! - [`table`]: the results table, `results.csv` and `results.nc` (NetCDF-3, [`netcdf`]);
+//! - [`plots`]: the PNGs of the gathered table (histograms, exceedance curves with their
+//!   confidence band, rank-correlation tornado and scatter plots, grid line plots);
 //! - [`slurm`]: the array and gather scripts;
 //! - [`examples`]: the embedded study files (the paper's studies).
 //!
@@ -36,6 +38,7 @@ pub mod examples;
 pub mod netcdf;
 pub mod path;
 pub mod plan;
+pub mod plots;
 pub mod run;
 pub mod slurm;
 pub mod spec;

@@ -2,7 +2,8 @@
 //! backend that lays text out itself in the shipped DejaVu Sans (no system font).
 //!
 //! - [`style`]: the font, colour scales, axes, ticks, legends, section maps;
-//! - [`halfspace`], [`bem`], [`fatigue`]: the plots of each kind of run.
+//! - [`halfspace`], [`bem`], [`fatigue`]: the plots of each kind of run;
+//! - [`study`]: the plots of a study's gathered table.
 
 pub mod bem;
 pub mod canvas;
@@ -12,4 +13,5 @@ pub mod fatigue;
 pub mod halfspace;
 pub mod probabilistic;
 pub mod rough;
+pub mod study;
 pub mod style;

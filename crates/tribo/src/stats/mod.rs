@@ -7,9 +7,13 @@
 //! functions come from [`crate::analysis::woehler::stats`] (the normal CDF accurate in both
 //! tails, ln Gamma); the normal quantile is Wichura's AS 241 (PPND16), written here.
 //!
+//! [`sample`]: statistics of a finite sample (quantiles, histogram, the empirical exceedance
+//! curve with its DKW band, Spearman's rank correlation), for a study's gathered results.
+//!
 //! Used by the probabilistic damage ([`crate::analysis::damage::probabilistic`]) for the
 //! distribution of a limiting value, and by the study engine for random parameters.
 
 mod distribution;
+pub mod sample;
 
 pub use distribution::{normal_quantile, uniform01, Distribution, StatsError, Truncated};
