@@ -29,8 +29,8 @@ use tribo::SurfaceGrid;
 
 /// The proportionality of the contact area to the load at small loads,
 /// `A/A0 = kappa p / (E* h'_rms)` with `h'_rms = sqrt(<|grad h|^2>)` the rms slope of the
-/// composite surface: kappa = 2, the value of the Green's-function simulations of Hyun,
-/// Pei, Molinari & Robbins 2004 (*Phys. Rev. E* 70, 026117, sec. IV: kappa between 1.9 and
+/// composite surface: kappa = 2, the value of the simulations of Hyun et al. 2004 (S. Hyun,
+/// L. Pei, J.-F. Molinari, M. O. Robbins, *Phys. Rev. E* 70, 026117, sec. IV: kappa between 1.9 and
 /// 2.1 over Hurst exponents 0.3 ... 0.8), between the theories' bounds
 /// [`KAPPA_PERSSON`] and [`KAPPA_BGT`].
 pub const KAPPA_SIMULATIONS: f64 = 2.0;
