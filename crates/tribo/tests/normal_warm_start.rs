@@ -120,3 +120,60 @@ fn bad_guesses_are_refused_naming_the_argument() {
         );
     }
 }
+
+/// A start with the whole load on one element while its neighbours overlap: under force
+/// control the mean-free conjugate direction on a one-element contact set is zero, so the
+/// conjugate gradient alone cannot move load (it stopped with "non-positive curvature 0",
+/// the state of a rough surface's first small load step, where one asperity carries all).
+/// The solver's Jacobi re-entry step restarts it; it must reach the cold start's solution
+/// (the same discrete problem, so `assert_same`'s 1e-8 p_max).
+#[test]
+fn a_start_on_one_element_with_overlapping_neighbours_reaches_the_solution() {
+    let (grid, gap) = sphere();
+    let cold = solve(&grid, &gap, NormalLoading::Force(100.0), None);
+    let centre = 32 * 64 + 32;
+    let mut guess = vec![0.0; grid.len()];
+    guess[centre] = 1.0;
+    let warm = solve(&grid, &gap, NormalLoading::Force(100.0), Some(&guess));
+    assert_same(&cold, &warm);
+    assert!(warm.contact_elements > 100, "{}", warm.contact_elements);
+}
+
+/// Flat on flat, periodic: the uniform pressure p_mean is the exact solution (the gap is
+/// zero everywhere), and on a periodic grid it carries no elastic displacement (the zero
+/// mode), so the residual's displacement scale falls back to the heights' (module docs of
+/// the solver). It must be returned at once, to round-off, by either kernel; before, the
+/// undefined scale kept the residual infinite and the iteration stopped on a zero curvature.
+#[test]
+fn flat_on_flat_periodic_gives_the_uniform_pressure() {
+    use tribo::kernels::periodic::PeriodicKernel;
+    let grid = SurfaceGrid::centred(32, 32, 50e-6, 50e-6).unwrap();
+    let (lx, ly) = (100e-6, 100e-6);
+    let p_mean = 1.0e8;
+    let gap = vec![0.0; grid.len()];
+    for kernel in [PeriodicKernel::ElementIntegrated, PeriodicKernel::Spectral] {
+        let operator = normal_compliance_operator_periodic(&grid, 115e9, kernel);
+        let problem = NormalContactProblem {
+            grid: &grid,
+            initial_gap: &gap,
+            composite_modulus: 115e9,
+            loading: NormalLoading::Force(p_mean * lx * ly),
+        };
+        let solution = solve_normal_from(
+            &problem,
+            &NormalContactParams::default(),
+            Some(&operator),
+            None,
+            None,
+        )
+        .unwrap();
+        let worst = solution
+            .pressure
+            .iter()
+            .map(|p| (p - p_mean).abs())
+            .fold(0.0, f64::max);
+        // Round-off of F / (n dA) and of the load scaling: a few ulps of p_mean.
+        assert!(worst <= 1e-12 * p_mean, "{kernel:?}: {worst:e}");
+        assert_eq!(solution.contact_elements, grid.len());
+    }
+}

@@ -744,6 +744,22 @@ fn conjugate_gradient(
     const MAX_SPARSE_CORRECTIONS: usize = 6;
     let mut fresh = false;
     let mut since_refresh = 0usize;
+    // The gap's scale where the elastic displacement is identically zero (a uniform pressure
+    // on a periodic grid: its zero mode carries no displacement): the height range, and 1 m
+    // for a flat surface, whose gap is then exactly zero so that any scale gives the same
+    // (zero) residual. Without it `u_max = 0` would make the residual undefined.
+    let height_scale = {
+        let (lo, hi) = h
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            });
+        if hi > lo {
+            hi - lo
+        } else {
+            1.0
+        }
+    };
 
     let mut iteration = 0usize;
     loop {
@@ -759,12 +775,17 @@ fn conjugate_gradient(
             NormalLoading::Approach(delta) => delta,
         };
         let norm;
+        let displacement_scale = if stats.displacement_max == 0.0 {
+            height_scale
+        } else {
+            stats.displacement_max
+        };
         (residual, norm) = passes::shift_sweep(
             &mut gap,
             &pressure,
             approach,
             stats.pressure_max,
-            stats.displacement_max,
+            displacement_scale,
         );
         if residual <= params.tolerance {
             if since_refresh == 0 {
@@ -840,6 +861,32 @@ fn conjugate_gradient(
             }
             NormalLoading::Approach(_) => response_dot,
         };
+        if den == 0.0 && num == 0.0 {
+            // The direction vanishes on the contact set: under force control with a single
+            // element in contact its mean-free part is zero, and the conjugate gradient
+            // cannot move load to the points that overlap outside the set. One Jacobi
+            // re-entry step instead: each overlapping point takes the pressure that closes
+            // its own interpenetration, `p_i = -g_i / K_ii`, the load is restored by scaling,
+            // and the iteration restarts from the refreshed displacement (unconditioned).
+            let entered = passes::jacobi_reentry_sweep(&mut pressure, &gap, diagonal);
+            if entered == 0 {
+                return Err(Error::Numerical {
+                    context: "Polonsky-Keer CG",
+                    detail: format!(
+                        "the search direction vanished with no overlapping point to enter \
+                         (residual {residual:e})"
+                    ),
+                }
+                .into());
+            }
+            if let NormalLoading::Force(force) = loading {
+                let total = area * pressure.iter().sum::<f64>();
+                passes::scale_sweep(&mut pressure, force / total, None);
+            }
+            conjugate = false;
+            fresh = false;
+            continue;
+        }
         if den.is_nan() || den <= 0.0 {
             return Err(Error::Numerical {
                 context: "Polonsky-Keer CG",

@@ -322,6 +322,26 @@ pub(super) fn step_sweep(
     total
 }
 
+/// The Jacobi re-entry of the points outside the contact set that overlap: `p_i = -g_i / d`
+/// where `p_i = 0` and `g_i < 0`, `d` the operator's diagonal (m/Pa): the pressure that
+/// closes the point's own interpenetration. Returns the number of points entered.
+pub(super) fn jacobi_reentry_sweep(pressure: &mut [f64], gap: &[f64], diagonal: f64) -> usize {
+    pressure
+        .par_chunks_mut(CHUNK)
+        .zip(gap.par_chunks(CHUNK))
+        .map(|(p, g)| {
+            let mut entered = 0usize;
+            for i in 0..p.len() {
+                if p[i] <= 0.0 && g[i] < 0.0 {
+                    p[i] = -g[i] / diagonal;
+                    entered += 1;
+                }
+            }
+            entered
+        })
+        .sum()
+}
+
 /// `p *= scale` and, where the displacement is updated incrementally,
 /// `u <- scale (u - step r)` in the same sweep.
 pub(super) fn scale_sweep(
