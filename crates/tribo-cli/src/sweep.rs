@@ -145,7 +145,7 @@ fn bad_option(option: &str, value: impl std::fmt::Display, rule: &str) -> StudyE
 type Outcome = Result<CliResult<u8>, StudyError>;
 
 fn plan(path: &Path, out: Option<&Path>) -> Outcome {
-    let text = std::fs::read_to_string(path)
+    let text = tribo_study::spec::read_bounded(path)
         .map_err(|e| bad_option("study", path.display(), &format!("cannot read it: {e}")))?;
     let dir_of = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let study = Study::from_toml(&text, &path.display().to_string(), &dir_of)?;
@@ -279,11 +279,16 @@ fn slurm_cmd(dir: &Path, o: &SlurmOpts) -> Outcome {
         return Err(bad_option("--max-running", 0, "at least 1"));
     }
     if !slurm::valid_time(&o.time) {
-        return Err(bad_option(
-            "--time",
-            &o.time,
-            "SLURM's [D-]HH:MM:SS, MM:SS or minutes",
-        ));
+        return Err(bad_option("--time", &o.time, slurm::TIME_RULE));
+    }
+    if let Some(p) = &o.partition {
+        if !slurm::valid_partition(p) {
+            return Err(bad_option(
+                "--partition",
+                format!("{p:?}"),
+                slurm::PARTITION_RULE,
+            ));
+        }
     }
     let exe = std::env::current_exe().map_err(|e| StudyError::file("tribo", e))?;
     let s = Slurm {

@@ -331,6 +331,19 @@ fn bad_study_input_exits_2_naming_the_item() {
             "random[0].key",
         ),
         ("[base.contact]", "[base.contacts]", "base case"),
+        // Non-finite values and distributions whose samples reach 0 or inf would put NaN
+        // and inf into points.csv (hostile probe D20, D21).
+        (
+            "values = [50.0, 100.0, 200.0]",
+            "values = [50.0, nan, 200.0]",
+            "grid[0].values[1]",
+        ),
+        (
+            "values = [0.3, 0.33]",
+            "values = [0.3, inf]",
+            "zip[1].values[1]",
+        ),
+        ("sigma_ln = 0.1", "sigma_ln = 1e3", "random[0]"),
     ];
     for (i, (from, to, item)) in cases.iter().enumerate() {
         let text = STUDY.replacen(from, to, 1);
@@ -359,6 +372,17 @@ fn bad_study_input_exits_2_naming_the_item() {
         &["sweep", "run", s(&dir), "--task", "4", "--chunk", "3"],
         &["sweep", "run", s(&dir), "--jobs", "0"],
         &["sweep", "slurm", s(&dir), "--time", "1h"],
+        &["sweep", "slurm", s(&dir), "--time", "99:99:99"],
+        // A newline would end the #SBATCH line and make the rest shell code (probe D23).
+        &["sweep", "slurm", s(&dir), "--partition", "a\nrm -rf /tmp/x"],
+        // An endless file is refused at the size limit, not read forever (probe D22).
+        &[
+            "sweep",
+            "plan",
+            "/dev/zero",
+            "-o",
+            s(&tmp.path().join("zero")),
+        ],
         &["sweep", "run", s(tmp.path())],
         &["sweep", "example", "nope"],
     ] {

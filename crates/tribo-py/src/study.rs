@@ -530,8 +530,17 @@ impl PyStudyDir {
             return Err(bad(
                 "time",
                 format!("{time:?}"),
-                "SLURM's [D-]HH:MM:SS, MM:SS or minutes",
+                tribo_study::slurm::TIME_RULE,
             ));
+        }
+        if let Some(p) = &partition {
+            if !tribo_study::slurm::valid_partition(p) {
+                return Err(bad(
+                    "partition",
+                    format!("{p:?}"),
+                    tribo_study::slurm::PARTITION_RULE,
+                ));
+            }
         }
         if !tribo.is_absolute() || !tribo.is_file() {
             return Err(bad(

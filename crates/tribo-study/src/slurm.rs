@@ -39,19 +39,99 @@ pub fn sh_quote(s: &str) -> String {
     }
 }
 
-/// Checks a `--time` value: `[D-]HH:MM:SS`, `MM:SS` or minutes (SLURM's forms).
+/// Checks a `--time` value in SLURM's forms (sbatch(1), `--time`): minutes, `MM:SS`,
+/// `HH:MM:SS`, `D-HH`, `D-HH:MM`, `D-HH:MM:SS`. The leading field of the forms without days
+/// may be any number (90 minutes, 36 hours); a field after it is a minute or a second
+/// (0 ... 59), and hours after days are 0 ... 23; at least one second in all.
 pub fn valid_time(t: &str) -> bool {
-    let body = match t.split_once('-') {
-        Some((d, rest)) if !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()) => rest,
+    let digits = |p: &str| !p.is_empty() && p.len() <= 9 && p.bytes().all(|b| b.is_ascii_digit());
+    let value = |p: &str| p.parse::<u64>().unwrap_or(u64::MAX);
+    let (days, body) = match t.split_once('-') {
+        Some((d, rest)) if digits(d) => (Some(value(d)), rest),
         Some(_) => return false,
-        None => t,
+        None => (None, t),
     };
     let parts: Vec<&str> = body.split(':').collect();
-    !body.is_empty()
-        && parts.len() <= 3
-        && parts
-            .iter()
-            .all(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit()))
+    if parts.len() > 3 || !parts.iter().all(|p| digits(p)) {
+        return false;
+    }
+    let fields: Vec<u64> = parts.iter().map(|p| value(p)).collect();
+    let trailing_ok = fields.iter().skip(1).all(|&v| v <= 59);
+    let leading_ok = days.is_none() || fields[0] <= 23;
+    let total = days.unwrap_or(0) + fields.iter().sum::<u64>();
+    trailing_ok && leading_ok && total > 0
+}
+
+/// Checks a `--partition` value: one or more partition names separated by commas, each of
+/// ASCII letters, digits, `_`, `-` and `.` (what SLURM's partition names are made of), at
+/// most 256 characters in all. Anything else (a space, a quote, a newline: a newline would
+/// end the `#SBATCH` line and make the rest shell code of the job) is refused.
+pub fn valid_partition(p: &str) -> bool {
+    p.len() <= 256
+        && p.split(',').all(|name| {
+            !name.is_empty()
+                && name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c))
+        })
+}
+
+impl Slurm {
+    /// Checks every setting, naming the option (`chunk`, `cpus_per_task`, `max_running`,
+    /// `time`, `partition`) and its rule.
+    pub fn validate(&self) -> crate::StudyResult<()> {
+        use crate::StudyError;
+        if self.chunk == 0 {
+            return Err(StudyError::item("chunk", 0, "at least 1 point per task"));
+        }
+        if self.cpus_per_task == 0 {
+            return Err(StudyError::item("cpus_per_task", 0, "at least 1"));
+        }
+        if self.max_running == Some(0) {
+            return Err(StudyError::item("max_running", 0, "at least 1"));
+        }
+        if !valid_time(&self.time) {
+            return Err(StudyError::item(
+                "time",
+                format!("{:?}", self.time),
+                TIME_RULE,
+            ));
+        }
+        if let Some(p) = &self.partition {
+            if !valid_partition(p) {
+                return Err(StudyError::item(
+                    "partition",
+                    format!("{p:?}"),
+                    PARTITION_RULE,
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The rule of [`valid_time`], as the errors state it.
+pub const TIME_RULE: &str =
+    "SLURM's minutes, MM:SS, HH:MM:SS, D-HH, D-HH:MM or D-HH:MM:SS (minutes and seconds 0-59 \
+     after the first field, hours 0-23 after days, not zero)";
+
+/// The rule of [`valid_partition`], as the errors state it.
+pub const PARTITION_RULE: &str =
+    "partition names of letters, digits, '_', '-' and '.', separated by commas (at most 256 \
+     characters)";
+
+/// A path written into a script: refused if it holds a control character (a newline would
+/// end the `#SBATCH --output` line and make the rest shell code).
+fn check_script_path(what: &str, path: &Path) -> crate::StudyResult<()> {
+    let text = path.display().to_string();
+    if text.chars().any(char::is_control) {
+        return Err(crate::StudyError::item(
+            what,
+            format!("{text:?}"),
+            "a path written into the SLURM scripts must not hold control characters",
+        ));
+    }
+    Ok(())
 }
 
 /// The two scripts' texts: (`array.sbatch`, `gather.sbatch`). `tribo` is the binary's path
@@ -124,8 +204,11 @@ pub fn write_scripts(
     tribo: &Path,
 ) -> crate::StudyResult<(std::path::PathBuf, std::path::PathBuf)> {
     use crate::StudyError;
+    s.validate()?;
     let n = sd.study.len();
     let abs = std::path::absolute(&sd.dir).map_err(|e| StudyError::file(&sd.dir, e))?;
+    check_script_path("study directory", &abs)?;
+    check_script_path("tribo", tribo)?;
     let (array, gather) = scripts(s, &sd.study.name, n, tribo, &abs);
     let sdir = abs.join("slurm");
     std::fs::create_dir_all(sdir.join("logs")).map_err(|e| StudyError::file(&sdir, e))?;
@@ -183,12 +266,69 @@ mod tests {
         assert_eq!(job_id("error"), None);
         assert_eq!(ranges(&[0, 1, 2, 3, 7, 9, 10]), "0-3,7,9-10");
         assert_eq!(ranges(&[]), "");
-        for ok in ["01:00:00", "2-00:00:00", "30", "10:00"] {
+        for ok in [
+            "01:00:00",
+            "2-00:00:00",
+            "30",
+            "10:00",
+            "90",
+            "36:00:00",
+            "1-12",
+            "1-12:30",
+            "0:30",
+            "00:59:59",
+        ] {
             assert!(valid_time(ok), "{ok}");
         }
-        for bad in ["", "1h", "a-01:00:00", "1:2:3:4", "01::00"] {
+        for bad in [
+            "",
+            "1h",
+            "a-01:00:00",
+            "1:2:3:4",
+            "01::00",
+            "99:99:99",
+            "1:60",
+            "1-24:00:00",
+            "0",
+            "00:00:00",
+            "0-0",
+            "1\n2",
+            "-1:00",
+            "1e3",
+        ] {
             assert!(!valid_time(bad), "{bad}");
         }
+        for ok in ["compute", "gpu,cpu", "long-run.v2", "a_b"] {
+            assert!(valid_partition(ok), "{ok}");
+        }
+        for bad in ["", "a\nrm -rf /tmp/x", "a b", "a'b", "a,,b", "a;b", "a$(x)"] {
+            assert!(!valid_partition(bad), "{bad:?}");
+        }
+        let good = Slurm {
+            chunk: 1,
+            partition: Some("compute".into()),
+            time: "01:00:00".into(),
+            cpus_per_task: 1,
+            max_running: None,
+        };
+        assert!(good.validate().is_ok());
+        let injected = Slurm {
+            partition: Some("a\nrm -rf /tmp/x".into()),
+            ..good.clone()
+        };
+        let e = injected.validate().unwrap_err().to_string();
+        assert!(e.starts_with("partition = "), "{e}");
+        let late = Slurm {
+            time: "99:99:99".into(),
+            ..good
+        };
+        assert!(late
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .starts_with("time = "));
+        assert!(check_script_path("tribo", Path::new("/a\nb")).is_err());
+        assert!(check_script_path("tribo", Path::new("/usr/bin/tribo")).is_ok());
         assert_eq!(sh_quote("/a/b"), "/a/b");
         assert_eq!(sh_quote("a b'c"), "'a b'\\''c'");
         assert_eq!(default_chunk(1000), 1);

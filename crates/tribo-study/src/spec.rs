@@ -406,7 +406,7 @@ fn base(raw: &RawStudy, source: &str, dir: &Path) -> StudyResult<Base> {
     }
     if let Some(p) = &h.base {
         let path = dir.join(p);
-        let text = std::fs::read_to_string(&path).map_err(|e| {
+        let text = read_bounded(&path).map_err(|e| {
             StudyError::item(
                 "study.base",
                 format!("{p:?}"),
@@ -489,6 +489,7 @@ fn parameters(raw: &RawStudy) -> StudyResult<Parameters> {
                 "a zipped list has at least one value",
             ));
         }
+        finite_values(&format!("{item}.values"), &z.values)?;
         let group = z.group.clone().unwrap_or_else(|| "zip".into());
         match groups.iter_mut().find(|(g, _)| *g == group) {
             Some((_, members)) => members.push(params.len()),
@@ -602,6 +603,7 @@ fn grid_values(item: &str, g: &RawGrid) -> StudyResult<Vec<toml::Value>> {
                     "a grid has at least one value",
                 ))
             } else {
+                finite_values(&format!("{item}.values"), v)?;
                 Ok(v.clone())
             }
         }
@@ -641,6 +643,47 @@ fn grid_values(item: &str, g: &RawGrid) -> StudyResult<Vec<toml::Value>> {
             "give either values = [...] or from, to and points",
         )),
     }
+}
+
+/// A study or case file's text, read no further than
+/// [`tribo_case::memory::MAX_CASE_FILE_BYTES`] (a larger file, or an endless one such as
+/// `/dev/zero`, is refused with the limit instead of being read to the end), UTF-8.
+pub fn read_bounded(path: &Path) -> std::io::Result<String> {
+    use std::io::Read;
+    let limit = tribo_case::memory::MAX_CASE_FILE_BYTES;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(limit + 1)
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "larger than {} (a study or case file is a few hundred lines of TOML)",
+                tribo_case::memory::human(limit)
+            ),
+        ));
+    }
+    String::from_utf8(bytes).map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e))
+}
+
+/// Refuses a float of a values list that is not finite (TOML's `nan`, `inf`), naming it
+/// (`grid[0].values[1]`), inside arrays too: points.csv and the cases would hold it.
+fn finite_values(item: &str, values: &[toml::Value]) -> StudyResult<()> {
+    for (k, v) in values.iter().enumerate() {
+        match v {
+            toml::Value::Float(x) if !x.is_finite() => {
+                return Err(StudyError::item(
+                    format!("{item}[{k}]"),
+                    x,
+                    "a value must be a finite number",
+                ))
+            }
+            toml::Value::Array(inner) => finite_values(&format!("{item}[{k}]"), inner)?,
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 /// A `[[random]]` entry: `key`, the distribution (`dist` and its parameters, as
@@ -710,6 +753,24 @@ fn random(item: &str, table: &toml::Table) -> StudyResult<Parameter> {
     truncated
         .validate()
         .map_err(|e| StudyError::item(item, format!("{:?}", key.text), e.to_string()))?;
+    // Every sample a point can draw must be a finite number: the samples are quantiles at
+    // uniform01's values, which lie in [2^-53, 1 - 2^-53] (tribo::stats::uniform01), and the
+    // quantile is monotone, so its two ends bound them all (a lognormal of sigma_ln 1e3 or a
+    // Weibull of shape 1e-3 reach 0 and inf there, which points.csv would then hold).
+    let edge = 2f64.powi(-53);
+    for (end, p) in [("lowest", edge), ("highest", 1.0 - edge)] {
+        let x = truncated.quantile(p);
+        if !x.is_finite() {
+            return Err(StudyError::item(
+                item,
+                format!("{:?}", key.text),
+                format!(
+                    "the distribution's {end} sample (its quantile at {p:e}) is {x}: every \
+                     sample must be a finite number; narrow the distribution or truncate it"
+                ),
+            ));
+        }
+    }
     Ok(Parameter {
         item: item.to_string(),
         key,
