@@ -418,8 +418,21 @@ def load(
         folder = _os.fspath(base_dir) if base_dir is not None else _os.getcwd()
         return Study(_tribo.Study.from_dict(_plain(source), "<dict>", folder))
     if _is_path(source):
+        from . import _input_error
+
         path = _Path(source)
-        text = path.read_text(encoding="utf-8")
+        # Read no further than the case-file limit of the CLI (16 MiB): an endless file
+        # (/dev/zero) is refused instead of read forever.
+        limit = 16 << 20
+        with path.open("rb") as f:
+            data = f.read(limit + 1)
+        if len(data) > limit:
+            raise _input_error(
+                "study",
+                "larger than 16 MiB (a study file is a few hundred lines of TOML)",
+                str(path),
+            )
+        text = data.decode("utf-8")
         return Study(_tribo.Study.from_toml_text(text, str(path), str(path.parent)))
     folder = _os.fspath(base_dir) if base_dir is not None else _os.getcwd()
     return Study(_tribo.Study.from_toml_text(str(source), "<string>", folder))

@@ -8,6 +8,7 @@ import math
 import os
 import pickle
 import shutil
+import sys
 import subprocess
 import threading
 import time
@@ -221,6 +222,11 @@ def test_load_from_dict_path_and_example(tmp_path):
         tribo.study.example("nope")
     with pytest.raises(FileNotFoundError):
         tribo.study.load(tmp_path / "missing.toml")
+    # An endless file is refused at the size limit, not read forever.
+    if os.path.exists("/dev/zero"):
+        with pytest.raises(tribo.InputError) as e:
+            tribo.study.load(Path("/dev/zero"))
+        assert e.value.field == "study"
 
 
 def test_directory_errors(tmp_path):
@@ -246,6 +252,14 @@ def test_directory_errors(tmp_path):
     with pytest.raises(tribo.InputError) as e:
         s.run(points=[8])
     assert e.value.field == "points"
+    # A newline in the partition would end the #SBATCH line and make the rest shell code.
+    s.plan(tmp_path / "c")
+    with pytest.raises(tribo.InputError) as e:
+        s.slurm(tribo=sys.executable, partition="a\nrm -rf /tmp/x")
+    assert e.value.field == "partition"
+    with pytest.raises(tribo.InputError) as e:
+        s.slurm(tribo=sys.executable, time="99:99:99")
+    assert e.value.field == "time"
 
 
 def test_slurm_scripts_are_the_clis(tmp_path, tribo_bin, monkeypatch):
