@@ -90,16 +90,44 @@ def _pair(name: str, value: Any) -> Tuple[float, float]:
         raise _input_error(name, "a number or a pair of numbers is needed", value) from None
 
 
+def _number(name: str, value: Any) -> float:
+    """A real number (a Python or numpy scalar), or an InputError naming ``name``."""
+    if isinstance(value, (bool, _np.bool_)) or _np.ndim(value) != 0:
+        raise _input_error(name, "a real number is needed", value)
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise _input_error(name, "a real number is needed", value) from None
+
+
+def _integer(name: str, value: Any, rule: str) -> int:
+    """An integer (or an integral float: 64.0, never 64.5), or an InputError naming ``name``."""
+    if isinstance(value, (bool, _np.bool_)) or _np.ndim(value) != 0:
+        raise _input_error(name, rule, value)
+    try:
+        x = float(value)
+        n = int(value)
+    except (TypeError, ValueError, OverflowError):
+        raise _input_error(name, rule, value) from None
+    if not _math.isfinite(x) or x != n:
+        raise _input_error(name, rule, value)
+    return n
+
+
 def _shape(value: Any) -> Tuple[int, int]:
     """The grid shape (ny, nx) from a pair (or one integer for a square grid)."""
-    try:
-        if _np.ndim(value) == 0:
-            n = int(value)
-            ny, nx = n, n
-        else:
-            ny, nx = (int(v) for v in value)
-    except (TypeError, ValueError):
-        raise _input_error("shape", "(ny, nx): two integers >= 2", value) from None
+    rule = "(ny, nx): two integers >= 2"
+    if _np.ndim(value) == 0:
+        n = _integer("shape", value, rule)
+        ny, nx = n, n
+    else:
+        try:
+            pair = list(value)
+        except TypeError:
+            raise _input_error("shape", rule, value) from None
+        if len(pair) != 2:
+            raise _input_error("shape", rule, value)
+        ny, nx = (_integer("shape", v, rule) for v in pair)
     if nx < 2 or ny < 2:
         raise _input_error("shape", "(ny, nx): two integers >= 2", (ny, nx))
     return (ny, nx)
@@ -210,20 +238,23 @@ def self_affine(
     """
     if rolloff is None:
         rolloff = powerlaw_start
-    if int(seed) < 0:
-        raise _input_error("seed", "a non-negative integer", seed)
+    seed = _integer("seed", seed, "a non-negative integer")
+    if seed < 0 or seed >= 2**64:
+        raise _input_error("seed", "a non-negative integer below 2^64", seed)
+    if not isinstance(method, str):
+        raise _input_error("method", '"filter" or "random_phase"', method)
     heights = _tribo.surface_generate(
         _shape(shape),
         _pair("size", size),
-        float(rolloff),
-        float(powerlaw_start),
-        float(cutoff),
-        float(hurst),
+        _number("rolloff", rolloff),
+        _number("powerlaw_start", powerlaw_start),
+        _number("cutoff", cutoff),
+        _number("hurst", hurst),
         _pair("anisotropy", anisotropy),
-        None if rms_height is None else float(rms_height),
-        None if rms_slope is None else float(rms_slope),
-        str(method),
-        int(seed),
+        None if rms_height is None else _number("rms_height", rms_height),
+        None if rms_slope is None else _number("rms_slope", rms_slope),
+        method,
+        seed,
     )
     ny, nx = heights.shape
     size = _pair("size", size)

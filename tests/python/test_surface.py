@@ -382,6 +382,16 @@ GOOD = dict(shape=(32, 32), size=1e-3, hurst=0.8, powerlaw_start=2e4, cutoff=1e5
     (dict(method="gauss"), "method"),
     (dict(anisotropy=(1.0, 0.0)), "anisotropy[1]"),
     (dict(seed=-1), "seed"),
+    # Wrong types and non-integers are refused naming the argument, never truncated.
+    (dict(seed=0.5), "seed"),
+    (dict(seed=float("nan")), "seed"),
+    (dict(seed=2**64), "seed"),
+    (dict(shape=(64.5, 64)), "shape"),
+    (dict(shape=(64, 64, 1)), "shape"),
+    (dict(hurst="x"), "hurst"),
+    (dict(cutoff=None), "cutoff"),
+    (dict(rms_height=[1e-6]), "rms_height"),
+    (dict(method=1), "method"),
     (dict(cutoff=1e9, powerlaw_start=5e8), "spectrum"),
 ])
 def test_bad_generator_input_names_the_argument(change, field):
