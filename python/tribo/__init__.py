@@ -244,6 +244,21 @@ class NormalContact:
         return self.pressure > 0.0
 
 
+def _iterations(value: Any) -> int:
+    """``max_iterations`` as a positive integer, or an InputError naming it."""
+    rule = "an integer >= 1"
+    if isinstance(value, (bool, np.bool_)) or np.ndim(value) != 0:
+        raise _input_error("max_iterations", rule, value)
+    try:
+        n = int(value)
+        exact = float(value) == n
+    except (TypeError, ValueError, OverflowError):
+        raise _input_error("max_iterations", rule, value) from None
+    if not exact or n < 1 or n >= 2**63:
+        raise _input_error("max_iterations", rule, value)
+    return n
+
+
 def _periodic_load(
     load: Optional[float],
     mean_pressure: Optional[float],
@@ -328,7 +343,7 @@ def normal_contact(
         _periodic_load(load, mean_pressure, size, bool(periodic)),
         None if approach is None else float(approach),
         float(tolerance),
-        int(max_iterations),
+        _iterations(max_iterations),
         str(method),
         _guess(initial_pressure, g.shape),
         bool(periodic),
@@ -383,7 +398,7 @@ class NormalSolver:
             self.size,
             float(composite_modulus),
             float(tolerance),
-            int(max_iterations),
+            _iterations(max_iterations),
             str(method),
             self.periodic,
             str(kernel),
@@ -537,7 +552,7 @@ def tangential_contact(
         bool(sliding),
         float(angle),
         float(tolerance),
-        int(max_iterations),
+        _iterations(max_iterations),
         direction == "free",
         bool(periodic),
         str(kernel),

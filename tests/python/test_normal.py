@@ -99,6 +99,13 @@ def test_input_errors_name_the_field():
     nan[3, 3] = math.nan
     with pytest.raises(tribo.InputError):
         tribo.normal_contact(nan, size=(L, L), composite_modulus=E, load=F)
+    # max_iterations: an integer >= 1 (-1 raised OverflowError in the conversion; 2.5 was
+    # truncated).
+    for bad in (-1, 0, 2.5, "x", 2**64):
+        with pytest.raises(tribo.InputError) as err:
+            tribo.normal_contact(sphere_gap(), size=(L, L), composite_modulus=E, load=F,
+                                 max_iterations=bad)
+        assert err.value.field == "max_iterations", bad
 
 
 def test_contact_reaching_the_window_is_bad_input():
