@@ -127,8 +127,20 @@ pub fn half_space(case: &HalfSpaceCase) -> Estimate {
     } else {
         0.0
     };
+    // Measured maps: the heights as read, the detrended residual and the scaled copy (8 B
+    // each per point of the map), whatever the grid.
+    let measured: f64 = [&case.body1, &case.body2]
+        .iter()
+        .filter_map(|b| match &b.roughness {
+            Some(crate::case::Roughness::Measured(m)) => {
+                Some(24.0 * m.topography.nx() as f64 * m.topography.ny() as f64)
+            }
+            _ => None,
+        })
+        .sum();
     Estimate::new(vec![
         ("rough surfaces and sweep", rough),
+        ("measured maps", measured),
         ("base", BASE_BYTES),
         ("contact grid", per_element * elements),
         ("tangential", tangential),

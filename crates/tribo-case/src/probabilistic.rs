@@ -53,6 +53,57 @@ pub const DEFAULT_POINTS: usize = 49;
 /// The most curve points (each is one pass of the dangerous-region routine over the field).
 pub const MAX_POINTS: usize = 999;
 
+/// The largest ratio between a random limit's quantiles over the probabilities evaluated
+/// (the curve's 1e-4 ... 0.9999 and the reported ones): six decades. A material's limit
+/// scatters by tens of percent (the examples: sigma_ln = 0.08); a distribution wider than
+/// this (a lognormal with sigma_ln above ~1.8, a Weibull shape below ~0.8) puts its tails at
+/// limits no material has, and its far quantiles overflow or vanish.
+pub const MAX_LIMIT_SPREAD: f64 = 1e6;
+
+/// The range of a random limit's quantiles by the criterion's unit: stresses within the range
+/// of the elastic moduli a case takes ([1e2, 1e13] Pa), energy densities within
+/// [1e-6, 1e13] J/m^3, strains within [1e-12, 1].
+pub fn limit_range(unit: &str) -> [f64; 2] {
+    match unit {
+        "Pa" => [1e2, 1e13],
+        "J/m^3" => [1e-6, 1e13],
+        _ => [1e-12, 1.0],
+    }
+}
+
+/// A random limit's quantiles at `probabilities` (and their complements) are finite, within
+/// [`limit_range`] and within [`MAX_LIMIT_SPREAD`] of each other, and not all equal (to
+/// 1e-9: a degenerate distribution, sigma_ln = 1e-300, made NaN of the summary).
+fn check_quantiles(
+    field: &str,
+    limit: &Truncated,
+    unit: &str,
+    probabilities: &[f64],
+) -> CaseResult<()> {
+    let (mut lo, mut hi, mut finite) = (f64::INFINITY, 0.0_f64, true);
+    for &p in probabilities {
+        for q in [limit.quantile(p), limit.quantile(1.0 - p)] {
+            finite &= q.is_finite() && q > 0.0;
+            lo = lo.min(q);
+            hi = hi.max(q);
+        }
+    }
+    let [a, b] = limit_range(unit);
+    if finite && lo >= a && hi <= b && hi <= MAX_LIMIT_SPREAD * lo && hi > lo * (1.0 + 1e-9) {
+        return Ok(());
+    }
+    Err(CaseError::field(
+        field,
+        format!("quantiles from {lo:e} to {hi:e} {unit}"),
+        format!(
+            "a random limit must stay finite, within [{a:e}, {b:e}] {unit}, and within a \
+             factor {MAX_LIMIT_SPREAD:e} between its quantiles at the probabilities evaluated \
+             (1e-4 ... 0.9999 and the reported ones), and scatter (a limit whose quantiles \
+             agree to 1e-9 is a fixed one: give it as damage.limits.NAME)"
+        ),
+    ))
+}
+
 /// The validated `[damage.probabilistic]` table.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ProbabilisticSpec {
@@ -158,6 +209,9 @@ pub fn parse(
             ));
         }
     }
+    let mut evaluated = curve_probabilities(points);
+    evaluated.extend(&probabilities);
+    evaluated.push(0.5);
     let mut out = Vec::new();
     let mut first_unit: Option<(&str, &str)> = None;
     for (name, quantity) in criteria {
@@ -178,7 +232,9 @@ pub fn parse(
                 }
                 Some(_) => {}
             }
-            out.push((name.clone(), distribution(&field, v, quantity.unit())?));
+            let limit = distribution(&field, v, quantity.unit())?;
+            check_quantiles(&field, &limit, quantity.unit(), &evaluated)?;
+            out.push((name.clone(), limit));
         }
     }
     Ok(ProbabilisticSpec {

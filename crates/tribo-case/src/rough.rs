@@ -24,8 +24,101 @@ use tribo::surface::resample::{height_at, Boundary};
 use tribo::surface::statistics::{
     radial_psd, rms_curvature, rms_height, rms_slope_fd, rms_slope_spectral, PsdBin,
 };
-use tribo::surface::Topography;
+use tribo::surface::{Normalization, Topography};
 use tribo::SurfaceGrid;
+
+/// The largest rms slope of a rough surface on the contact grid (its finite-difference rms
+/// slope; 1 is 45 degrees). The half-space theory linearises the surfaces about their mean
+/// planes (small slopes, docs/theory/HALFSPACE.md); far beyond 1 a surface is needles and the
+/// load ends on one element at pressures above E*. A generated surface given by its
+/// `rms_slope` is held to it on the key; one given by `rms_height`, and a measured map
+/// (after detrending and `scale`), on the surface drawn on the grid.
+pub const MAX_RMS_SLOPE: f64 = 1.0;
+
+/// The smallest rms height of a rough body's surface on the grid, relative to the window's
+/// longer side: below it the surface is flat to the rounding of the gap (a map flat after
+/// detrending, a scale of 1e-300, an rms slope of 1e-300), its spectrum is empty (the PSD
+/// plot had no positive value: exit 1 after half the files) and on a periodic grid the
+/// solver has nothing to find.
+pub const MIN_RELATIVE_RMS_HEIGHT: f64 = 1e-12;
+
+/// The key that sets a rough body's level and its value, for the refusals of the drawn
+/// surface: `rms_height` or `rms_slope` of a generated surface, `file` of a measured one.
+fn level_key(name: &str, roughness: &Roughness) -> (String, String) {
+    match roughness {
+        Roughness::Generated(g) => match g.normalization {
+            Normalization::RmsHeight(h) => (format!("{name}.surface.rms_height"), format!("{h:e}")),
+            Normalization::RmsSlope(s) => (format!("{name}.surface.rms_slope"), format!("{s:e}")),
+        },
+        Roughness::Measured(m) => (format!("{name}.surface.file"), m.file.clone()),
+    }
+}
+
+/// The rules of a body's roughness on the grid: finite heights and statistics (a level that
+/// overflows is refused), an rms slope within [`MAX_RMS_SLOPE`], an rms height of at least
+/// `floor` (m, [`MIN_RELATIVE_RMS_HEIGHT`] of the window).
+fn check_on_grid(
+    name: &str,
+    roughness: &Roughness,
+    heights: &[f64],
+    statistics: Option<&SurfaceStatistics>,
+    floor: f64,
+) -> CaseResult<()> {
+    let what = match roughness {
+        Roughness::Generated(_) => "the generated surface",
+        Roughness::Measured(_) => "the measured map (detrended and scaled)",
+    };
+    let finite = heights.iter().all(|h| h.is_finite())
+        && statistics.is_none_or(|s| s.scalars().iter().all(|x| x.is_finite()));
+    if !finite {
+        let (key, value) = level_key(name, roughness);
+        return Err(CaseError::field(
+            key,
+            value,
+            format!(
+                "gives {what} heights or statistics on the contact grid that are not finite \
+                 numbers (they overflow): the heights must be a small fraction of the window"
+            ),
+        ));
+    }
+    let by_slope = matches!(
+        roughness,
+        Roughness::Generated(GeneratedRoughness {
+            normalization: Normalization::RmsSlope(_),
+            ..
+        })
+    );
+    if let Some(s) = statistics.filter(|s| s.rms_height < floor) {
+        let (key, value) = level_key(name, roughness);
+        return Err(CaseError::field(
+            key,
+            value,
+            format!(
+                "gives {what} an rms height of {:e} m on the contact grid, below \
+                 {MIN_RELATIVE_RMS_HEIGHT:e} of the window ({floor:e} m): the surface is flat \
+                 to the rounding of the gap (a map flat after detrending, its scale, or a tiny \
+                 rms_height or rms_slope)",
+                s.rms_height
+            ),
+        ));
+    }
+    if let (Some(s), false) = (statistics, by_slope) {
+        let slope = s.rms_slope_finite_difference;
+        if slope > MAX_RMS_SLOPE {
+            let (key, value) = level_key(name, roughness);
+            return Err(CaseError::field(
+                key,
+                value,
+                format!(
+                    "gives {what} an rms slope of {slope:.3e} on the contact grid, above \
+                     {MAX_RMS_SLOPE}: the half-space theory assumes small slopes (lower the \
+                     heights: rms_height, or the map's scale and units)"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
 
 /// The proportionality of the contact area to the load at small loads,
 /// `A/A0 = kappa p / (E* h'_rms)` with `h'_rms = sqrt(<|grad h|^2>)` the rms slope of the
@@ -202,15 +295,19 @@ pub fn rough_surfaces(
 ) -> CaseResult<Option<RoughSurfaces>> {
     let mut bodies = Vec::new();
     let mut composite = vec![0.0; grid.len()];
+    let (hx, hy) = grid.half_widths();
+    let floor = MIN_RELATIVE_RMS_HEIGHT * 2.0 * hx.max(hy);
     for (name, body) in [("body1", &case.body1), ("body2", &case.body2)] {
         let Some(r) = &body.roughness else { continue };
         let (heights, c_r) = on_grid(name, r, grid, case.periodic)?;
+        check_on_grid(name, r, &heights, None, floor)?;
         composite
             .iter_mut()
             .zip(&heights)
             .for_each(|(c, h)| *c += h);
         let t = Topography::new(grid.nx(), grid.ny(), grid.dx(), grid.dy(), heights)?;
         let statistics = SurfaceStatistics::of(&t)?;
+        check_on_grid(name, r, t.heights(), Some(&statistics), floor)?;
         let (file, generated) = match r {
             Roughness::Generated(g) => (None, Some(*g)),
             Roughness::Measured(m) => (Some(m.file.clone()), None),
@@ -229,8 +326,9 @@ pub fn rough_surfaces(
         return Ok(None);
     }
     let t = Topography::new(grid.nx(), grid.ny(), grid.dx(), grid.dy(), composite)?;
+    let composite = SurfaceStatistics::of(&t)?;
     Ok(Some(RoughSurfaces {
-        composite: SurfaceStatistics::of(&t)?,
+        composite,
         psd: radial_psd(&t)?,
         bodies,
     }))

@@ -568,3 +568,154 @@ fn measured_surfaces_name_their_file_and_rules() {
     assert!(!ok.periodic && ok.is_rough());
     run(&ok, &mut Silent).unwrap();
 }
+
+/// The error of a case that parses but is refused by `prepare` (the surfaces on the grid).
+fn prepare_error(text: &str, dir: &Path) -> String {
+    match prepare(&case(text, dir)) {
+        Ok(_) => panic!("prepared:\n{text}"),
+        Err(e) => {
+            assert!(e.is_bad_input(), "not bad input: {e}");
+            e.to_string()
+        }
+    }
+}
+
+#[test]
+fn hostile_levels_spacings_and_files_are_refused_naming_the_key() {
+    // Found by probing the binary with hostile values (each was an exit 1 "numerical
+    // failure", an exit 3 after 10000 iterations, an exit 0 with all the load on one element
+    // at p > E*, an error naming another key, or a hang).
+    let base = crate::examples::find("rough-flat")
+        .unwrap()
+        .text
+        .replace("n = [128, 128]", "n = [32, 32]")
+        .replace("\"3.125 um\"", "\"6.25 um\"");
+    let dir = Path::new(".");
+    let parse_refusals: Vec<(String, &str, &str)> = vec![
+        (
+            base.replace("rms_slope = 0.05", "rms_slope = 10"),
+            "body1.surface.rms_slope = 10",
+            "at most 1",
+        ),
+        (
+            base.replace("rms_slope = 0.05", "rms_slope = 1e300"),
+            "body1.surface.rms_slope",
+            "at most 1",
+        ),
+        (
+            base.replace(
+                "rms_slope = 0.05",
+                "rms_slope = 0.05\nanisotropy = [100, 100]",
+            ),
+            "body1.surface.anisotropy",
+            "no mode",
+        ),
+        (
+            base.replace("mean_pressure = \"250 MPa\"", "mean_pressure = 1e300"),
+            "contact.mean_pressure",
+            "small strains",
+        ),
+        (
+            base.replace("mean_pressure = \"250 MPa\"", "mean_pressure = 1e-300"),
+            "contact.mean_pressure",
+            "rounding",
+        ),
+        (
+            base.replace("mean_pressure = \"250 MPa\"", ""),
+            "contact",
+            "mean_pressure",
+        ),
+    ];
+    for (text, key, rule) in parse_refusals {
+        let e = error(&text, dir);
+        assert!(
+            e.starts_with(key) && e.contains(rule),
+            "{key} / {rule}: {e}"
+        );
+    }
+    // A sweep of many small loads, the first ones on one element, was an exit 1 ("numerical
+    // failure in Polonsky-Keer CG: non-positive curvature" from a one-element warm start).
+    let out = run(
+        &case(&base.replace("load_steps = 10", "load_steps = 400"), dir),
+        &mut Silent,
+    )
+    .unwrap();
+    assert_eq!(out.sweep.as_ref().unwrap().steps.len(), 400);
+    // Refused on the grid: a level whose drawn surface is steeper than the small-slope
+    // theory allows (0.1 mm over wavelengths of 6 to 25 um: an rms slope ~ 40).
+    let e = prepare_error(
+        &base.replace("rms_slope = 0.05", "rms_height = \"0.1 mm\""),
+        dir,
+    );
+    assert!(
+        e.starts_with("body1.surface.rms_height") && e.contains("rms slope"),
+        "{e}"
+    );
+    // A flat surface (an rms slope of 1e-20: heights ~1e-26 m) was exit 1 after half the
+    // files (the PSD plot had no positive value).
+    let e = prepare_error(&base.replace("rms_slope = 0.05", "rms_slope = 1e-20"), dir);
+    assert!(
+        e.starts_with("body1.surface.rms_slope") && e.contains("flat"),
+        "{e}"
+    );
+    // Measured maps: steep (scale), flat (all zeros), out-of-range spacing (key and header),
+    // a device instead of a file.
+    let tmp = tempfile::tempdir().unwrap();
+    write_bisinusoid(tmp.path(), 16);
+    let m = bisinusoid_case(16, 1e6, 1);
+    let e = prepare_error(
+        &m.replace("detrend = \"none\"", "detrend = \"none\"\nscale = 1e6"),
+        tmp.path(),
+    );
+    assert!(
+        e.starts_with("body1.surface.file") && e.contains("rms slope"),
+        "{e}"
+    );
+    let zeros = "0 0 0 0\n".repeat(4);
+    std::fs::write(
+        tmp.path().join("zeros.txt"),
+        format!("# dx: 2.5e-4\n# dy: 2.5e-4\n{zeros}"),
+    )
+    .unwrap();
+    let e = prepare_error(
+        &bisinusoid_case(4, 1e6, 1).replace("bisinusoid.txt", "zeros.txt"),
+        tmp.path(),
+    );
+    assert!(
+        e.starts_with("body1.surface.file") && e.contains("flat"),
+        "{e}"
+    );
+    std::fs::write(
+        tmp.path().join("far.txt"),
+        format!("# dx: 1e300\n# dy: 1e300\n{zeros}"),
+    )
+    .unwrap();
+    let e = error(
+        &bisinusoid_case(4, 1e6, 1).replace("bisinusoid.txt", "far.txt"),
+        tmp.path(),
+    );
+    assert!(
+        e.starts_with("body1.surface.file") && e.contains("spacing"),
+        "{e}"
+    );
+    std::fs::write(tmp.path().join("plain.txt"), &zeros).unwrap();
+    let e = error(
+        &bisinusoid_case(4, 1e6, 1)
+            .replace("bisinusoid.txt", "plain.txt")
+            .replace("detrend = \"none\"", "detrend = \"none\"\nspacing = 1e300"),
+        tmp.path(),
+    );
+    assert!(e.starts_with("body1.surface.spacing"), "{e}");
+    if Path::new("/dev/zero").exists() {
+        // Read to its end, /dev/zero never ends (was a hang).
+        let e = error(
+            &bisinusoid_case(4, 1e6, 1)
+                .replace("\"bisinusoid.txt\"", "\"/dev/zero\"\nformat = \"ascii\""),
+            tmp.path(),
+        );
+        assert!(
+            e.starts_with("body1.surface.file") && e.contains("not a regular file"),
+            "{e}"
+        );
+    }
+}

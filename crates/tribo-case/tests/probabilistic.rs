@@ -182,3 +182,63 @@ fn bad_input_names_the_key() {
     let spec = ok.damage.unwrap().probabilistic.unwrap();
     assert_eq!(spec.limits[0].1.low, Some(2e9));
 }
+
+#[test]
+fn limits_beyond_any_material_are_refused_naming_the_key() {
+    // Found by probing the binary: each was an error naming no key ("psi[2] = inf: relative
+    // damage must be finite", "limit = 0"), an exit 1 (a NaN refused by the summary's
+    // writer), an error naming damage.sigma_int.limit with a 300-digit number, or an exit 0
+    // with limits from 1e-62 to 1e80 Pa.
+    for limits in [
+        "dist = \"lognormal\"\nmedian = 1e-300\nsigma_ln = 0.08",
+        "dist = \"lognormal\"\nmedian = 1e300\nsigma_ln = 0.08",
+        "dist = \"lognormal\"\nmedian = \"3.3 GPa\"\nsigma_ln = 1e300",
+        "dist = \"lognormal\"\nmedian = \"3.3 GPa\"\nsigma_ln = 100",
+        "dist = \"lognormal\"\nmedian = \"3.3 GPa\"\nsigma_ln = 1e-300",
+        "dist = \"normal\"\nmean = 1e300\nsd = 1e8",
+        "dist = \"normal\"\nmean = -1e300\nsd = 1e8",
+        "dist = \"normal\"\nmean = 3.3e9\nsd = 1e-300",
+        "dist = \"weibull\"\nshape = 0.01\nscale = 3.3e9",
+        "dist = \"weibull\"\nshape = 1e-300\nscale = 3.3e9",
+        "dist = \"weibull\"\nshape = 10\nscale = 1e-300",
+        "dist = \"weibull\"\nshape = 10\nscale = 3.3e9\nlocation = 1e300",
+        "dist = \"uniform\"\nlow = 3e9\nhigh = 1e300",
+    ] {
+        let text = case(limits, "");
+        let e = match parse(&text) {
+            Ok(_) => panic!("accepted: {limits}"),
+            Err(e) => e,
+        };
+        assert!(e.is_bad_input(), "{limits}: {e}");
+        assert!(
+            e.to_string()
+                .starts_with("damage.probabilistic.limits.sigma_int"),
+            "{limits}: {e}"
+        );
+    }
+    // The deterministic limits' keys (the same overflow: "psi[2] = inf", an infinite limit).
+    for (extra, key) in [
+        (
+            "[damage.limits]\nsigma_int = 1e-300",
+            "damage.limits.sigma_int",
+        ),
+        (
+            "[damage.limits]\nsigma_int = 1e300",
+            "damage.limits.sigma_int",
+        ),
+        ("limit_over_p0 = 1e300", "damage.limit_over_p0"),
+        ("limit_over_p0 = 1e-300", "damage.limit_over_p0"),
+    ] {
+        let e = match parse(&case(LOGNORMAL, extra)) {
+            Ok(_) => panic!("accepted: {extra}"),
+            Err(e) => e,
+        };
+        assert!(e.to_string().starts_with(key), "{extra}: {e}");
+    }
+    // A wide but sane scatter is kept.
+    parse(&case(
+        "dist = \"lognormal\"\nmedian = \"3.3 GPa\"\nsigma_ln = 0.5",
+        "",
+    ))
+    .unwrap();
+}

@@ -696,3 +696,49 @@ fn dry_run_estimates_the_field_stage() {
     assert!(printed.contains(" MiB"), "{printed}");
     assert!(!out.exists());
 }
+
+/// Found by probing: a rough grid too big for memory was refused only after its surface was
+/// drawn (8192 x 8192: ~50 s and 3 GB before the exit 2), and a measured map's heights did
+/// not count in the estimate (a 2000 x 2000 map ran under --max-memory 20 MiB).
+#[test]
+fn rough_and_measured_memory_is_refused_before_it_is_allocated() {
+    let rough = example("rough-flat").replace("n = [128, 128]", "n = [8192, 8192]");
+    let start = std::time::Instant::now();
+    let (o, out, _d) = run_case(&rough, &[], &["--max-memory", "1 GiB"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("memory = about") && err.contains("--max-memory"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    assert!(
+        start.elapsed().as_secs_f64() < 10.0,
+        "refused after {:?}",
+        start.elapsed()
+    );
+    // 1500 x 1500 heights of a few nm (a flat map would be refused as flat).
+    let map: String = (0..1500)
+        .map(|j| {
+            let row: Vec<String> = (0..1500)
+                .map(|i| format!("{}e-9", (7 * i + 3 * j) % 11))
+                .collect();
+            row.join(",") + "\n"
+        })
+        .collect();
+    let ball = "[body1]\nE = 2.1e11\nnu = 0.3\nradii = [0.01, 0.01]\n\
+                [body1.surface]\nkind = \"measured\"\nfile = \"map.csv\"\nspacing = 1e-6\n\
+                [body2]\nE = 2.1e11\nnu = 0.3\nradii = [\"inf\", \"inf\"]\n\
+                [contact]\nload = 0.1\n[grid]\nn = 16\nhalf_width = 1e-4\n";
+    let (o, out, _d) = run_case(ball, &[("map.csv", &map)], &["--max-memory", "40 MiB"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("measured maps"), "{err}");
+    assert!(!out.exists());
+    let (o, _, _d) = run_case(
+        ball,
+        &[("map.csv", &map)],
+        &["--max-memory", "64 GiB", "--dry-run"],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}

@@ -227,18 +227,49 @@ pub(crate) fn resolve_spacing(
     Ok(s)
 }
 
-/// Reads a whole file, refusing one larger than `limit` bytes.
-pub(crate) fn read_bytes(path: &Path, limit: usize) -> TopographyResult<Vec<u8>> {
+/// Refuses what is not a regular file (after links): a directory, or a device, a pipe or a
+/// socket, whose size is not known beforehand (`/dev/zero` never ends, a pipe blocks the
+/// open until a writer comes).
+pub(crate) fn check_regular(path: &Path) -> TopographyResult<std::fs::Metadata> {
     let meta = std::fs::metadata(path)
         .map_err(|e| TopographyError::new(path, format!("cannot read: {e}")))?;
-    if meta.len() > limit as u64 {
+    if meta.is_dir() {
         return Err(TopographyError::new(
             path,
-            format!(
-                "the file has {} bytes, above the limit of {limit} bytes",
-                meta.len()
-            ),
+            "cannot read: a directory, not a file",
         ));
     }
-    std::fs::read(path).map_err(|e| TopographyError::new(path, format!("cannot read: {e}")))
+    if !meta.is_file() {
+        return Err(TopographyError::new(
+            path,
+            "not a regular file (a device, a pipe or a socket): give the topography file itself",
+        ));
+    }
+    Ok(meta)
+}
+
+/// Reads a whole regular file, refusing one larger than `limit` bytes (also one that grows
+/// beyond it while it is read).
+pub(crate) fn read_bytes(path: &Path, limit: usize) -> TopographyResult<Vec<u8>> {
+    use std::io::Read;
+    let too_large = |len: u64| {
+        TopographyError::new(
+            path,
+            format!("the file has {len} bytes, above the limit of {limit} bytes"),
+        )
+    };
+    let meta = check_regular(path)?;
+    if meta.len() > limit as u64 {
+        return Err(too_large(meta.len()));
+    }
+    let file = std::fs::File::open(path)
+        .map_err(|e| TopographyError::new(path, format!("cannot read: {e}")))?;
+    let mut bytes = Vec::new();
+    file.take(limit as u64 + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| TopographyError::new(path, format!("cannot read: {e}")))?;
+    if bytes.len() > limit {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
 }

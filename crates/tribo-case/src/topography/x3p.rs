@@ -38,6 +38,7 @@ use std::path::Path;
 /// missing or unsupported element (named), point data of the wrong length, the memory limit.
 pub fn read(path: &Path, options: &ReadOptions) -> TopographyResult<Measured> {
     let err = |p: String| TopographyError::new(path, p);
+    super::check_regular(path)?;
     let file = std::fs::File::open(path).map_err(|e| err(format!("cannot read: {e}")))?;
     let mut archive = zip::ZipArchive::new(std::io::BufReader::new(file)).map_err(|e| {
         err(format!(

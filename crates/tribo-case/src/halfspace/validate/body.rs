@@ -412,11 +412,21 @@ fn inline_heights(
 /// (the j-th data line) at `y_j`, column `i` at `x_i` (both increasing; see
 /// [`tribo::geometry::HeightMap`]); blank lines and lines starting with `#` are skipped.
 pub fn read_height_csv(field: &str, path: &Path) -> CaseResult<(usize, usize, Vec<f64>)> {
-    let text = std::fs::read_to_string(path).map_err(|source| CaseError::Unreadable {
+    let unreadable = |source: std::io::Error| CaseError::Unreadable {
         field: field.to_string(),
         path: path.to_path_buf(),
         source,
-    })?;
+    };
+    // A regular file only: a device (/dev/zero never ends) or a pipe (the open blocks) is
+    // refused before it is opened.
+    let meta = std::fs::metadata(path).map_err(unreadable)?;
+    if !meta.is_file() {
+        return Err(unreadable(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "not a regular file (a directory, a device, a pipe or a socket)",
+        )));
+    }
+    let text = std::fs::read_to_string(path).map_err(unreadable)?;
     let bad = |line: usize, rule: String| CaseError::DataFile {
         field: field.to_string(),
         path: PathBuf::from(path),

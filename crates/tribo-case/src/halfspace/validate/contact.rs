@@ -32,6 +32,14 @@ impl LoadSpec {
 /// the force on one period divided by its area), > 0.
 pub(super) fn load_spec(c: &RawContact, periodic: bool) -> CaseResult<LoadSpec> {
     let Some(p) = &c.mean_pressure else {
+        if periodic && c.load.is_none() && c.approach.is_none() {
+            return Err(CaseError::field(
+                "contact",
+                "(none of load and mean_pressure)",
+                "give exactly one of contact.load (N, the force on one period) and \
+                 contact.mean_pressure (Pa) on a periodic grid",
+            ));
+        }
         return loading(c).map(LoadSpec::Loading);
     };
     if let Some(l) = &c.load {

@@ -83,7 +83,19 @@ fn default_limits(d: &RawDamage, loading: &NormalLoading) -> CaseResult<Defaults
     }
     let over_p0 = match &d.limit_over_p0 {
         None => None,
-        Some(v) => Some(positive_number("damage.limit_over_p0", v)?),
+        Some(v) => {
+            let r = positive_number("damage.limit_over_p0", v)?;
+            // 1e300 p0 overflowed to an infinite limit; 1e-300 p0 makes psi overflow.
+            if !(1e-9..=1e9).contains(&r) {
+                return Err(CaseError::field(
+                    "damage.limit_over_p0",
+                    v,
+                    "must be in [1e-9, 1e9] (a limit as a multiple of the largest contact \
+                     pressure)",
+                ));
+            }
+            Some(r)
+        }
     };
     let limit_load = match &d.limit_load {
         None => None,
@@ -172,6 +184,18 @@ fn limit_source(
         };
         Limit::new(quantity, x)
             .map_err(|e| CaseError::field(&field, show(v), strip_field(&e.to_string())))?;
+        // The range of the random limits' quantiles (1e-300 Pa made psi infinite).
+        let [lo, hi] = crate::probabilistic::limit_range(quantity.unit());
+        if !(lo..=hi).contains(&x.abs()) {
+            return Err(CaseError::field(
+                &field,
+                show(v),
+                format!(
+                    "a limit must lie within [{lo:e}, {hi:e}] {} in magnitude",
+                    quantity.unit()
+                ),
+            ));
+        }
         return Ok(LimitSource::Given(x));
     }
     if let Some(f) = defaults.limit_load {

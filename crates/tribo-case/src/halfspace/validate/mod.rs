@@ -83,6 +83,14 @@ pub(super) fn validate(
     let loading = match (load_spec, window) {
         (contact::LoadSpec::Loading(l), _) => l,
         (contact::LoadSpec::MeanPressure(p), Window::HalfWidth(hw)) => {
+            // The pipeline's check of the force over the window is the same ratio; checked
+            // here so that the refusal names the key the case gives.
+            crate::units::check_strain(
+                "contact.mean_pressure",
+                format!("{p:e} Pa"),
+                p / e_star,
+                "the mean pressure over E*",
+            )?;
             NormalLoading::Force(p * 4.0 * hw[0] * hw[1])
         }
         (contact::LoadSpec::MeanPressure(p), Window::Extent(_)) => {

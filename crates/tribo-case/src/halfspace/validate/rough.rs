@@ -107,6 +107,17 @@ pub(super) fn generated(field: &str, s: &RawSurface) -> CaseResult<GeneratedRoug
                     "the rms slope must be finite and > 0",
                 ));
             }
+            if x > crate::rough::MAX_RMS_SLOPE {
+                return Err(CaseError::field(
+                    key("rms_slope"),
+                    r,
+                    format!(
+                        "the rms slope must be at most {} (45 degrees): the half-space theory \
+                         assumes small slopes",
+                        crate::rough::MAX_RMS_SLOPE
+                    ),
+                ));
+            }
             Normalization::RmsSlope(x)
         }
         (Some(r), Some(_)) => {
@@ -173,6 +184,11 @@ pub(super) fn measured(
                         "the spacing must be finite and > 0 (m)",
                     ));
                 }
+                crate::units::check_length(
+                    &p.item_key(&key("spacing"), k),
+                    p.items[k].written(),
+                    *d,
+                )?;
             }
             Some((sp[0], sp[1]))
         }
@@ -201,6 +217,26 @@ pub(super) fn measured(
     let t = read
         .and_then(topography::Measured::into_topography)
         .map_err(|e| e.into_case_error(&key("file")))?;
+    // The file's own spacing (a header, X3P's increments) and the map's size are lengths of
+    // the geometry too.
+    let (dx, dy) = t.spacing();
+    let size = [t.nx() as f64 * dx, t.ny() as f64 * dy];
+    let [lo, hi] = crate::units::LENGTH_RANGE;
+    if !((lo..=hi).contains(&dx) && (lo..=hi).contains(&dy) && size[0] <= hi && size[1] <= hi) {
+        let (k, v) = match &s.spacing {
+            Some(_) => (key("spacing"), format!("[{dx:e}, {dy:e}]")),
+            None => (key("file"), path.display().to_string()),
+        };
+        return Err(CaseError::field(
+            k,
+            v,
+            format!(
+                "the map's spacing ({dx:e}, {dy:e}) m and size ({:e} x {:e}) m must lie within \
+                 [{lo:e}, {hi:e}] m, the range of the lengths of the geometry",
+                size[0], size[1]
+            ),
+        ));
+    }
     let detrend = match &s.detrend {
         None => Some(1),
         Some(d) => d.degree,
@@ -313,9 +349,17 @@ pub(super) fn check_against_grid(
                     seed: g.seed,
                 };
                 plateau(&params).map_err(|e| {
+                    // The anisotropy scales the band's wavevectors: where it is given, it is
+                    // what moved the band off the grid.
+                    let a = g.spectrum.anisotropy;
+                    let (k, v) = if a == [1.0, 1.0] {
+                        ("short_wavelength", short.to_string())
+                    } else {
+                        ("anisotropy", format!("[{}, {}]", a[0], a[1]))
+                    };
                     CaseError::field(
-                        format!("{field}.short_wavelength"),
-                        short,
+                        format!("{field}.{k}"),
+                        v,
                         super::strip_field(&e.to_string()),
                     )
                 })?;
