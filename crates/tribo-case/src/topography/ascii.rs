@@ -71,6 +71,9 @@ pub fn parse(path: &Path, text: &str, options: &ReadOptions) -> TopographyResult
                 "height" => &mut height,
                 "value units" => {
                     let u = value.trim();
+                    if value_unit.is_some() {
+                        return Err(err(ln, "value units given twice".into()));
+                    }
                     value_unit = Some(unit_factor(u).ok_or_else(|| {
                         err(
                             ln,
@@ -90,6 +93,11 @@ pub fn parse(path: &Path, text: &str, options: &ReadOptions) -> TopographyResult
                 .ok_or_else(|| err(ln, format!("{key}: unknown unit \"{}\"", unit.trim())))?;
             if !(num.is_finite() && num > 0.0) {
                 return Err(err(ln, format!("{key} = {num}: must be finite and > 0")));
+            }
+            if slot.is_some() {
+                // Two headers of one key (a file and its edited copy pasted together): which
+                // one is meant is not known, and taking either silently is a guess.
+                return Err(err(ln, format!("{key} given twice")));
             }
             *slot = Some(num * f);
             continue;

@@ -194,6 +194,14 @@ fn ascii_reads_headers_and_plain_grids() {
         "{e}"
     );
     assert!(error("gwyddion.x", &ReadOptions::default()).contains("unknown topography format"));
+    // A header given twice was taken silently (the last one won).
+    let e = ascii::parse(
+        &fixture("t.txt"),
+        "# dx: 1e-6\n# dy: 1e-6\n# dx: 2e-6\n1 2\n3 4\n",
+        &ReadOptions::default(),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("line 3: dx given twice"), "{e}");
 }
 
 /// Invalid points are refused, naming the count and the first; a complete grid becomes a
