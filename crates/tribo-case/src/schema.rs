@@ -116,9 +116,27 @@ fn schema_error(source: &str, e: serde_path_to_error::Error<toml::de::Error>) ->
         None => {
             let mut message = inner.to_string().trim_end().to_string();
             if path != "." {
-                // The full path in place of toml's own (the table's, where it gives one).
-                let lines: Vec<&str> = message.lines().filter(|l| !l.starts_with("in `")).collect();
-                message = format!("{}\nin `{path}`", lines.join("\n"));
+                // The first line names the key and the rule (the CLI prints it as the
+                // error's line): "in `body1.nuu`: unknown field `nuu`, expected one of ...
+                // (line 8, column 1)", then toml's snippet of the file. The full path in place
+                // of toml's own (the table's, where it gives one).
+                let rule = inner.message().trim().replace('\n', " ");
+                let location = message
+                    .lines()
+                    .next()
+                    .and_then(|l| l.strip_prefix("TOML parse error at "))
+                    .map(|at| format!(" ({at})"))
+                    .unwrap_or_default();
+                let snippet: Vec<&str> = message
+                    .lines()
+                    .skip(1)
+                    .filter(|l| l.trim_start().starts_with('|') || is_snippet_line(l))
+                    .collect();
+                let mut first = format!("in `{path}`: {rule}{location}");
+                if !snippet.is_empty() {
+                    first = format!("{first}\n{}", snippet.join("\n"));
+                }
+                message = first;
             }
             CaseError::Parse {
                 path: source.to_string(),
@@ -126,6 +144,13 @@ fn schema_error(source: &str, e: serde_path_to_error::Error<toml::de::Error>) ->
             }
         }
     }
+}
+
+/// A line of toml's snippet: `8 | nuu = 1` (a line number, then the bar).
+fn is_snippet_line(line: &str) -> bool {
+    let t = line.trim_start();
+    let digits = t.bytes().take_while(u8::is_ascii_digit).count();
+    digits > 0 && t[digits..].trim_start().starts_with('|')
 }
 
 /// The items of a TOML array, each a leaf `T`; a refusal names the item (`[k]`).
@@ -331,18 +356,25 @@ mod tests {
 
     #[test]
     fn other_schema_errors_carry_line_and_path() {
+        // The first line names the key, the rule and where (the CLI's error line).
         let e = err("[inner]\nn = 3\nsise = 1");
-        assert!(e.starts_with("t.toml: TOML parse error at line 3"), "{e}");
-        assert!(e.contains("unknown field `sise`"), "{e}");
-        assert!(e.ends_with("in `inner.sise`"), "{e}");
+        let first = e.lines().next().unwrap();
+        assert!(
+            first.starts_with("t.toml: in `inner.sise`: unknown field `sise`"),
+            "{e}"
+        );
+        assert!(first.ends_with("(line 3, column 1)"), "{e}");
+        assert!(e.contains("3 | sise = 1"), "{e}");
         let e = err("inner = 3");
-        assert!(e.contains("in `inner`"), "{e}");
+        assert!(e.starts_with("t.toml: in `inner`: "), "{e}");
         let table: toml::Table = toml::from_str("[inner]\nsise = 1").unwrap();
         let e = from_value::<Outer>(Value::Table(table), "code")
             .unwrap_err()
             .to_string();
-        assert!(e.starts_with("code: unknown field `sise`"), "{e}");
+        assert!(
+            e.starts_with("code: in `inner.sise`: unknown field `sise`"),
+            "{e}"
+        );
         assert_eq!(e.matches("in `").count(), 1, "{e}");
-        assert!(e.ends_with("in `inner.sise`"), "{e}");
     }
 }
