@@ -269,27 +269,6 @@ fn slurm_cmd(dir: &Path, o: &SlurmOpts) -> Outcome {
     let sd = StudyDir::open(dir)?;
     let n = sd.study.len();
     let chunk = o.chunk.unwrap_or_else(|| slurm::default_chunk(n));
-    if chunk == 0 {
-        return Err(bad_option("--chunk", 0, "at least 1 point per task"));
-    }
-    if o.cpus_per_task == 0 {
-        return Err(bad_option("--cpus-per-task", 0, "at least 1"));
-    }
-    if o.max_running == Some(0) {
-        return Err(bad_option("--max-running", 0, "at least 1"));
-    }
-    if !slurm::valid_time(&o.time) {
-        return Err(bad_option("--time", &o.time, slurm::TIME_RULE));
-    }
-    if let Some(p) = &o.partition {
-        if !slurm::valid_partition(p) {
-            return Err(bad_option(
-                "--partition",
-                format!("{p:?}"),
-                slurm::PARTITION_RULE,
-            ));
-        }
-    }
     let exe = std::env::current_exe().map_err(|e| StudyError::file("tribo", e))?;
     let s = Slurm {
         chunk,
@@ -298,6 +277,13 @@ fn slurm_cmd(dir: &Path, o: &SlurmOpts) -> Outcome {
         cpus_per_task: o.cpus_per_task,
         max_running: o.max_running,
     };
+    // The library's rules, named by the command's options (`cpus_per_task` -> --cpus-per-task).
+    s.validate().map_err(|e| match e {
+        StudyError::Item { item, value, rule } => {
+            StudyError::item(format!("--{}", item.replace('_', "-")), value, rule)
+        }
+        other => other,
+    })?;
     let (a, g) = slurm::write_scripts(&sd, &s, &exe)?;
     let sdir = a.parent().map(Path::to_path_buf).unwrap_or_default();
     let tasks = tribo_study::run::chunks(n, chunk);

@@ -389,6 +389,17 @@ fn bad_study_input_exits_2_naming_the_item() {
         let o = tribo(args);
         assert_eq!(o.status.code(), Some(2), "{args:?}");
     }
+    // The SLURM settings' refusals name the command's option.
+    for (args, option) in [
+        (&["--partition", "a b"][..], "--partition"),
+        (&["--cpus-per-task", "0"], "--cpus-per-task"),
+        (&["--time", "1:60"], "--time"),
+    ] {
+        let o = tribo(&[&["sweep", "slurm", s(&dir)][..], args].concat());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.starts_with(&format!("error: {option} = ")), "{err}");
+    }
     // Planning another study into the same directory is refused; the same one is kept.
     let other = tmp.path().join("other.toml");
     std::fs::write(&other, STUDY.replace("seed = 42", "seed = 43")).unwrap();

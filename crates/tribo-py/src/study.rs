@@ -517,38 +517,6 @@ impl PyStudyDir {
                 rule,
             )
         };
-        if chunk == 0 {
-            return Err(bad("chunk", "0".into(), "at least 1 point per task"));
-        }
-        if cpus_per_task == 0 {
-            return Err(bad("cpus_per_task", "0".into(), "at least 1"));
-        }
-        if max_running == Some(0) {
-            return Err(bad("max_running", "0".into(), "at least 1"));
-        }
-        if !tribo_study::slurm::valid_time(&time) {
-            return Err(bad(
-                "time",
-                format!("{time:?}"),
-                tribo_study::slurm::TIME_RULE,
-            ));
-        }
-        if let Some(p) = &partition {
-            if !tribo_study::slurm::valid_partition(p) {
-                return Err(bad(
-                    "partition",
-                    format!("{p:?}"),
-                    tribo_study::slurm::PARTITION_RULE,
-                ));
-            }
-        }
-        if !tribo.is_absolute() || !tribo.is_file() {
-            return Err(bad(
-                "tribo",
-                tribo.display().to_string(),
-                "the absolute path of the tribo binary the array tasks run",
-            ));
-        }
         let s = Slurm {
             chunk,
             partition,
@@ -556,6 +524,15 @@ impl PyStudyDir {
             cpus_per_task,
             max_running,
         };
+        // The settings' rules are the library's (the CLI's, by the same names).
+        s.validate().map_err(|e| study_error(py, &e))?;
+        if !tribo.is_absolute() || !tribo.is_file() {
+            return Err(bad(
+                "tribo",
+                tribo.display().to_string(),
+                "the absolute path of the tribo binary the array tasks run",
+            ));
+        }
         py.detach(|| tribo_study::slurm::write_scripts(&self.sd, &s, &tribo))
             .map_err(|e| study_error(py, &e))
     }
