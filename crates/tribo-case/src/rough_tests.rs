@@ -672,28 +672,19 @@ fn hostile_levels_spacings_and_files_are_refused_naming_the_key() {
         "{e}"
     );
     let zeros = "0 0 0 0\n".repeat(4);
-    std::fs::write(
-        tmp.path().join("zeros.txt"),
-        format!("# dx: 2.5e-4\n# dy: 2.5e-4\n{zeros}"),
-    )
-    .unwrap();
-    let e = prepare_error(
-        &bisinusoid_case(4, 1e6, 1).replace("bisinusoid.txt", "zeros.txt"),
-        tmp.path(),
-    );
+    // The 4 x 4 case reading the map `name` written with `contents`.
+    let map_case = |name: &str, contents: &str| {
+        std::fs::write(tmp.path().join(name), contents).unwrap();
+        bisinusoid_case(4, 1e6, 1).replace("bisinusoid.txt", name)
+    };
+    let flat = map_case("zeros.txt", &format!("# dx: 2.5e-4\n# dy: 2.5e-4\n{zeros}"));
+    let e = prepare_error(&flat, tmp.path());
     assert!(
         e.starts_with("body1.surface.file") && e.contains("flat"),
         "{e}"
     );
-    std::fs::write(
-        tmp.path().join("far.txt"),
-        format!("# dx: 1e300\n# dy: 1e300\n{zeros}"),
-    )
-    .unwrap();
-    let e = error(
-        &bisinusoid_case(4, 1e6, 1).replace("bisinusoid.txt", "far.txt"),
-        tmp.path(),
-    );
+    let far = map_case("far.txt", &format!("# dx: 1e300\n# dy: 1e300\n{zeros}"));
+    let e = error(&far, tmp.path());
     assert!(
         e.starts_with("body1.surface.file") && e.contains("spacing"),
         "{e}"

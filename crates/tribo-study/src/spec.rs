@@ -645,26 +645,29 @@ fn grid_values(item: &str, g: &RawGrid) -> StudyResult<Vec<toml::Value>> {
     }
 }
 
-/// A study or case file's text, read no further than
-/// [`tribo_case::memory::MAX_CASE_FILE_BYTES`] (a larger file, or an endless one such as
-/// `/dev/zero`, is refused with the limit instead of being read to the end), UTF-8.
+/// A study or case file's text, a regular file of at most
+/// [`tribo_case::memory::MAX_CASE_FILE_BYTES`] (a larger file is refused with the limit, a
+/// device such as the endless `/dev/zero` or a pipe before it is opened), UTF-8
+/// ([`tribo_case::topography::read_regular`]).
 pub fn read_bounded(path: &Path) -> std::io::Result<String> {
-    use std::io::Read;
+    use std::io::{Error, ErrorKind};
+    use tribo_case::topography::{read_regular, BoundedReadError};
     let limit = tribo_case::memory::MAX_CASE_FILE_BYTES;
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)?
-        .take(limit + 1)
-        .read_to_end(&mut bytes)?;
-    if bytes.len() as u64 > limit {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
+    let bytes = read_regular(path, limit).map_err(|e| match e {
+        BoundedReadError::Io(e) => e,
+        BoundedReadError::Directory | BoundedReadError::NotRegular => Error::new(
+            ErrorKind::InvalidInput,
+            "not a regular file (a directory, a device, a pipe or a socket)",
+        ),
+        BoundedReadError::TooLarge(_) => Error::new(
+            ErrorKind::InvalidData,
             format!(
                 "larger than {} (a study or case file is a few hundred lines of TOML)",
                 tribo_case::memory::human(limit)
             ),
-        ));
-    }
-    String::from_utf8(bytes).map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e))
+        ),
+    })?;
+    String::from_utf8(bytes).map_err(|e| Error::new(ErrorKind::InvalidData, e))
 }
 
 /// Refuses a float of a values list that is not finite (TOML's `nan`, `inf`), naming it

@@ -227,49 +227,78 @@ pub(crate) fn resolve_spacing(
     Ok(s)
 }
 
-/// Refuses what is not a regular file (after links): a directory, or a device, a pipe or a
-/// socket, whose size is not known beforehand (`/dev/zero` never ends, a pipe blocks the
-/// open until a writer comes).
-pub(crate) fn check_regular(path: &Path) -> TopographyResult<std::fs::Metadata> {
-    let meta = std::fs::metadata(path)
-        .map_err(|e| TopographyError::new(path, format!("cannot read: {e}")))?;
-    if meta.is_dir() {
-        return Err(TopographyError::new(
-            path,
-            "cannot read: a directory, not a file",
-        ));
-    }
-    if !meta.is_file() {
-        return Err(TopographyError::new(
-            path,
-            "not a regular file (a device, a pipe or a socket): give the topography file itself",
-        ));
-    }
-    Ok(meta)
+/// Why [`read_regular`] refused a file.
+#[derive(Debug)]
+pub enum BoundedReadError {
+    /// The file cannot be opened or read.
+    Io(std::io::Error),
+    /// A directory, not a file.
+    Directory,
+    /// A device, a pipe or a socket: its size is not known beforehand (`/dev/zero` never
+    /// ends, a pipe blocks the open until a writer comes).
+    NotRegular,
+    /// The file has this many bytes (at least), above the limit.
+    TooLarge(u64),
 }
 
-/// Reads a whole regular file, refusing one larger than `limit` bytes (also one that grows
-/// beyond it while it is read).
-pub(crate) fn read_bytes(path: &Path, limit: usize) -> TopographyResult<Vec<u8>> {
-    use std::io::Read;
-    let too_large = |len: u64| {
-        TopographyError::new(
-            path,
-            format!("the file has {len} bytes, above the limit of {limit} bytes"),
-        )
-    };
-    let meta = check_regular(path)?;
-    if meta.len() > limit as u64 {
-        return Err(too_large(meta.len()));
+/// The metadata of a regular file (after links), or why it is not one.
+fn regular(path: &Path) -> Result<std::fs::Metadata, BoundedReadError> {
+    let meta = std::fs::metadata(path).map_err(BoundedReadError::Io)?;
+    if meta.is_dir() {
+        Err(BoundedReadError::Directory)
+    } else if !meta.is_file() {
+        Err(BoundedReadError::NotRegular)
+    } else {
+        Ok(meta)
     }
-    let file = std::fs::File::open(path)
-        .map_err(|e| TopographyError::new(path, format!("cannot read: {e}")))?;
+}
+
+/// Reads a whole regular file of at most `limit` bytes: a directory, a device, a pipe or a
+/// socket is refused before it is opened, and a larger file (also one that grows beyond the
+/// limit while it is read) is refused without reading past the limit. The one bounded
+/// reader of the case's input files (topographies, height maps) and of study files.
+pub fn read_regular(path: &Path, limit: u64) -> Result<Vec<u8>, BoundedReadError> {
+    use std::io::Read;
+    let meta = regular(path)?;
+    if meta.len() > limit {
+        return Err(BoundedReadError::TooLarge(meta.len()));
+    }
+    let file = std::fs::File::open(path).map_err(BoundedReadError::Io)?;
     let mut bytes = Vec::new();
-    file.take(limit as u64 + 1)
+    file.take(limit + 1)
         .read_to_end(&mut bytes)
-        .map_err(|e| TopographyError::new(path, format!("cannot read: {e}")))?;
-    if bytes.len() > limit {
-        return Err(too_large(bytes.len() as u64));
+        .map_err(BoundedReadError::Io)?;
+    if bytes.len() as u64 > limit {
+        return Err(BoundedReadError::TooLarge(bytes.len() as u64));
     }
     Ok(bytes)
+}
+
+/// [`BoundedReadError`] as a topography reader states it.
+fn topography_error(path: &Path, limit: u64, e: BoundedReadError) -> TopographyError {
+    match e {
+        BoundedReadError::Io(e) => TopographyError::new(path, format!("cannot read: {e}")),
+        BoundedReadError::Directory => {
+            TopographyError::new(path, "cannot read: a directory, not a file")
+        }
+        BoundedReadError::NotRegular => TopographyError::new(
+            path,
+            "not a regular file (a device, a pipe or a socket): give the topography file itself",
+        ),
+        BoundedReadError::TooLarge(len) => TopographyError::new(
+            path,
+            format!("the file has {len} bytes, above the limit of {limit} bytes"),
+        ),
+    }
+}
+
+/// Refuses what is not a regular file (after links): a directory, or a device, a pipe or a
+/// socket ([`BoundedReadError`]).
+pub(crate) fn check_regular(path: &Path) -> TopographyResult<std::fs::Metadata> {
+    regular(path).map_err(|e| topography_error(path, 0, e))
+}
+
+/// Reads a whole regular file, refusing one larger than `limit` bytes ([`read_regular`]).
+pub(crate) fn read_bytes(path: &Path, limit: usize) -> TopographyResult<Vec<u8>> {
+    read_regular(path, limit as u64).map_err(|e| topography_error(path, limit as u64, e))
 }

@@ -106,17 +106,33 @@ pub fn run_case_loud(text: &str, files: &[(&str, &str)]) -> (Output, tempfile::T
 /// The case `text` (with `files`) exits 2, names `field` on stderr and writes nothing;
 /// stderr.
 pub fn assert_bad_input(text: &str, files: &[(&str, &str)], field: &str) -> String {
-    let (o, out, _dir) = run_case(text, files, &[]);
+    assert_refused(text, files, &[], &[field])
+}
+
+/// The case `text` (with `files`, run with the `extra` arguments) exits 2, its stderr holds
+/// every one of `needles`, and it writes nothing; stderr.
+pub fn assert_refused(
+    text: &str,
+    files: &[(&str, &str)],
+    extra: &[&str],
+    needles: &[&str],
+) -> String {
+    let (o, out, _dir) = run_case(text, files, extra);
     let err = stderr(&o);
     assert_eq!(
         o.status.code(),
         Some(2),
-        "expected exit 2 for {field}; stderr: {err}"
+        "expected exit 2 for {needles:?}; stderr: {err}"
     );
-    assert!(err.contains(field), "stderr does not name {field:?}: {err}");
+    for needle in needles {
+        assert!(
+            err.contains(needle),
+            "stderr does not name {needle:?}: {err}"
+        );
+    }
     assert!(
         !out.exists(),
-        "bad input for {field} wrote {}",
+        "bad input for {needles:?} wrote {}",
         out.display()
     );
     err

@@ -418,15 +418,26 @@ pub fn read_height_csv(field: &str, path: &Path) -> CaseResult<(usize, usize, Ve
         source,
     };
     // A regular file only: a device (/dev/zero never ends) or a pipe (the open blocks) is
-    // refused before it is opened.
-    let meta = std::fs::metadata(path).map_err(unreadable)?;
-    if !meta.is_file() {
-        return Err(unreadable(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "not a regular file (a directory, a device, a pipe or a socket)",
-        )));
-    }
-    let text = std::fs::read_to_string(path).map_err(unreadable)?;
+    // refused before it is opened; its size is bounded like a topography's text.
+    use crate::topography::{read_regular, BoundedReadError};
+    let limit = crate::topography::ReadOptions::default()
+        .max_bytes
+        .saturating_mul(8) as u64;
+    let bytes = read_regular(path, limit).map_err(|e| {
+        unreadable(match e {
+            BoundedReadError::Io(e) => e,
+            BoundedReadError::Directory | BoundedReadError::NotRegular => std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "not a regular file (a directory, a device, a pipe or a socket)",
+            ),
+            BoundedReadError::TooLarge(len) => std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("the file has {len} bytes, above the limit of {limit} bytes"),
+            ),
+        })
+    })?;
+    let text = String::from_utf8(bytes)
+        .map_err(|e| unreadable(std::io::Error::new(std::io::ErrorKind::InvalidData, e)))?;
     let bad = |line: usize, rule: String| CaseError::DataFile {
         field: field.to_string(),
         path: PathBuf::from(path),
