@@ -30,7 +30,7 @@ GMSH_CASE = ROOT / "crates" / "tribo-cli" / "examples" / "gmsh" / "hertz-cylinde
 # clamp-knife-base impact 40 s) with TRIBO_PY_SLOW=1.
 CHEAP = ["roller-shaft", "roller-shaft-normal", "roller-shaft-approach", "roller-shaft-bending",
          "sphere-on-flat", "steel-on-cast-iron", "crowned-roller", "height-map",
-         "roller-shaft-probabilistic", "rough-flat", "rough-ball"]
+         "roller-shaft-probabilistic", "rough-flat", "rough-ball", "rough-roller"]
 SLOW = ["roller-shaft-sec6", "clamp-knife-base", "cavity", "column", "rod-impact",
         "clamp-knife-base-impact"]
 NOT_RUN = ["fatigue-diagram"]  # the input of `tribo fatigue diagram`, not of `tribo run`

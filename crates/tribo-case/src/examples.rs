@@ -113,6 +113,12 @@ pub const EXAMPLES: &[Example] = &[
         text: include_str!("../examples/cases/rough-ball.toml"),
     },
     Example {
+        name: "rough-roller",
+        description: "a rough, logarithmically crowned roller (rms 0.2 um) on a shaft, 400 N in \
+                      3 steps: the roughness as the roller's [body1.surface.roughness]",
+        text: include_str!("../examples/cases/rough-roller.toml"),
+    },
+    Example {
         name: "measured-x3p",
         description: "a measured X3P topography on a flat, periodic; writes its .x3p with \
                       `tribo example measured-x3p -o DIR`",

@@ -116,14 +116,16 @@ pub fn half_space(case: &HalfSpaceCase) -> Estimate {
         .map_or(0.0, |d| (d.criteria.len() as f64 + 2.0) * 64.0 * points);
     // Rough surfaces: per rough body its heights on the grid (8 B) and, while it is drawn,
     // the generator's complex transform (16 B); the composite and its PSD transform (8 + 16
-    // B); the patch labels and the flood fill's stack (4 + 8 B). A sweep keeps the previous
-    // pressure (8 B) beside the solver's arrays.
+    // B); the patch labels and the flood fill's stack (4 + 8 B); the elements with material
+    // (1 B, for the roughness on a roller, or on any surface). A sweep keeps the previous
+    // pressure (8 B) beside the solver's arrays. A rough roller's roughness is a rough body
+    // like a rough ball's.
     let rough_bodies = [&case.body1, &case.body2]
         .iter()
         .filter(|b| b.roughness.is_some())
         .count() as f64;
     let rough = if rough_bodies > 0.0 || case.periodic || case.load_steps > 1 {
-        (24.0 * rough_bodies + 24.0 + 12.0 + 8.0) * elements
+        (24.0 * rough_bodies + 24.0 + 12.0 + 8.0 + 1.0) * elements
     } else {
         0.0
     };

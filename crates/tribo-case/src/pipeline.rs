@@ -437,18 +437,23 @@ pub fn prepare(case: &HalfSpaceCase) -> CaseResult<Prepared> {
         }
     }
     let grid = SurfaceGrid::centred(case.n[0], case.n[1], half_widths[0], half_widths[1])?;
-    let gap = match &hertz {
-        Some(h) => grid.sample(|x, y| h.curvature.gap(x, y)),
-        None => initial_gap(
-            &grid,
-            &case.body1.profile("body1")?,
-            &case.body2.profile("body2")?,
-        )?,
+    // The elements where both bodies have material, for the roughness (beyond a roller's
+    // ends it is not superposed); a Hertzian gap has material everywhere.
+    let (gap, material) = match &hertz {
+        Some(h) => (grid.sample(|x, y| h.curvature.gap(x, y)), None),
+        None => {
+            let p1 = case.body1.profile("body1")?;
+            let p2 = case.body2.profile("body2")?;
+            let material = case
+                .is_rough()
+                .then(|| crate::rough::material(&grid, &p1, &p2));
+            (initial_gap(&grid, &p1, &p2)?, material)
+        }
     };
     let gap_note = height_map_note(case, &grid);
     let rough = crate::rough::rough_surfaces(case, &grid)?;
     let gap = match &rough {
-        Some(r) => crate::rough::rough_gap(&gap, r),
+        Some(r) => crate::rough::rough_gap(&grid, &gap, r, material.as_deref()),
         None => gap,
     };
     Ok(Prepared {

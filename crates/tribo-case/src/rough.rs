@@ -19,6 +19,7 @@
 use crate::case::{GeneratedRoughness, HalfSpaceCase, Roughness};
 use crate::error::{CaseError, CaseResult};
 use serde::Serialize;
+use tribo::geometry::SurfaceProfile;
 use tribo::surface::generate::{generate, plateau, GenerateParams};
 use tribo::surface::resample::{height_at, Boundary};
 use tribo::surface::statistics::{
@@ -43,22 +44,25 @@ pub const MAX_RMS_SLOPE: f64 = 1.0;
 pub const MIN_RELATIVE_RMS_HEIGHT: f64 = 1e-12;
 
 /// The key that sets a rough body's level and its value, for the refusals of the drawn
-/// surface: `rms_height` or `rms_slope` of a generated surface, `file` of a measured one.
-fn level_key(name: &str, roughness: &Roughness) -> (String, String) {
+/// surface: `rms_height` or `rms_slope` of a generated surface, `file` of a measured one, in
+/// the roughness's `table` ([`crate::case::Body::roughness_table`]: `body1.surface`, or a
+/// roller's `body1.surface.roughness`).
+fn level_key(table: &str, roughness: &Roughness) -> (String, String) {
     match roughness {
         Roughness::Generated(g) => match g.normalization {
-            Normalization::RmsHeight(h) => (format!("{name}.surface.rms_height"), format!("{h:e}")),
-            Normalization::RmsSlope(s) => (format!("{name}.surface.rms_slope"), format!("{s:e}")),
+            Normalization::RmsHeight(h) => (format!("{table}.rms_height"), format!("{h:e}")),
+            Normalization::RmsSlope(s) => (format!("{table}.rms_slope"), format!("{s:e}")),
         },
-        Roughness::Measured(m) => (format!("{name}.surface.file"), m.file.clone()),
+        Roughness::Measured(m) => (format!("{table}.file"), m.file.clone()),
     }
 }
 
 /// The rules of a body's roughness on the grid: finite heights and statistics (a level that
 /// overflows is refused), an rms slope within [`MAX_RMS_SLOPE`], an rms height of at least
-/// `floor` (m, [`MIN_RELATIVE_RMS_HEIGHT`] of the window).
+/// `floor` (m, [`MIN_RELATIVE_RMS_HEIGHT`] of the window). `table` names the roughness's
+/// table in the refusals.
 fn check_on_grid(
-    name: &str,
+    table: &str,
     roughness: &Roughness,
     heights: &[f64],
     statistics: Option<&SurfaceStatistics>,
@@ -71,7 +75,7 @@ fn check_on_grid(
     let finite = heights.iter().all(|h| h.is_finite())
         && statistics.is_none_or(|s| s.scalars().iter().all(|x| x.is_finite()));
     if !finite {
-        let (key, value) = level_key(name, roughness);
+        let (key, value) = level_key(table, roughness);
         return Err(CaseError::field(
             key,
             value,
@@ -89,7 +93,7 @@ fn check_on_grid(
         })
     );
     if let Some(s) = statistics.filter(|s| s.rms_height < floor) {
-        let (key, value) = level_key(name, roughness);
+        let (key, value) = level_key(table, roughness);
         return Err(CaseError::field(
             key,
             value,
@@ -105,7 +109,7 @@ fn check_on_grid(
     if let (Some(s), false) = (statistics, by_slope) {
         let slope = s.rms_slope_finite_difference;
         if slope > MAX_RMS_SLOPE {
-            let (key, value) = level_key(name, roughness);
+            let (key, value) = level_key(table, roughness);
             return Err(CaseError::field(
                 key,
                 value,
@@ -299,15 +303,16 @@ pub fn rough_surfaces(
     let floor = MIN_RELATIVE_RMS_HEIGHT * 2.0 * hx.max(hy);
     for (name, body) in [("body1", &case.body1), ("body2", &case.body2)] {
         let Some(r) = &body.roughness else { continue };
+        let table = body.roughness_table(name);
         let (heights, c_r) = on_grid(name, r, grid, case.periodic)?;
-        check_on_grid(name, r, &heights, None, floor)?;
+        check_on_grid(&table, r, &heights, None, floor)?;
         composite
             .iter_mut()
             .zip(&heights)
             .for_each(|(c, h)| *c += h);
         let t = Topography::new(grid.nx(), grid.ny(), grid.dx(), grid.dy(), heights)?;
         let statistics = SurfaceStatistics::of(&t)?;
-        check_on_grid(name, r, t.heights(), Some(&statistics), floor)?;
+        check_on_grid(&table, r, t.heights(), Some(&statistics), floor)?;
         let (file, generated) = match r {
             Roughness::Generated(g) => (None, Some(*g)),
             Roughness::Measured(m) => (Some(m.file.clone()), None),
@@ -334,15 +339,51 @@ pub fn rough_surfaces(
     }))
 }
 
-/// The initial gap of a rough case: the smooth gap minus the composite roughness, shifted so
-/// that its minimum is 0 (the undeformed bodies touch at the highest summit).
-pub fn rough_gap(smooth_gap: &[f64], rough: &RoughSurfaces) -> Vec<f64> {
+/// The elements of `grid` (grid layout) where both bodies have material: `false` beyond a
+/// roller's ends (or outside a height map), where [`tribo::geometry::initial_gap`] puts its
+/// no-material separation.
+pub fn material(grid: &SurfaceGrid, body1: &SurfaceProfile, body2: &SurfaceProfile) -> Vec<bool> {
+    (0..grid.ny())
+        .flat_map(|j| (0..grid.nx()).map(move |i| (i, j)))
+        .map(|(i, j)| {
+            let (x, y) = (grid.x(i), grid.y(j));
+            body1.height(x, y).is_some() && body2.height(x, y).is_some()
+        })
+        .collect()
+}
+
+/// The initial gap of a rough case on `grid`: the smooth gap minus the composite roughness,
+/// shifted so that its minimum is 0 (the undeformed bodies touch at the highest summit).
+///
+/// Only the elements with `material` ([`material`]; `None`: all of them) are roughened and
+/// shifted; the others (beyond a roller's ends) get the no-material separation of
+/// [`tribo::geometry::initial_gap`] anew, `max(h) + 2 * (half diagonal of the window)` over
+/// the rough gap, so that a roughness cannot pull them towards contact.
+pub fn rough_gap(
+    grid: &SurfaceGrid,
+    smooth_gap: &[f64],
+    rough: &RoughSurfaces,
+    material: Option<&[bool]>,
+) -> Vec<f64> {
+    let on = |k: usize| material.is_none_or(|m| m[k]);
     let mut gap = smooth_gap.to_vec();
     for b in &rough.bodies {
-        gap.iter_mut().zip(&b.heights).for_each(|(g, h)| *g -= h);
+        gap.iter_mut()
+            .zip(&b.heights)
+            .enumerate()
+            .filter(|(k, _)| on(*k))
+            .for_each(|(_, (g, h))| *g -= h);
     }
-    let lo = gap.iter().copied().fold(f64::INFINITY, f64::min);
-    gap.iter_mut().for_each(|g| *g -= lo);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (_, &g) in gap.iter().enumerate().filter(|(k, _)| on(*k)) {
+        lo = lo.min(g);
+        hi = hi.max(g);
+    }
+    let (wx, wy) = grid.half_widths();
+    let off_body = (hi - lo) + 2.0 * wx.hypot(wy);
+    for (k, g) in gap.iter_mut().enumerate() {
+        *g = if on(k) { *g - lo } else { off_body };
+    }
     gap
 }
 

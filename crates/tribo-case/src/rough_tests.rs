@@ -16,6 +16,18 @@ fn case(text: &str, dir: &Path) -> HalfSpaceCase {
     parse_case(text, "test", dir).unwrap_or_else(|e| panic!("{e}\n{text}"))
 }
 
+/// Every case of `cases` (text, key, rule) is refused by the parser with an error that
+/// starts with the key and holds the rule.
+fn assert_refusals(cases: &[(String, &str, &str)], dir: &Path) {
+    for (text, key, rule) in cases {
+        let e = error(text, dir);
+        assert!(
+            e.starts_with(key) && e.contains(rule),
+            "{key} / {rule}: {e}"
+        );
+    }
+}
+
 fn error(text: &str, dir: &Path) -> String {
     match parse_case(text, "test", dir) {
         Ok(_) => panic!("accepted:\n{text}"),
@@ -471,13 +483,7 @@ fn the_new_keys_refuse_what_does_not_apply() {
             "periodic = true for a rough flat",
         ),
     ];
-    for (text, key, rule) in cases {
-        let e = error(&text, dir);
-        assert!(
-            e.starts_with(key) && e.contains(rule),
-            "{key} / {rule}: {e}"
-        );
-    }
+    assert_refusals(&cases, dir);
 }
 
 #[test]
@@ -533,13 +539,7 @@ fn measured_surfaces_name_their_file_and_rules() {
             "does not apply",
         ),
     ];
-    for (text, key, rule) in cases {
-        let e = error(&text, dir.path());
-        assert!(
-            e.starts_with(key) && e.contains(rule),
-            "{key} / {rule}: {e}"
-        );
-    }
+    assert_refusals(&cases, dir.path());
     // A measured map on a non-periodic window: within the map, and not declared periodic.
     let open = base
         .replace("periodic = true\n[body2]", "[body2]")
@@ -626,13 +626,7 @@ fn hostile_levels_spacings_and_files_are_refused_naming_the_key() {
             "mean_pressure",
         ),
     ];
-    for (text, key, rule) in parse_refusals {
-        let e = error(&text, dir);
-        assert!(
-            e.starts_with(key) && e.contains(rule),
-            "{key} / {rule}: {e}"
-        );
-    }
+    assert_refusals(&parse_refusals, dir);
     // A sweep of many small loads, the first ones on one element, was an exit 1 ("numerical
     // failure in Polonsky-Keer CG: non-positive curvature" from a one-element warm start).
     let out = run(
@@ -709,4 +703,208 @@ fn hostile_levels_spacings_and_files_are_refused_naming_the_key() {
             "{e}"
         );
     }
+}
+
+/// The `rough-roller` example (a roughness in `[body1.surface.roughness]` of a crowned
+/// roller) and the same roller without it (the roughness table cut out).
+fn rough_and_smooth_roller() -> (String, String) {
+    let rough = crate::examples::find("rough-roller")
+        .unwrap()
+        .text
+        .to_string();
+    let start = rough.find("\n[body1.surface.roughness]").unwrap();
+    let end = rough.find("\n[body2]").unwrap();
+    let smooth = format!("{}{}", &rough[..start], &rough[end..]);
+    (rough, smooth)
+}
+
+#[test]
+fn a_rough_roller_with_tiny_roughness_is_the_smooth_roller() {
+    // rms slope 1e-8 (heights ~1e-14 ... 1e-13 m over wavelengths of 20 ... 100 um, against
+    // an approach of 3.2 um and a gap curvature of ~0.1 um over an element): the pressure
+    // changes by about E* times the slope, ~1e3 Pa, 1e-6 of the smooth roller's peak p_max
+    // = 0.98 GPa. So the pressure is the smooth roller's to 1e-5 of p_max (the rest is the
+    // solver tolerance 1e-10 on the residual), the peak likewise, and the force (controlled)
+    // to 1e-9.
+    let (rough, smooth) = rough_and_smooth_roller();
+    let rough = rough.replace("rms_height = \"0.2 um\"", "rms_slope = 1e-8");
+    let rc = case(&rough, Path::new("."));
+    let sc = case(&smooth, Path::new("."));
+    assert!(rc.is_rough() && !sc.is_rough() && !rc.is_hertzian());
+    assert!(matches!(
+        rc.body1.shape,
+        crate::case::Shape::Surface(tribo::geometry::SurfaceProfile::Roller(_))
+    ));
+    let ro = run(&rc, &mut Silent).unwrap();
+    let so = run(&sc, &mut Silent).unwrap();
+    let p_max = so.solution.max_pressure();
+    assert!(p_max > 0.9e9 && p_max < 1.1e9, "{p_max:e}");
+    let diff = ro
+        .solution
+        .pressure
+        .iter()
+        .zip(&so.solution.pressure)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(diff <= 1e-5 * p_max, "{diff:e} of {p_max:e}");
+    assert!(
+        (ro.solution.max_pressure() - p_max).abs() <= 1e-5 * p_max,
+        "{} vs {p_max}",
+        ro.solution.max_pressure()
+    );
+    let (fr, fs) = (ro.solution.normal_load, so.solution.normal_load);
+    assert!((fr - fs).abs() <= 1e-9 * fs && (fs - 400.0).abs() <= 1e-9 * 400.0);
+    // The roughness is there and reported, at the level asked for.
+    let r = ro.prepared.rough.as_ref().unwrap();
+    assert_eq!(
+        (r.bodies.len(), r.bodies[0].body, r.bodies[0].kind),
+        (1, "body1", "rough")
+    );
+    assert!(r.composite.rms_slope > 0.5e-8 && r.composite.rms_slope < 2e-8);
+}
+
+#[test]
+fn a_rough_rollers_gap_is_the_smooth_gap_minus_the_roughness_within_its_ends() {
+    // Within the roller (|x| < length/2 = 2 mm) the rough gap is the smooth roller's minus
+    // the roughness plus one constant (the shift to the highest summit), exact to the rounding
+    // of the subtractions: a few ulp of the largest gap (~2e-5 m), bounded by 8 eps of it.
+    // Beyond the ends (no material) every element keeps the no-material separation of
+    // tribo::geometry::initial_gap for the rough gap, max(h) + 2 * half diagonal, whatever
+    // the roughness there.
+    let (rough, smooth) = rough_and_smooth_roller();
+    let rp = prepare(&case(&rough, Path::new("."))).unwrap();
+    let sp = prepare(&case(&smooth, Path::new("."))).unwrap();
+    let grid = &rp.grid;
+    let heights = &rp.rough.as_ref().unwrap().bodies[0].heights;
+    let (rg, sg) = (&rp.initial_gap, &sp.initial_gap);
+    let inside = |k: usize| grid.x(k % grid.nx()).abs() < 2e-3;
+    let scale = rg.iter().fold(0.0f64, |m, g| m.max(g.abs()));
+    let tol = 8.0 * f64::EPSILON * scale;
+    let k0 = (0..rg.len()).find(|&k| inside(k)).unwrap();
+    let shift = rg[k0] - (sg[k0] - heights[k0]);
+    let (mut inner, mut outer) = (0, 0);
+    let mut hi = f64::NEG_INFINITY;
+    for k in (0..rg.len()).filter(|&k| inside(k)) {
+        let d = rg[k] - (sg[k] - heights[k]) - shift;
+        assert!(d.abs() <= tol, "element {k}: {d:e} (tolerance {tol:e})");
+        hi = hi.max(rg[k]);
+        inner += 1;
+    }
+    // The shift puts the highest summit at h = 0.
+    let lo = (0..rg.len())
+        .filter(|&k| inside(k))
+        .fold(f64::INFINITY, |m, k| m.min(rg[k]));
+    assert_eq!(lo, 0.0);
+    let (hx, hy) = grid.half_widths();
+    let separation = hi + 2.0 * hx.hypot(hy);
+    for k in (0..rg.len()).filter(|&k| !inside(k)) {
+        assert_eq!(rg[k], separation, "element {k}");
+        outer += 1;
+    }
+    // Both parts are there (the window reaches 0.2 mm beyond each end: 20 columns a side),
+    // and the roughness beyond the ends is not zero: superposed, it would change the value.
+    assert_eq!(outer, 2 * 20 * grid.ny());
+    assert_eq!(inner + outer, rg.len());
+    assert!((0..rg.len())
+        .filter(|&k| !inside(k))
+        .any(|k| heights[k].abs() > 1e-9));
+    // The smooth roller's own no-material separation is its gap's (another max).
+    assert!(sg.iter().any(|&g| g > hi));
+}
+
+#[test]
+fn a_rough_rollers_refusals_name_the_nested_keys() {
+    let (rough, _) = rough_and_smooth_roller();
+    let dir = Path::new(".");
+    let cases: Vec<(String, &str, &str)> = vec![
+        (
+            rough.replace("hurst = 0.8\n", ""),
+            "body1.surface.roughness.hurst = (missing)",
+            "required",
+        ),
+        (
+            rough.replace("hurst = 0.8", "hurst = 1.5"),
+            "body1.surface.roughness.hurst = 1.5",
+            "(0, 1]",
+        ),
+        (
+            rough.replace("seed = 5", "seed = 5\nhurstt = 0.8"),
+            "test: in `body1.surface.roughness.hurstt`",
+            "unknown field",
+        ),
+        (
+            rough.replace("seed = 5", "seed = 5\ncrown = \"circular\""),
+            "body1.surface.roughness.crown",
+            "does not apply to kind = \"rough\"",
+        ),
+        (
+            rough.replace("kind = \"rough\"", "kind = \"roller\""),
+            "body1.surface.roughness.kind = \"roller\"",
+            "must be kind = \"rough\"",
+        ),
+        (
+            rough.replace(
+                "short_wavelength = \"20 um\"",
+                "short_wavelength = \"10 um\"",
+            ),
+            "body1.surface.roughness.short_wavelength",
+            "Nyquist",
+        ),
+        (
+            rough.replace(
+                "long_wavelength = \"100 um\"",
+                "long_wavelength = \"400 um\"",
+            ),
+            "body1.surface.roughness.long_wavelength",
+            "must not exceed the window size",
+        ),
+        (
+            format!(
+                "{}\n[body1.surface.roughness]\nkind = \"measured\"\nfile = \"missing.x3p\"{}",
+                &rough[..rough.find("\n[body1.surface.roughness]").unwrap()],
+                &rough[rough.find("\n[body2]").unwrap()..]
+            ),
+            "body1.surface.roughness.file",
+            "missing.x3p",
+        ),
+        (
+            rough.replace(
+                "seed = 5",
+                "seed = 5\n[body1.surface.roughness.roughness]\nkind = \"rough\"",
+            ),
+            "body1.surface.roughness.roughness",
+            "belongs to a roller surface",
+        ),
+        (
+            crate::examples::find("rough-ball").unwrap().text.replace(
+                "seed = 3",
+                "seed = 3\n[body1.surface.roughness]\nkind = \"rough\"",
+            ),
+            "body1.surface.roughness = (a table)",
+            "belongs to a roller surface",
+        ),
+        (
+            crate::examples::find("height-map").unwrap().text.replace(
+                "[body2]",
+                "[body1.surface.roughness]\nkind = \"rough\"\n[body2]",
+            ),
+            "body1.surface.roughness",
+            "not to kind = \"height_map\"",
+        ),
+        (
+            rough
+                .replace("[grid]", "[grid]\nperiodic = true\nperiod = \"0.3 mm\"")
+                .replace("n = [440, 32]", "n = [32, 32]")
+                .replace("half_width = [\"2.2 mm\", \"0.16 mm\"]", ""),
+            "body1.surface.kind",
+            "periodic",
+        ),
+    ];
+    assert_refusals(&cases, dir);
+    // On the grid: a level that makes the surface flat names the nested rms_slope.
+    let flat = rough.replace("rms_height = \"0.2 um\"", "rms_slope = 1e-300");
+    let e = prepare_error(&flat, dir);
+    assert!(
+        e.starts_with("body1.surface.roughness.rms_slope") && e.contains("flat"),
+        "{e}"
+    );
 }

@@ -341,7 +341,7 @@ fn examples_with_data_files_run() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("contact.approach"), "{}", stderr(&o));
     assert!(!bad_out.join("summary.json").exists());
-    for name in ["rough-flat", "rough-ball"] {
+    for name in ["rough-flat", "rough-ball", "rough-roller"] {
         let text = stdout(&tribo(&["example", name], None));
         let out = d.path().join(name);
         let o = tribo(
@@ -694,6 +694,48 @@ fn dry_run_estimates_the_field_stage() {
     assert!(printed.contains("field stage: about"), "{printed}");
     assert!(printed.contains(" MiB"), "{printed}");
     assert!(!out.exists());
+}
+
+/// A rough roller's roughness table (`[bodyN.surface.roughness]`): its refusals exit 2,
+/// name the nested key and the rule, and write nothing; the table elsewhere is refused.
+#[test]
+fn a_rough_rollers_roughness_is_refused_naming_the_nested_key() {
+    let roller = example("rough-roller");
+    let (head, tail) = (
+        &roller[..roller.find("\n[body1.surface.roughness]").unwrap()],
+        &roller[roller.find("\n[body2]").unwrap()..],
+    );
+    let measured = format!(
+        "{head}\n[body1.surface.roughness]\nkind = \"measured\"\nfile = \"gone.x3p\"{tail}"
+    );
+    for (text, needles) in [
+        (
+            example("rough-ball").replace(
+                "seed = 3",
+                "seed = 3\n[body1.surface.roughness]\nkind = \"rough\"",
+            ),
+            &["body1.surface.roughness", "belongs to a roller surface"][..],
+        ),
+        (
+            roller.replace("seed = 5", "seed = 5\nhurstt = 0.8"),
+            &["body1.surface.roughness.hurstt", "unknown field"][..],
+        ),
+        (
+            roller.replace("hurst = 0.8\n", ""),
+            &["body1.surface.roughness.hurst", "required"][..],
+        ),
+        (measured, &["body1.surface.roughness.file", "gone.x3p"][..]),
+    ] {
+        assert_refused(&text, &[], &[], needles);
+    }
+    // The memory estimate counts the roller's roughness: refused before it is drawn.
+    let big = roller.replace("n = [440, 32]", "n = [8192, 8192]");
+    assert_refused(
+        &big,
+        &[],
+        &["--max-memory", "1 GiB"],
+        &["memory = about", "rough surfaces and sweep"],
+    );
 }
 
 /// Found by probing: a rough grid too big for memory was refused only after its surface was

@@ -90,11 +90,21 @@ pub struct Body {
     /// Shape of the surface (the smooth part where the body is rough: its radii, or a flat).
     pub shape: Shape,
     /// A rough or measured surface superposed on the shape (`[bodyN.surface] kind = "rough"`
-    /// or `"measured"`).
+    /// or `"measured"` on radii or a flat; `[bodyN.surface.roughness]` on a roller).
     pub roughness: Option<Roughness>,
 }
 
 impl Body {
+    /// The table of the case file that holds the body's roughness, for the errors that name
+    /// its keys: `"{name}.surface"` on radii or a flat (the surface is the roughness),
+    /// `"{name}.surface.roughness"` on a roller (the roughness is a table of its surface).
+    pub fn roughness_table(&self, name: &str) -> String {
+        match self.shape {
+            Shape::Radii { .. } => format!("{name}.surface"),
+            Shape::Surface(_) => format!("{name}.surface.roughness"),
+        }
+    }
+
     /// The body's surface profile in the common frame (see [`tribo::geometry`]).
     pub fn profile(&self, field: &str) -> tribo::Result<SurfaceProfile> {
         match &self.shape {

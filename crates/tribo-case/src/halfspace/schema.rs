@@ -60,6 +60,9 @@ pub(super) struct RawSurface {
     pub flat_length: Option<Metres>,
     pub design_load: Option<Quantity<Force>>,
     pub crown_drop: Option<Metres>,
+    /// `[bodyN.surface.roughness]`: a roughness on the roller, the keys of a surface of kind
+    /// "rough" or "measured" (a rule of [`super::validate`]: only in a roller).
+    pub roughness: Option<Box<RawSurface>>,
     // height map
     pub file: Option<String>,
     pub heights: Option<Vec<Vec<Number>>>,

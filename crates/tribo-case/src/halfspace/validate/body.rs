@@ -27,7 +27,9 @@ pub(super) struct ShapeContext<'a> {
 /// A body's smooth shape and its roughness. `radii` and a `[bodyN.surface]` of kind
 /// "rough" or "measured" combine: the roughness superposed on the body of those radii (a
 /// rough ball); such a surface alone is a rough flat. A roller or a height map is the
-/// whole shape: not with `radii`.
+/// whole shape: not with `radii`; a roller takes a roughness as its table
+/// `[bodyN.surface.roughness]` (a rough crowned roller), with the keys and rules of a
+/// surface of kind "rough" or "measured".
 pub(super) fn shape(
     name: &str,
     b: RawBody,
@@ -64,7 +66,7 @@ pub(super) fn shape(
             };
             Ok((Shape::Radii { radii, angle }, None))
         }
-        (None, Some(s)) => {
+        (None, Some(mut s)) => {
             if let Some(a) = &b.angle_deg {
                 return Err(CaseError::field(
                     format!("{name}.angle_deg"),
@@ -83,7 +85,17 @@ pub(super) fn shape(
                     Some(roughness),
                 ));
             }
-            Ok((Shape::Surface(surface(&field, s, ctx)?), None))
+            // A roller's roughness table; on any other surface `surface` refuses it.
+            let nested = match s.kind.value {
+                SurfaceKind::Roller => s.roughness.take(),
+                _ => None,
+            };
+            let shape = Shape::Surface(surface(&field, s, ctx)?);
+            let roughness = match nested {
+                Some(r) => Some(roughness(&format!("{field}.roughness"), *r, ctx)?),
+                None => None,
+            };
+            Ok((shape, roughness))
         }
     }
 }
@@ -108,8 +120,22 @@ fn radii(name: &str, r: &Radii) -> CaseResult<[f64; 2]> {
     Ok(out)
 }
 
-/// Refuses the keys that do not apply to the surface's kind.
+/// Refuses the keys that do not apply to the surface's kind; a roughness table
+/// (`roughness`) applies to a roller only.
 fn check_keys(field: &str, s: &RawSurface) -> CaseResult<()> {
+    if s.roughness.is_some() && s.kind.value != SurfaceKind::Roller {
+        return Err(CaseError::field(
+            format!("{field}.roughness"),
+            "(a table)",
+            format!(
+                "a roughness table belongs to a roller surface (kind = \"roller\"), not to \
+                 kind = {}; for a rough ball or a rough flat give kind = \"rough\" or \
+                 \"measured\" in the surface itself (with {body}.radii for the ball)",
+                s.kind.written,
+                body = field.split('.').next().unwrap_or(field)
+            ),
+        ));
+    }
     match foreign_key(s) {
         Some((key, value)) => Err(CaseError::field(
             format!("{field}.{key}"),
@@ -134,7 +160,16 @@ fn surface(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CaseResult<Sur
     }
 }
 
+/// A roughness: a surface of kind "rough" or "measured" (`field` names its table, a
+/// `[bodyN.surface]` or a roller's `[bodyN.surface.roughness]`).
 fn roughness(field: &str, s: RawSurface, ctx: &ShapeContext<'_>) -> CaseResult<Roughness> {
+    if matches!(s.kind.value, SurfaceKind::Roller | SurfaceKind::HeightMap) {
+        return Err(CaseError::field(
+            format!("{field}.kind"),
+            &s.kind.written,
+            "a roughness must be kind = \"rough\" (generated) or \"measured\" (a file)",
+        ));
+    }
     check_keys(field, &s)?;
     match s.kind.value {
         SurfaceKind::Rough => super::rough::generated(field, &s).map(Roughness::Generated),

@@ -286,7 +286,7 @@ pub(super) fn check_against_grid(
     };
     let element = [size[0] / n[0] as f64, size[1] / n[1] as f64];
     for (name, body) in bodies {
-        let field = format!("{name}.surface");
+        let field = body.roughness_table(name);
         if periodic {
             let flat = match &body.shape {
                 Shape::Radii { radii, .. } => radii.iter().all(|r| r.is_infinite()),
