@@ -409,6 +409,7 @@ fn halfspace_reference_documents_exactly_the_accepted_keys() {
     let sec6 = example("roller-shaft-sec6");
     let crowned = example("crowned-roller");
     let map = example("height-map");
+    let rough_roller = example("rough-roller");
     let prob = example("roller-shaft-probabilistic");
     let run = ["run", "-", "--dry-run", "--quiet"];
     check_schema(
@@ -419,6 +420,12 @@ fn halfspace_reference_documents_exactly_the_accepted_keys() {
             ("<body>", &roller, Probe::Insert("body1")),
             ("<surface>", &crowned, Probe::Insert("body1.surface")),
             ("<surface>", &map, Probe::Insert("body1.surface")),
+            // A roller's roughness table is a `<surface>` (`<surface>.roughness`).
+            (
+                "<surface>",
+                &rough_roller,
+                Probe::Insert("body1.surface.roughness"),
+            ),
             ("contact", &roller, Probe::Insert("contact")),
             ("grid", &roller, Probe::Insert("grid")),
             ("solver", &roller, Probe::Insert("solver")),

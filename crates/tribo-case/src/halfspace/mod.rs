@@ -14,6 +14,8 @@
 //! nu = 0.3                         # Poisson's ratio, in (-1, 0.5)
 //! radii = [0.005, 0.05]            # principal radii along x and y, m; < 0 concave; "inf" flat
 //! # or, instead of radii, a surface: [body1.surface] kind = "roller" | "height_map"
+//! # (a roughness: kind = "rough" | "measured", with or without radii; on a roller its
+//! # table [body1.surface.roughness] of kind "rough" | "measured")
 //! [body2]
 //! E = 2.01e11
 //! nu = 0.3
