@@ -668,7 +668,7 @@ fn check_operator(
 /// `I_c = {p > 0}`; under force control the mean gap over `I_c` is subtracted (it is the
 /// approach) and the pressure is rescaled to the load after each step; points outside
 /// `I_c` with negative gap re-enter the contact set, and the conjugate direction is reset
-/// when they do. Under approach control the gap includes the prescribed approach and no
+/// when they do (without a preconditioner; the preconditioned iteration keeps it). Under approach control the gap includes the prescribed approach and no
 /// rescaling is done. Convergence: [`complementarity_residual`] <= `params.tolerance`.
 /// With a `preconditioner` (M, [`normal_preconditioner`], with its own workspace or `None`
 /// to share the operator's), the direction is built from `z = M r` instead of the gap
@@ -826,15 +826,23 @@ fn conjugate_gradient(
                     None => &mut *workspace,
                 };
                 m.apply_into(&response, &mut preconditioned, m_workspace);
-                let (z_sum, gz, g_sum) =
-                    passes::preconditioned_sums(&preconditioned, &gap, &pressure);
+                let sums =
+                    passes::preconditioned_sums(&preconditioned, &gap, &pressure, &direction);
                 let z_mean = match loading {
-                    NormalLoading::Force(_) => z_sum / n_contact as f64,
+                    NormalLoading::Force(_) => sums.z / n_contact as f64,
                     NormalLoading::Approach(_) => 0.0,
                 };
-                let norm = gz - z_mean * g_sum;
+                let norm = sums.gap_z - z_mean * sums.gap;
+                // The conjugate part is kept across re-entries (docs/theory/HALFSPACE.md
+                // 2.3), but only along a descent direction: sum g t = norm + beta sum g t_old
+                // must stay positive, or the iteration restarts from z.
                 let beta = if conjugate && norm_old > 0.0 && norm > 0.0 {
                     norm / norm_old
+                } else {
+                    0.0
+                };
+                let beta = if norm + beta * sums.gap_direction > 0.0 {
+                    beta
                 } else {
                     0.0
                 };
@@ -911,7 +919,11 @@ fn conjugate_gradient(
             step,
             MAX_SPARSE_CORRECTIONS,
         );
-        conjugate = !moved.overlap;
+        // Polonsky & Keer reset the direction after a re-entry; the preconditioned iteration
+        // keeps it (with the descent test above): on a rough surface points re-enter in
+        // almost every iteration, and the reset makes it a steepest descent (169 against 66
+        // iterations at 2048^2 on issue 16's case, docs/theory/HALFSPACE.md 2.3).
+        conjugate = preconditioner.is_some() || !moved.overlap;
 
         let mut scale = 1.0;
         if let NormalLoading::Force(force) = loading {

@@ -189,31 +189,52 @@ pub(super) fn masked_residual_sweep(gap: &[f64], pressure: &[f64], residual: &mu
         });
 }
 
-/// `(sum z, sum g z, sum g)` over the contact set, `z` the preconditioned residual.
+/// What [`preconditioned_sums`] returns: sums over the contact set.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct PreconditionedSums {
+    /// `sum z`, Pa.
+    pub z: f64,
+    /// `sum g z`, m Pa.
+    pub gap_z: f64,
+    /// `sum g`, m.
+    pub gap: f64,
+    /// `sum g t` with the previous direction `t`, m Pa.
+    pub gap_direction: f64,
+}
+
+/// `sum z`, `sum g z`, `sum g` and `sum g t` over the contact set, `z` the preconditioned
+/// residual and `t` the previous direction.
 pub(super) fn preconditioned_sums(
     preconditioned: &[f64],
     gap: &[f64],
     pressure: &[f64],
-) -> (f64, f64, f64) {
-    let parts: Vec<(f64, f64, f64)> = preconditioned
+    direction: &[f64],
+) -> PreconditionedSums {
+    let parts: Vec<PreconditionedSums> = preconditioned
         .par_chunks(CHUNK)
         .zip(gap.par_chunks(CHUNK))
-        .zip(pressure.par_chunks(CHUNK))
-        .map(|((z, g), p)| {
-            let (mut zs, mut gz, mut gs) = (0.0, 0.0, 0.0);
+        .zip(pressure.par_chunks(CHUNK).zip(direction.par_chunks(CHUNK)))
+        .map(|((z, g), (p, t))| {
+            let mut s = PreconditionedSums::default();
             for i in 0..z.len() {
                 if p[i] > 0.0 {
-                    zs += z[i];
-                    gz += g[i] * z[i];
-                    gs += g[i];
+                    s.z += z[i];
+                    s.gap_z += g[i] * z[i];
+                    s.gap += g[i];
+                    s.gap_direction += g[i] * t[i];
                 }
             }
-            (zs, gz, gs)
+            s
         })
         .collect();
     parts
         .into_iter()
-        .fold((0.0, 0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2))
+        .fold(PreconditionedSums::default(), |a, b| PreconditionedSums {
+            z: a.z + b.z,
+            gap_z: a.gap_z + b.gap_z,
+            gap: a.gap + b.gap,
+            gap_direction: a.gap_direction + b.gap_direction,
+        })
 }
 
 /// The preconditioned conjugate direction `t = (z - z_mean) + beta t` on the contact set
