@@ -117,14 +117,29 @@ pub fn area_vs_load(
         Some(vec![(0.0, 0.0), (x_end, kappa * x_end / s)])
     };
     let lines: Vec<LawLine> = [
-        (KAPPA_SIMULATIONS, "kappa = 2 (Hyun et al. 2004)", false),
-        (KAPPA_PERSSON, "kappa = sqrt(8/pi) (Persson)", true),
-        (KAPPA_BGT, "kappa = sqrt(2 pi) (Bush et al.)", true),
+        // One colour per law (red, orange, green): the two dashed bounds were both red and
+        // the legend could not tell them apart.
+        (
+            KAPPA_SIMULATIONS,
+            "kappa = 2 (Hyun et al. 2004)",
+            false,
+            RGBColor(214, 39, 40),
+        ),
+        (
+            KAPPA_PERSSON,
+            "kappa = sqrt(8/pi) (Persson)",
+            true,
+            RGBColor(255, 127, 14),
+        ),
+        (
+            KAPPA_BGT,
+            "kappa = sqrt(2 pi) (Bush et al.)",
+            true,
+            RGBColor(44, 160, 44),
+        ),
     ]
     .into_iter()
-    .filter_map(|(k, name, dashed)| {
-        law(k).map(|p| (name.to_string(), RGBColor(214, 39, 40), dashed, p))
-    })
+    .filter_map(|(k, name, dashed, colour)| law(k).map(|p| (name.to_string(), colour, dashed, p)))
     .collect();
     let y_top = lines
         .iter()
@@ -142,8 +157,8 @@ pub fn area_vs_load(
         .configure_mesh()
         .x_desc("nominal mean pressure over E*, p / E*")
         .y_desc("contact area fraction A / A0")
-        .x_label_formatter(&sig)
-        .y_label_formatter(&sig)
+        .x_label_formatter(&axis_labels(0.0, x1, false))
+        .y_label_formatter(&axis_labels(0.0, y_top.min(1.05), false))
         .label_style((FAMILY, 15))
         .axis_desc_style((FAMILY, 17))
         .light_line_style(WHITE.mix(0.0))
@@ -154,11 +169,7 @@ pub fn area_vs_load(
     for (name, colour, dashed, p) in &lines {
         let c = *colour;
         occupied.extend(densify(p));
-        let style = if *dashed {
-            c.mix(0.6).stroke_width(1)
-        } else {
-            c.stroke_width(2)
-        };
+        let style = c.stroke_width(2);
         if *dashed {
             let n = 40;
             let (a, b) = (p[0], p[1]);
@@ -254,8 +265,8 @@ pub fn psd(
         .configure_mesh()
         .x_desc("wavenumber q, rad/m")
         .y_desc("PSD C(q), m^4")
-        .x_label_formatter(&sig)
-        .y_label_formatter(&sig)
+        .x_label_formatter(&axis_labels(x0, x1, true))
+        .y_label_formatter(&axis_labels(y0, y1, true))
         .label_style((FAMILY, 15))
         .axis_desc_style((FAMILY, 17))
         .light_line_style(WHITE.mix(0.0))

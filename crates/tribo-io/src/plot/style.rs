@@ -161,6 +161,41 @@ pub(crate) fn sig(v: &f64) -> String {
     }
 }
 
+/// Tick labels in one notation per axis `[lo, hi]` (`log`: a logarithmic axis): [`sig`]'s
+/// fixed notation where all of the axis's ticks have it (the largest magnitude in
+/// [1e-2, 1e5) and, on a log axis, the smallest at least 1e-3), scientific with the mantissa
+/// trimmed ("5e-4", "1.5e-3") for every tick otherwise, so that one axis never mixes
+/// "5.000e-4" and "0.001". Zero is "0" in either.
+pub(crate) fn axis_labels(lo: f64, hi: f64, log: bool) -> impl Fn(&f64) -> String {
+    let top = lo.abs().max(hi.abs());
+    let bottom = lo.abs().min(hi.abs());
+    let fixed = (1e-2..1e5).contains(&top) && (!log || bottom >= 1e-3);
+    move |v: &f64| {
+        if fixed || *v == 0.0 || !v.is_finite() {
+            sig(v)
+        } else {
+            scientific(*v)
+        }
+    }
+}
+
+/// `v` in scientific notation with at most four significant digits, trailing zeros of the
+/// mantissa removed: 5e-4, 1.5e-3, -2.25e6.
+fn scientific(v: f64) -> String {
+    let s = format!("{v:.3e}");
+    match s.split_once('e') {
+        Some((mantissa, exponent)) => {
+            let mantissa = if mantissa.contains('.') {
+                mantissa.trim_end_matches('0').trim_end_matches('.')
+            } else {
+                mantissa
+            };
+            format!("{mantissa}e{exponent}")
+        }
+        None => s,
+    }
+}
+
 /// The font size (px) at which `text` fits in `width` px (less 20 px of border), at most
 /// `nominal` and at least 9: long titles (a case title is the user's) shrink instead of
 /// running off both sides of the image.
@@ -540,6 +575,23 @@ mod tests {
             (mx - my).abs() <= mx / ph.min(pw) as f64,
             "{mx} vs {my} mm/px"
         );
+    }
+
+    #[test]
+    fn one_axis_uses_one_notation() {
+        // p / E* from 0 to 1.2e-3: every tick scientific (it mixed "5.000e-4" and "0.001").
+        let small = axis_labels(0.0, 1.2e-3, false);
+        assert_eq!(
+            [0.0, 5e-4, 1e-3, 1.5e-3].map(|v| small(&v)),
+            ["0", "5e-4", "1e-3", "1.5e-3"]
+        );
+        // An axis within [1e-2, 1e5): fixed notation throughout.
+        let plain = axis_labels(0.0, 0.6, false);
+        assert_eq!([0.0, 0.25, 0.5].map(|v| plain(&v)), ["0", "0.25", "0.5"]);
+        // A log axis over decades (a PSD's wavenumbers): scientific throughout.
+        let log = axis_labels(1e2, 1e6, true);
+        assert_eq!([1e2, 1e4, 1e6].map(|v| log(&v)), ["1e2", "1e4", "1e6"]);
+        assert_eq!(scientific(-2.25e6), "-2.25e6");
     }
 
     #[test]
