@@ -117,6 +117,29 @@ mod tests {
         }
     }
 
+    /// The initial gap `-h` of issue 16's self-affine surface on an `n x n` unit periodic
+    /// window: Hurst 0.8, rms slope 1, wave numbers 4 to n/4 per window, seed 16.
+    fn self_affine_gap(n: usize, method: crate::surface::generate::Method) -> Vec<f64> {
+        use crate::surface::generate::{generate, GenerateParams, Normalization};
+        use crate::surface::spectrum::PowerSpectrum;
+        let q = 2.0 * std::f64::consts::PI;
+        let cutoff = (n / 4) as f64 * q;
+        generate(&GenerateParams {
+            nx: n,
+            ny: n,
+            periods: (1.0, 1.0),
+            spectrum: PowerSpectrum::isotropic(4.0 * q, 4.0 * q, cutoff, 0.8).unwrap(),
+            normalization: Normalization::RmsSlope(1.0),
+            method,
+            seed: 16,
+        })
+        .unwrap()
+        .heights()
+        .iter()
+        .map(|h| -h)
+        .collect()
+    }
+
     /// Solve `problem` with and without the preconditioner (the coarse start off in both, so
     /// that only the iteration differs) and, where `active_set`, with the dense active set;
     /// assert the pressures agree and return the two CG iteration counts.
@@ -199,8 +222,7 @@ mod tests {
     /// which saves iterations on the rough surface by a factor of more than 2.
     #[test]
     fn periodic_preconditioned_equals_plain() {
-        use crate::surface::generate::{generate, GenerateParams, Method, Normalization};
-        use crate::surface::spectrum::PowerSpectrum;
+        use crate::surface::generate::Method;
         use std::f64::consts::PI;
         let e_star = 1.0;
         let (wavelength, amplitude) = (1.0, 0.01);
@@ -212,17 +234,7 @@ mod tests {
         let bi = bi_grid.sample(|x, y| amplitude * (1.0 - (q * x).cos() * (q * y).cos()));
         let bi_force = 0.25 * 2.0f64.sqrt() * PI * e_star * amplitude / wavelength;
         let rough_grid = SurfaceGrid::centred(128, 128, 0.5, 0.5).unwrap();
-        let rough = generate(&GenerateParams {
-            nx: 128,
-            ny: 128,
-            periods: (1.0, 1.0),
-            spectrum: PowerSpectrum::isotropic(4.0 * q, 4.0 * q, 32.0 * q, 0.8).unwrap(),
-            normalization: Normalization::RmsSlope(1.0),
-            method: Method::RandomPhase,
-            seed: 16,
-        })
-        .unwrap();
-        let rough_gap: Vec<f64> = rough.heights().iter().map(|h| -h).collect();
+        let rough_gap = self_affine_gap(128, Method::RandomPhase);
         for kernel in [PeriodicKernel::ElementIntegrated, PeriodicKernel::Spectral] {
             for (name, grid, gap, force) in [
                 ("westergaard", &wavy_grid, &wavy, wavy_force),
@@ -256,22 +268,8 @@ mod tests {
     /// every re-entry, 61. The bound 50 lies between them, so a return of the reset fails here.
     #[test]
     fn rough_surface_keeps_the_conjugate_direction_across_reentries() {
-        use crate::surface::generate::{generate, GenerateParams, Method, Normalization};
-        use crate::surface::spectrum::PowerSpectrum;
-        let q = 2.0 * std::f64::consts::PI;
-        let n = 512;
-        let grid = SurfaceGrid::centred(n, n, 0.5, 0.5).unwrap();
-        let rough = generate(&GenerateParams {
-            nx: n,
-            ny: n,
-            periods: (1.0, 1.0),
-            spectrum: PowerSpectrum::isotropic(4.0 * q, 4.0 * q, 128.0 * q, 0.8).unwrap(),
-            normalization: Normalization::RmsSlope(1.0),
-            method: Method::FilteredNoise,
-            seed: 16,
-        })
-        .unwrap();
-        let gap: Vec<f64> = rough.heights().iter().map(|h| -h).collect();
+        let grid = SurfaceGrid::centred(512, 512, 0.5, 0.5).unwrap();
+        let gap = self_affine_gap(512, crate::surface::generate::Method::FilteredNoise);
         let operator = normal_compliance_operator_periodic(&grid, 1.0, PeriodicKernel::Spectral);
         let problem = NormalContactProblem {
             grid: &grid,
