@@ -661,7 +661,8 @@ pub fn sweep_loads(case: &HalfSpaceCase) -> Vec<NormalLoading> {
 /// operator (the periodic one on a periodic grid,
 /// [`tribo::solvers::normal::normal_compliance_operator_periodic`] with the element-integrated
 /// kernel), each started from the previous load's pressure (a warm start: the same solution
-/// to the tolerance in fewer iterations); returns the final solution and every load's record.
+/// to the tolerance; since session 14's solver it saves no iterations on the rough sweeps
+/// measured, `rough_tests`); returns the final solution and every load's record.
 pub fn normal_sweep(
     case: &HalfSpaceCase,
     prepared: &Prepared,

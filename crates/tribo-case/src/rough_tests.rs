@@ -139,7 +139,7 @@ fn a_periodic_case_equals_the_librarys_bisinusoid() {
 fn the_warm_started_sweep_equals_cold_solves() {
     // Each load of the sweep solved from the previous pressure against a cold solve of the
     // same load: the same pressure to 1e-7 of the peak (the LCP's solution is unique; both
-    // iterates have a complementarity residual <= 1e-10), in fewer iterations in all.
+    // iterates have a complementarity residual <= 1e-10), in about as many iterations.
     let text = crate::examples::find("rough-flat")
         .unwrap()
         .text
@@ -186,9 +186,15 @@ fn the_warm_started_sweep_equals_cold_solves() {
             assert!(diff <= 1e-7 * pmax, "{diff:e} of {pmax:e}");
         }
     }
+    // The iterations: since the preconditioned CG keeps its conjugate direction across
+    // re-entries (session 14), the warm start no longer saves any. Measured (2026-12-02): 88
+    // warm against 83 cold here (21-24 per load against 20-21), 100 against 89 on 256^2: a
+    // warm start's contact set is the smaller one of the lower load, and the points that
+    // must enter do so slowly, while the uniform start has them all in contact. The bound
+    // (10 % above the cold solves) keeps the warm sweep from getting worse unnoticed.
     let warm: usize = sweep.steps.iter().map(|s| s.iterations).sum();
     assert!(
-        warm < cold_iterations,
+        10 * warm <= 11 * cold_iterations,
         "warm {warm}, cold {cold_iterations}"
     );
     // The area grows with the load, and the mean gap falls.
