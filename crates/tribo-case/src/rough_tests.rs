@@ -187,7 +187,7 @@ fn the_warm_started_sweep_equals_cold_solves() {
         }
     }
     // The iterations: since the preconditioned CG keeps its conjugate direction across
-    // re-entries (session 14), the warm start no longer saves any. Measured (2026-12-02): 88
+    // re-entries (session 14), the warm start no longer saves any. Measured in session 14: 88
     // warm against 83 cold here (21-24 per load against 20-21), 100 against 89 on 256^2: a
     // warm start's contact set is the smaller one of the lower load, and the points that
     // must enter do so slowly, while the uniform start has them all in contact. The bound

@@ -264,7 +264,7 @@ mod tests {
     /// preconditioner): the start interpolated from the coarse grid overlaps at many points,
     /// which re-enter the contact set in most iterations until it has settled, and the
     /// preconditioned CG keeps its conjugate part across re-entries (docs/theory/HALFSPACE.md
-    /// 2.3). Measured (2026-12-02): 40 fine iterations; with Polonsky & Keer's reset after
+    /// 2.3). Measured in session 14: 40 fine iterations; with Polonsky & Keer's reset after
     /// every re-entry, 61. The bound 50 lies between them, so a return of the reset fails here.
     #[test]
     fn rough_surface_keeps_the_conjugate_direction_across_reentries() {
